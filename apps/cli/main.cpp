@@ -1,0 +1,27 @@
+// blockdem command-line program: one subcommand per job, registered from the table below.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"blockdem: rigid polyhedral blocks with compliant joints, for jointed rock masses"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("blockdem ") + blockdem::cli::version());
+
+  // The subcommands. Each registers its own options and its callback.
+  blockdem::cli::register_run(app);
+  blockdem::cli::register_analytic(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 1;
+  }
+  return blockdem::cli::exit_code();
+}

@@ -1,0 +1,72 @@
+// Block construction (principal frame) and per-step world geometry.
+#include "blockdem/dynamics/block.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+
+#include "blockdem/geometry/geometry_error.hpp"
+
+namespace blockdem {
+
+Block make_block(const Polyhedron& world_shape, double density, std::string name, std::string group) {
+  if (!(density > 0.0) || !std::isfinite(density)) {
+    throw GeometryError("density must be positive and finite, got " + std::to_string(density));
+  }
+  Block b;
+  b.name = std::move(name);
+  b.group = std::move(group);
+  b.density = density;
+  b.mass = density * world_shape.volume();
+
+  // Principal axes: columns of R are the eigenvectors of the unit inertia tensor (right-handed).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(world_shape.unit_inertia());
+  Eigen::Matrix3d axes = eig.eigenvectors();
+  if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+  // Snap to the world axes when the tensor is (nearly) isotropic or already diagonal, so that a
+  // box keeps its faces along the world axes in its body frame.
+  const Eigen::Matrix3d inertia = world_shape.unit_inertia();
+  const double off = std::abs(inertia(0, 1)) + std::abs(inertia(0, 2)) + std::abs(inertia(1, 2));
+  if (off <= 1e-12 * inertia.trace()) axes.setIdentity();
+  const Eigen::Matrix3d body_inertia = axes.transpose() * inertia * axes;
+  b.inertia = density * body_inertia.diagonal();
+
+  // Body shape: x_body = axesᵀ (x_world - centroid).
+  b.shape = world_shape.transformed(axes.transpose(), -axes.transpose() * world_shape.centroid());
+  b.position = world_shape.centroid();
+  b.orientation = Eigen::Quaterniond(axes).normalized();
+  b.initial_position = b.position;
+  b.initial_orientation = b.orientation;
+  b.update_world_geometry();
+  return b;
+}
+
+void Block::update_world_geometry() {
+  const Eigen::Matrix3d r = rotation();
+  const auto& planes = shape.planes();
+  world_planes.resize(planes.size());
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    const Eigen::Vector3d n = r * planes[i].normal;
+    world_planes[i].normal = n;
+    world_planes[i].offset = planes[i].offset + n.dot(position);
+  }
+  aabb_min.setConstant(std::numeric_limits<double>::infinity());
+  aabb_max.setConstant(-std::numeric_limits<double>::infinity());
+  for (const auto& v : shape.vertices()) {
+    const Eigen::Vector3d w = position + r * v;
+    aabb_min = aabb_min.cwiseMin(w);
+    aabb_max = aabb_max.cwiseMax(w);
+  }
+}
+
+double Block::kinetic_energy() const {
+  const Eigen::Vector3d w_body = orientation.conjugate() * angular_velocity;
+  return 0.5 * mass * velocity.squaredNorm() + 0.5 * w_body.dot(inertia.cwiseProduct(w_body));
+}
+
+Eigen::Matrix3d Block::world_inertia() const {
+  const Eigen::Matrix3d r = rotation();
+  return r * inertia.asDiagonal() * r.transpose();
+}
+
+}  // namespace blockdem

@@ -1,0 +1,92 @@
+// A rigid block: shape in its principal body frame, mass properties, kinematic state, loads.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "blockdem/geometry/polyhedron.hpp"
+
+namespace blockdem {
+
+/// How a block moves.
+enum class Motion {
+  free,        ///< integrated from forces
+  fixed,       ///< never moves
+  prescribed,  ///< moves with a given velocity and angular velocity
+  servo,       ///< translates along an axis at a speed set by a force controller (see Servo)
+};
+
+/// A servo-controlled boundary block (DESIGN section 5): its speed along `axis` is
+/// v = gain (F_target - F_reaction), clipped to ±max_speed, where F_reaction is the component
+/// along -axis of the contact force the block receives (how hard it pushes forward).
+struct Servo {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< unit direction of travel (-)
+  double target_force = 0.0;                        ///< (N)
+  double gain = 0.0;                                ///< (m/s/N); 0: chosen from the contact stiffness
+  double max_speed = 0.0;                           ///< (m/s); 0: chosen from the time step
+  double tolerance = 0.01;                          ///< converged when |F - F_target| <= tol·F_target
+  bool hold = false;                                ///< when true the block stays where it is
+};
+
+struct Block {
+  std::string name;
+  std::string group;
+  int index = -1;
+
+  Polyhedron shape;               ///< body frame: centroid at the origin, principal axes
+  double density = 0.0;           ///< (kg/m^3)
+  double mass = 0.0;              ///< (kg)
+  Eigen::Vector3d inertia = Eigen::Vector3d::Zero();  ///< principal moments (kg m^2)
+
+  Motion motion = Motion::free;
+  Servo servo;
+
+  // State. Orientation maps body to world coordinates.
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();         ///< centroid (m)
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();         ///< (m/s), at the half step
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero(); ///< world frame (rad/s), half step
+  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero(); ///< world frame (kg m^2/s), half step
+
+  // Reference state for displacement outputs.
+  Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond initial_orientation = Eigen::Quaterniond::Identity();
+
+  // Loads of the current step.
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();          ///< total, including gravity (N)
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();         ///< about the centroid (N m)
+  Eigen::Vector3d contact_force = Eigen::Vector3d::Zero();  ///< from contacts only (N)
+
+  // World-frame planes and bounding box, refreshed every step.
+  std::vector<Halfspace> world_planes;
+  Eigen::Vector3d aabb_min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d aabb_max = Eigen::Vector3d::Zero();
+
+  bool is_dynamic() const { return motion == Motion::free; }
+  /// Rotation matrix body -> world.
+  Eigen::Matrix3d rotation() const { return orientation.toRotationMatrix(); }
+  /// Refreshes world_planes and the bounding box from the pose.
+  void update_world_geometry();
+  /// World position of a body-frame point.
+  Eigen::Vector3d to_world(const Eigen::Vector3d& body_point) const {
+    return position + orientation * body_point;
+  }
+  /// Velocity of the material point at world position x (m/s).
+  Eigen::Vector3d point_velocity(const Eigen::Vector3d& x) const {
+    return velocity + angular_velocity.cross(x - position);
+  }
+  /// Kinetic energy, translational plus rotational (J).
+  double kinetic_energy() const;
+  /// World inertia tensor R diag(I) Rᵀ (kg m^2).
+  Eigen::Matrix3d world_inertia() const;
+};
+
+/// Builds a block from a shape given in world coordinates (the shape's own frame is the world's):
+/// the body frame is moved to the centroid and turned to the principal axes, and the initial pose
+/// puts the block exactly where the shape was. Throws GeometryError for a non-positive density.
+Block make_block(const Polyhedron& world_shape, double density, std::string name = {},
+                 std::string group = {});
+
+}  // namespace blockdem

@@ -1,0 +1,59 @@
+// CSV writer.
+#include "blockdem/io/csv.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace blockdem {
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)
+    : path_(path), out_(path), columns_(columns.size()) {
+  if (!out_) throw std::runtime_error("cannot write " + path.string());
+  out_.precision(12);
+  for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
+  out_ << "\n";
+}
+
+void CsvWriter::separator() {
+  if (in_row_++ > 0) out_ << ",";
+}
+
+CsvWriter& CsvWriter::cell(double value) {
+  separator();
+  if (std::isfinite(value)) {
+    out_ << value;
+  } else {
+    out_ << (std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"));
+  }
+  return *this;
+}
+
+CsvWriter& CsvWriter::cell(long long value) {
+  separator();
+  out_ << value;
+  return *this;
+}
+
+CsvWriter& CsvWriter::cell(const std::string& value) {
+  separator();
+  if (value.find_first_of(",\"\n") == std::string::npos) {
+    out_ << value;
+  } else {
+    out_ << '"';
+    for (char c : value) out_ << (c == '"' ? std::string("\"\"") : std::string(1, c));
+    out_ << '"';
+  }
+  return *this;
+}
+
+void CsvWriter::end_row() {
+  if (in_row_ != columns_) {
+    throw std::logic_error(path_.string() + ": row has " + std::to_string(in_row_) + " cells, header has " +
+                           std::to_string(columns_));
+  }
+  out_ << "\n";
+  in_row_ = 0;
+  if (!out_) throw std::runtime_error("write failed: " + path_.string());
+}
+
+}  // namespace blockdem

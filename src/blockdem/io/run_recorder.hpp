@@ -1,0 +1,34 @@
+// Writes a run's results as it goes: history.csv (one row per stage end), blocks.csv and
+// contacts.csv (one row per stage end and block/contact), and VTK files.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "blockdem/io/csv.hpp"
+#include "blockdem/world/stage.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+/// Rotation of a block since its initial pose as a rotation vector (rad): axis times angle.
+Eigen::Vector3d rotation_since_start(const Block& b);
+
+class RunRecorder {
+ public:
+  /// Creates `dir` if needed. Throws std::runtime_error when it cannot be written.
+  RunRecorder(const std::filesystem::path& dir, bool vtk);
+
+  /// Records the world at the end of stage `level` (0-based).
+  void record(const World& world, const StageResult& stage, int level);
+
+  const std::filesystem::path& dir() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+  bool vtk_ = true;
+  std::unique_ptr<CsvWriter> history_, blocks_, contacts_;
+};
+
+}  // namespace blockdem

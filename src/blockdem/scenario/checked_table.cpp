@@ -1,0 +1,209 @@
+// Checked access to TOML values for scenario files.
+#include "blockdem/scenario/checked_table.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace blockdem {
+namespace {
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+std::optional<double> as_number(const toml::node& n) {
+  if (auto v = n.value_exact<double>()) return *v;
+  if (auto v = n.value_exact<std::int64_t>()) return static_cast<double>(*v);
+  return std::nullopt;
+}
+
+}  // namespace
+
+CheckedTable::CheckedTable(const toml::table& table, std::string file, std::string path)
+    : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
+
+bool CheckedTable::has(const std::string& key) const { return table_->contains(key); }
+
+bool CheckedTable::is_string(const std::string& key) const {
+  const toml::node* n = table_->get(key);
+  return n != nullptr && n->is_string();
+}
+
+void CheckedTable::fail(const std::string& key, const std::string& reason) const {
+  throw ScenarioError(file_, key_path(key), reason);
+}
+
+const toml::node* CheckedTable::get(const std::string& key) const {
+  used_.insert(key);
+  return table_->get(key);
+}
+
+double CheckedTable::number(const std::string& key) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required (a number)");
+  const auto v = as_number(*n);
+  if (!v) fail(key, "must be a number, got " + type_name(*n));
+  if (!std::isfinite(*v)) fail(key, "must be finite");
+  return *v;
+}
+
+double CheckedTable::number(const std::string& key, double fallback) const {
+  return has(key) ? number(key) : (used_.insert(key), fallback);
+}
+
+std::optional<double> CheckedTable::optional_number(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return number(key);
+}
+
+double CheckedTable::positive(const std::string& key, double fallback, bool allow_zero) const {
+  const double v = number(key, fallback);
+  if (allow_zero ? !(v >= 0.0) : !(v > 0.0)) {
+    std::ostringstream s;
+    s << "must be " << (allow_zero ? "zero or positive" : "positive") << ", got " << v;
+    fail(key, s.str());
+  }
+  return v;
+}
+
+std::int64_t CheckedTable::integer(const std::string& key, std::int64_t fallback) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  if (auto v = n->value_exact<std::int64_t>()) return *v;
+  fail(key, "must be an integer, got " + type_name(*n));
+}
+
+bool CheckedTable::boolean(const std::string& key, bool fallback) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  if (auto v = n->value_exact<bool>()) return *v;
+  fail(key, "must be true or false, got " + type_name(*n));
+}
+
+std::string CheckedTable::string(const std::string& key) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required (a string)");
+  if (auto v = n->value_exact<std::string>()) return *v;
+  fail(key, "must be a string, got " + type_name(*n));
+}
+
+std::string CheckedTable::string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? string(key) : (used_.insert(key), fallback);
+}
+
+std::string CheckedTable::choice(const std::string& key, const std::string& fallback,
+                                 const std::vector<std::string>& choices) const {
+  const std::string v = string(key, fallback);
+  for (const auto& c : choices) {
+    if (c == v) return v;
+  }
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
+  fail(key, "must be one of " + list + ", got \"" + v + "\"");
+}
+
+Eigen::Vector3d CheckedTable::vec3(const std::string& key) const {
+  const auto r = rows(key, 0).front();
+  return Eigen::Vector3d(r[0], r[1], r[2]);
+}
+
+Eigen::Vector3d CheckedTable::vec3(const std::string& key, const Eigen::Vector3d& fallback) const {
+  return has(key) ? vec3(key) : (used_.insert(key), fallback);
+}
+
+std::vector<std::vector<double>> CheckedTable::rows(const std::string& key, std::size_t width) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required");
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
+  // width 0: the value itself is one row of three numbers (vec3).
+  auto read_row = [&](const toml::array& row, std::size_t want, const std::string& where) {
+    if (row.size() != want) {
+      fail(key, where + "must have " + std::to_string(want) + " numbers, got " + std::to_string(row.size()));
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const auto v = as_number(*row.get(i));
+      if (!v) fail(key, where + "entry " + std::to_string(i + 1) + " must be a number, got " + type_name(*row.get(i)));
+      if (!std::isfinite(*v)) fail(key, where + "entry " + std::to_string(i + 1) + " must be finite");
+      out.push_back(*v);
+    }
+    return out;
+  };
+  std::vector<std::vector<double>> out;
+  if (width == 0) {
+    out.push_back(read_row(*a, 3, ""));
+    return out;
+  }
+  for (std::size_t r = 0; r < a->size(); ++r) {
+    const toml::array* row = a->get(r)->as_array();
+    const std::string where = "row " + std::to_string(r + 1) + " ";
+    if (row == nullptr) fail(key, where + "must be an array of " + std::to_string(width) + " numbers");
+    out.push_back(read_row(*row, width, where));
+  }
+  return out;
+}
+
+std::vector<std::string> CheckedTable::strings(const std::string& key) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) return {};
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of strings, got " + type_name(*n));
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    auto v = a->get(i)->value_exact<std::string>();
+    if (!v) fail(key, "entry " + std::to_string(i + 1) + " must be a string");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+CheckedTable CheckedTable::table(const std::string& key) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required (a table)");
+  const toml::table* t = n->as_table();
+  if (t == nullptr) fail(key, "must be a table, got " + type_name(*n));
+  return CheckedTable(*t, file_, key_path(key));
+}
+
+std::vector<CheckedTable> CheckedTable::tables(const std::string& key) const {
+  const toml::node* n = get(key);
+  std::vector<CheckedTable> out;
+  if (n == nullptr) return out;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of tables ([[" + key + "]]), got " + type_name(*n));
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::table* t = a->get(i)->as_table();
+    if (t == nullptr) fail(key, "entry " + std::to_string(i + 1) + " must be a table");
+    out.emplace_back(*t, file_, key_path(key) + "[" + std::to_string(i + 1) + "]");
+  }
+  return out;
+}
+
+std::map<std::string, double> CheckedTable::numbers_except(const std::set<std::string>& except) const {
+  std::map<std::string, double> out;
+  for (const auto& [k, v] : *table_) {
+    const std::string key(k.str());
+    if (except.count(key)) continue;
+    out[key] = number(key);
+  }
+  return out;
+}
+
+void CheckedTable::finish() const {
+  for (const auto& [k, v] : *table_) {
+    const std::string key(k.str());
+    if (!used_.count(key)) fail(key, "unknown key (misspelt, or not a setting of this table)");
+  }
+}
+
+}  // namespace blockdem

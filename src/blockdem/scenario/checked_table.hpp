@@ -1,0 +1,77 @@
+// A TOML table reader that records which keys were read, so that unknown keys, wrong types and
+// impossible values become errors naming the file, the key and the reason.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <toml++/toml.h>
+#include <vector>
+
+namespace blockdem {
+
+/// An error in a scenario file. what() reads "FILE: KEY: REASON".
+class ScenarioError : public std::runtime_error {
+ public:
+  ScenarioError(const std::string& file, const std::string& key, const std::string& reason)
+      : std::runtime_error(file + ": " + (key.empty() ? std::string() : key + ": ") + reason),
+        file_(file), key_(key), reason_(reason) {}
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string file_, key_, reason_;
+};
+
+class CheckedTable {
+ public:
+  /// `path` is the dotted key of this table in the file ("" for the root), for messages.
+  CheckedTable(const toml::table& table, std::string file, std::string path);
+
+  const std::string& file() const { return file_; }
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const;
+  bool is_string(const std::string& key) const;
+
+  /// Throws ScenarioError naming this key.
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  std::optional<double> optional_number(const std::string& key) const;
+  /// A number that must be > 0 (or >= 0 when allow_zero).
+  double positive(const std::string& key, double fallback, bool allow_zero = false) const;
+  std::int64_t integer(const std::string& key, std::int64_t fallback) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string string(const std::string& key) const;
+  std::string string(const std::string& key, const std::string& fallback) const;
+  /// A string that must be one of `choices`.
+  std::string choice(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& choices) const;
+  Eigen::Vector3d vec3(const std::string& key) const;
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback) const;
+  /// An array of arrays of numbers, each of length `width`.
+  std::vector<std::vector<double>> rows(const std::string& key, std::size_t width) const;
+  std::vector<std::string> strings(const std::string& key) const;
+  /// A sub-table (inline or not).
+  CheckedTable table(const std::string& key) const;
+  /// An array of tables ([[key]]); empty when absent.
+  std::vector<CheckedTable> tables(const std::string& key) const;
+  /// Every key of the table with a numeric value, as a map (for joint-law parameters), skipping
+  /// the keys in `except`.
+  std::map<std::string, double> numbers_except(const std::set<std::string>& except) const;
+
+  /// Throws for any key that was never read: an unknown key (typo or unsupported setting).
+  void finish() const;
+
+ private:
+  const toml::node* get(const std::string& key) const;
+  const toml::table* table_;
+  std::string file_, path_;
+  mutable std::set<std::string> used_;
+};
+
+}  // namespace blockdem

@@ -1,0 +1,312 @@
+// Scenario file reader: every key checked, every value validated, errors name file and key.
+#include "blockdem/scenario/scenario.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "blockdem/collision/boon2012.hpp"
+#include "blockdem/geometry/geometry_error.hpp"
+
+namespace blockdem {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void read_settings(const CheckedTable& t, WorldSettings& s) {
+  s.gravity = t.vec3("gravity", s.gravity);
+  s.damping = t.number("damping", s.damping);
+  if (!(s.damping >= 0.0 && s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
+  // "auto" (the default) or a positive number of seconds.
+  if (t.is_string("time_step")) {
+    if (t.string("time_step") != "auto") t.fail("time_step", "must be \"auto\" or a positive number of seconds");
+  } else if (t.has("time_step")) {
+    s.time_step = t.positive("time_step", 0.0);
+  }
+  s.safety_factor = t.positive("safety_factor", s.safety_factor);
+  if (s.safety_factor > 1.0) t.fail("safety_factor", "must be at most 1");
+  t.choice("contact_mode", "boon2012", {"boon2012"});
+  s.contact_mode = ContactMode::boon2012;
+  s.boon2012.rounding_distance = t.positive("rounding_distance", s.boon2012.rounding_distance);
+  s.boon2012.overlap_tolerance = t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
+  s.max_speed = t.positive("max_speed", s.max_speed);
+  s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
+  t.finish();
+}
+
+Eigen::Matrix3d read_rotation(const CheckedTable& t) {
+  if (!t.has("rotation_deg") && !t.has("rotation_axis")) return Eigen::Matrix3d::Identity();
+  const double angle = t.number("rotation_deg", 0.0);
+  const Eigen::Vector3d axis = t.vec3("rotation_axis", Eigen::Vector3d::UnitZ());
+  if (axis.norm() == 0.0) t.fail("rotation_axis", "must not be the zero vector");
+  return Eigen::AngleAxisd(angle * kPi / 180.0, axis.normalized()).toRotationMatrix();
+}
+
+Block read_block(const CheckedTable& t, const std::map<std::string, double>& materials) {
+  const std::string name = t.string("name");
+  const std::string group = t.string("group", "default");
+  double density = 0.0;
+  if (t.has("material")) {
+    const std::string m = t.string("material");
+    auto it = materials.find(m);
+    if (it == materials.end()) t.fail("material", "no material named \"" + m + "\" in [[materials]]");
+    density = it->second;
+    if (t.has("density")) t.fail("density", "give either material or density, not both");
+  } else {
+    density = t.positive("density", 0.0);
+  }
+  const std::string shape = t.choice("shape", "box", {"box", "planes", "vertices"});
+  const Eigen::Matrix3d rot = read_rotation(t);
+  const Eigen::Vector3d pos = t.vec3("position", Eigen::Vector3d::Zero());
+  Polyhedron poly;
+  try {
+    if (shape == "box") {
+      const Eigen::Vector3d size = t.vec3("size");
+      for (int i = 0; i < 3; ++i) {
+        if (!(size[i] > 0.0)) t.fail("size", "box sides must be positive");
+      }
+      poly = Polyhedron::box(size);
+    } else if (shape == "planes") {
+      std::vector<Halfspace> planes;
+      for (const auto& r : t.rows("planes", 4)) {
+        Eigen::Vector3d n(r[0], r[1], r[2]);
+        const double len = n.norm();
+        if (!(len > 0.0)) t.fail("planes", "a plane normal is the zero vector");
+        // Normals given with any length are normalised, offsets scaled with them.
+        planes.push_back(Halfspace{n / len, r[3] / len});
+      }
+      poly = Polyhedron::from_planes(planes);
+    } else {
+      std::vector<Eigen::Vector3d> pts;
+      for (const auto& r : t.rows("vertices", 3)) pts.emplace_back(r[0], r[1], r[2]);
+      poly = Polyhedron::from_vertices(pts);
+    }
+  } catch (const GeometryError& e) {
+    t.fail(shape == "box" ? "size" : shape, e.what());
+  }
+  // Box: `position` is its centre. Planes/vertices: the shape is rotated about the origin of
+  // its own coordinates, then moved by `position`.
+  poly = poly.transformed(rot, pos);
+  Block b = make_block(poly, density, name, group);
+
+  const std::string motion = t.choice("motion", "free", {"free", "fixed", "prescribed", "servo"});
+  b.velocity = t.vec3("velocity", Eigen::Vector3d::Zero());
+  b.angular_velocity = t.vec3("angular_velocity", Eigen::Vector3d::Zero());
+  if (motion == "fixed") {
+    b.motion = Motion::fixed;
+    if (t.has("velocity") || t.has("angular_velocity")) {
+      t.fail("velocity", "a fixed block cannot have a velocity (use motion = \"prescribed\")");
+    }
+  } else if (motion == "prescribed") {
+    b.motion = Motion::prescribed;
+  } else if (motion == "servo") {
+    b.motion = Motion::servo;
+    const CheckedTable s = t.table("servo");
+    const Eigen::Vector3d axis = s.vec3("axis");
+    if (axis.norm() == 0.0) s.fail("axis", "must not be the zero vector");
+    b.servo.axis = axis.normalized();
+    b.servo.target_force = s.positive("target_force", 0.0, true);
+    b.servo.gain = s.positive("gain", 0.0, true);
+    b.servo.max_speed = s.positive("max_speed", 0.0, true);
+    b.servo.tolerance = s.positive("tolerance", b.servo.tolerance);
+    s.finish();
+  } else {
+    b.motion = Motion::free;
+  }
+  if (motion != "servo" && t.has("servo")) t.fail("servo", "only a block with motion = \"servo\" takes a servo table");
+  t.finish();
+  return b;
+}
+
+JointLaw read_joint_law(const CheckedTable& t) {
+  JointLaw law;
+  law.name = t.string("name");
+  {
+    const CheckedTable n = t.table("normal");
+    const std::string kind = n.string("law");
+    const std::string preset = n.string("preset", "");
+    try {
+      law.normal = normal_law_from_params(kind, n.numbers_except({"law", "preset"}), preset);
+    } catch (const std::invalid_argument& e) {
+      n.fail("law", e.what());
+    }
+    n.finish();
+  }
+  {
+    const CheckedTable s = t.table("shear");
+    const std::string kind = s.string("law");
+    try {
+      law.shear = shear_law_from_params(kind, s.numbers_except({"law"}));
+    } catch (const std::invalid_argument& e) {
+      s.fail("law", e.what());
+    }
+    s.finish();
+  }
+  t.finish();
+  return law;
+}
+
+Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names) {
+  Stage s;
+  s.name = t.string("name");
+  const std::string kind = t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration"});
+  s.kind = kind == "steps" ? Stage::Kind::steps : kind == "duration" ? Stage::Kind::duration : Stage::Kind::equilibrium;
+  if (t.has("gravity")) s.gravity = t.vec3("gravity");
+  if (t.has("damping")) {
+    s.damping = t.number("damping");
+    if (!(*s.damping >= 0.0 && *s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
+  }
+  s.unbalanced_tolerance = t.positive("unbalanced_tolerance", s.unbalanced_tolerance);
+  s.kinetic_tolerance = t.positive("kinetic_tolerance", s.kinetic_tolerance);
+  s.max_steps = t.integer("max_steps", s.max_steps);
+  if (s.max_steps <= 0) t.fail("max_steps", "must be positive");
+  s.min_steps = t.integer("min_steps", s.min_steps);
+  if (s.min_steps < 0) t.fail("min_steps", "must be zero or positive");
+  s.check_interval = t.integer("check_interval", s.check_interval);
+  if (s.check_interval <= 0) t.fail("check_interval", "must be positive");
+  if (s.kind == Stage::Kind::steps) {
+    s.steps = t.integer("steps", 0);
+    if (s.steps <= 0) t.fail("steps", "a stage of kind \"steps\" needs steps > 0");
+  }
+  if (s.kind == Stage::Kind::duration) s.duration = t.positive("duration", 0.0);
+  auto check_block = [&](const std::string& key, const std::string& name) {
+    if (!block_names.count(name)) t.fail(key, "no block named \"" + name + "\"");
+  };
+  for (const auto& st : t.tables("servos")) {
+    ServoCommand c;
+    c.block = st.string("block");
+    check_block("servos", c.block);
+    c.target_force = st.positive("target_force", 0.0, true);
+    if (st.has("axis")) {
+      const Eigen::Vector3d a = st.vec3("axis");
+      if (a.norm() == 0.0) st.fail("axis", "must not be the zero vector");
+      c.axis = a.normalized();
+    }
+    st.finish();
+    s.servos.push_back(c);
+  }
+  s.hold = t.strings("hold");
+  for (const auto& h : s.hold) check_block("hold", h);
+  s.hold_servos_after = t.boolean("hold_servos_after", false);
+  t.finish();
+  return s;
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw ScenarioError(file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+  }
+  const CheckedTable t(root, file, "");
+  Scenario sc;
+  sc.file = file;
+  sc.title = t.string("title", "");
+  if (t.has("settings")) read_settings(t.table("settings"), sc.settings);
+
+  std::map<std::string, double> materials;
+  for (const auto& m : t.tables("materials")) {
+    const std::string name = m.string("name");
+    if (materials.count(name)) m.fail("name", "material \"" + name + "\" is defined twice");
+    materials[name] = m.positive("density", 0.0);
+    m.finish();
+  }
+
+  std::map<std::string, int> law_index;
+  for (const auto& l : t.tables("joint_laws")) {
+    JointLaw law = read_joint_law(l);
+    if (law_index.count(law.name)) l.fail("name", "joint law \"" + law.name + "\" is defined twice");
+    law_index[law.name] = static_cast<int>(sc.joint_laws.size());
+    sc.joint_laws.push_back(std::move(law));
+  }
+
+  std::set<std::string> names, groups;
+  for (const auto& bt : t.tables("blocks")) {
+    Block b = read_block(bt, materials);
+    if (names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
+    names.insert(b.name);
+    groups.insert(b.group);
+    sc.blocks.push_back(std::move(b));
+  }
+  if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");
+
+  for (const auto& jt : t.tables("joints")) {
+    JointRule r;
+    const auto g = jt.strings("groups");
+    if (g.size() != 2) jt.fail("groups", "must name two block groups, e.g. [\"beam\", \"abutment\"]");
+    for (const auto& name : g) {
+      if (!name.empty() && !groups.count(name)) jt.fail("groups", "no block is in group \"" + name + "\"");
+    }
+    r.group_a = g[0];
+    r.group_b = g[1];
+    const std::string law = jt.string("law");
+    auto it = law_index.find(law);
+    if (it == law_index.end()) jt.fail("law", "no joint law named \"" + law + "\" in [[joint_laws]]");
+    r.law = it->second;
+    jt.finish();
+    sc.joint_rules.push_back(r);
+  }
+  if (sc.joint_rules.empty() && sc.joint_laws.size() == 1) {
+    // One law and no rules: it acts between all blocks.
+    sc.joint_rules.push_back(JointRule{"", "", 0});
+  }
+  if (sc.joint_rules.empty() && sc.blocks.size() > 1) {
+    t.fail("joints", "several joint laws and no [[joints]] rule saying which acts between which groups");
+  }
+
+  for (const auto& st : t.tables("stages")) sc.stages.push_back(read_stage(st, names));
+  if (sc.stages.empty()) t.fail("stages", "a scenario needs at least one [[stages]] entry");
+
+  if (t.has("output")) {
+    const CheckedTable o = t.table("output");
+    sc.output.vtk = o.boolean("vtk", sc.output.vtk);
+    o.finish();
+  }
+  t.finish();
+  return sc;
+}
+
+Scenario load_scenario(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ScenarioError(path, "", "cannot open the file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scenario(ss.str(), path);
+}
+
+World build_world(const Scenario& sc) {
+  World w(sc.settings);
+  for (const auto& law : sc.joint_laws) w.add_joint_law(law);
+  for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
+  for (const auto& b : sc.blocks) w.add_block(b);
+  // Deep initial overlaps are input errors, not something to blow apart.
+  const auto& blocks = w.blocks();
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    for (std::size_t j = i + 1; j < blocks.size(); ++j) {
+      const Block& a = blocks[i];
+      const Block& b = blocks[j];
+      if ((a.aabb_min.array() > b.aabb_max.array()).any() || (b.aabb_min.array() > a.aabb_max.array()).any()) continue;
+      const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+      const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
+      const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+      if (g.touching && g.overlap > sc.settings.max_overlap_fraction * size) {
+        std::ostringstream s;
+        s << "blocks \"" << a.name << "\" and \"" << b.name << "\" overlap by " << g.overlap
+          << " m at the start, more than " << sc.settings.max_overlap_fraction
+          << " of the smaller block's radius: check their positions and sizes";
+        throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
+      }
+    }
+  }
+  return w;
+}
+
+}  // namespace blockdem

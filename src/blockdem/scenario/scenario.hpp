@@ -1,0 +1,38 @@
+// Scenario files (TOML, schema in docs/scenario-files.md): blocks, materials, joint laws, stages
+// and outputs, read with every key checked, and turned into a World.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "blockdem/scenario/checked_table.hpp"
+#include "blockdem/world/stage.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+struct OutputSpec {
+  bool vtk = true;  ///< write VTK files of blocks and contacts at every stage end
+};
+
+struct Scenario {
+  std::string file;   ///< where it was read from
+  std::string title;
+  WorldSettings settings;
+  std::vector<Block> blocks;
+  std::vector<JointLaw> joint_laws;
+  std::vector<JointRule> joint_rules;
+  std::vector<Stage> stages;
+  OutputSpec output;
+};
+
+/// Reads and checks a scenario file. Throws ScenarioError ("FILE: KEY: REASON").
+Scenario load_scenario(const std::string& path);
+/// The same from TOML text; `file` is used in messages.
+Scenario parse_scenario(const std::string& toml_text, const std::string& file);
+
+/// Builds the world. Throws ScenarioError when blocks overlap deeply at the start (more than
+/// the settings' max_overlap_fraction of the smaller block's radius).
+World build_world(const Scenario& scenario);
+
+}  // namespace blockdem

@@ -1,0 +1,110 @@
+// Quasi-static stage runner (DESIGN section 5): step until the unbalanced-force ratio and the
+// kinetic energy ratio fall below tolerances, or report the stage as not converged.
+#include "blockdem/world/stage.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace blockdem {
+
+void Stage::validate() const {
+  auto fail = [this](const std::string& what) {
+    throw std::invalid_argument("stage '" + name + "': " + what);
+  };
+  if (gravity && !gravity->allFinite()) fail("gravity must be finite");
+  if (damping && !(*damping >= 0.0 && *damping < 1.0)) fail("damping must be in [0, 1)");
+  if (!(unbalanced_tolerance > 0.0)) fail("unbalanced_tolerance must be positive");
+  if (!(kinetic_tolerance > 0.0)) fail("kinetic_tolerance must be positive");
+  if (max_steps <= 0) fail("max_steps must be positive");
+  if (check_interval <= 0) fail("check_interval must be positive");
+  if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
+  if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
+  for (const auto& s : servos) {
+    if (!(s.target_force >= 0.0) || !std::isfinite(s.target_force)) fail("servo target_force must be >= 0");
+    if (s.axis && std::abs(s.axis->norm() - 1.0) > 1e-9) fail("servo axis must be a unit vector");
+  }
+}
+
+bool servos_settled(const World& world) {
+  for (const auto& b : world.blocks()) {
+    if (b.motion != Motion::servo || b.servo.hold) continue;
+    const double reaction = -b.contact_force.dot(b.servo.axis);
+    if (std::abs(reaction - b.servo.target_force) > b.servo.tolerance * b.servo.target_force) return false;
+  }
+  return true;
+}
+
+StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress) {
+  stage.validate();
+  if (stage.gravity) world.settings().gravity = *stage.gravity;
+  if (stage.damping) world.settings().damping = *stage.damping;
+  for (const auto& cmd : stage.servos) {
+    const int i = world.find_block(cmd.block);
+    if (i < 0) throw std::invalid_argument("stage '" + stage.name + "': no block named '" + cmd.block + "'");
+    Block& b = world.blocks()[i];
+    b.motion = Motion::servo;
+    b.servo.hold = false;
+    b.servo.target_force = cmd.target_force;
+    if (cmd.axis) b.servo.axis = *cmd.axis;
+  }
+  for (const auto& name : stage.hold) {
+    const int i = world.find_block(name);
+    if (i < 0) throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
+    world.blocks()[i].servo.hold = true;
+  }
+  world.save_checkpoint();
+
+  StageResult r;
+  r.name = stage.name;
+  const double t0 = world.time();
+  auto last_report = std::chrono::steady_clock::now();
+  for (std::int64_t k = 1;; ++k) {
+    world.step();
+    r.steps = k;
+    const bool check = k % stage.check_interval == 0;
+    if (progress && check) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_report > std::chrono::milliseconds(250)) {
+        progress(stage, k, world.equilibrium());
+        last_report = now;
+      }
+    }
+    if (stage.kind == Stage::Kind::steps && k >= stage.steps) {
+      r.converged = true;
+      break;
+    }
+    if (stage.kind == Stage::Kind::duration && world.time() - t0 >= stage.duration * (1 - 1e-12)) {
+      r.converged = true;
+      break;
+    }
+    if (stage.kind == Stage::Kind::equilibrium && check && k >= stage.min_steps) {
+      const EquilibriumMeasures m = world.equilibrium();
+      if (m.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
+          m.kinetic_energy_ratio <= stage.kinetic_tolerance && servos_settled(world)) {
+        r.converged = true;
+        break;
+      }
+    }
+    if (k >= stage.max_steps) {
+      const EquilibriumMeasures m = world.equilibrium();
+      r.message = "no equilibrium after " + std::to_string(k) + " steps: unbalanced force ratio " +
+                  std::to_string(m.unbalanced_force_ratio) + " (tolerance " +
+                  std::to_string(stage.unbalanced_tolerance) + "), kinetic energy ratio " +
+                  std::to_string(m.kinetic_energy_ratio) + " (tolerance " +
+                  std::to_string(stage.kinetic_tolerance) + ")" +
+                  (servos_settled(world) ? "" : ", a servo has not reached its target force");
+      break;
+    }
+  }
+  if (stage.hold_servos_after) {
+    for (auto& b : world.blocks()) {
+      if (b.motion == Motion::servo) b.servo.hold = true;
+    }
+  }
+  r.time = world.time();
+  r.measures = world.equilibrium();
+  return r;
+}
+
+}  // namespace blockdem

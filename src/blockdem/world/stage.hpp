@@ -1,0 +1,66 @@
+// Loading stages: run the world to static equilibrium (quasi-static) or for a time or step count.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+/// A change of a servo block's target at the start of a stage.
+struct ServoCommand {
+  std::string block;
+  double target_force = 0.0;  ///< (N)
+  std::optional<Eigen::Vector3d> axis;  ///< unit direction of travel; unchanged when absent
+};
+
+struct Stage {
+  enum class Kind { equilibrium, steps, duration };
+  std::string name = "stage";
+  Kind kind = Kind::equilibrium;
+
+  std::optional<Eigen::Vector3d> gravity;  ///< new gravity from this stage on (m/s^2)
+  std::optional<double> damping;           ///< new local damping from this stage on (-)
+  std::vector<ServoCommand> servos;        ///< servo targets set at the stage start
+  std::vector<std::string> hold;           ///< servo blocks stopped (held in place) at the start
+  bool hold_servos_after = false;          ///< stop every servo block when the stage ends
+
+  // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
+  // every active servo is within its force tolerance.
+  double unbalanced_tolerance = 1e-4;  ///< on EquilibriumMeasures::unbalanced_force_ratio (-)
+  double kinetic_tolerance = 1e-8;     ///< on EquilibriumMeasures::kinetic_energy_ratio (-)
+  std::int64_t max_steps = 500000;     ///< a stage that needs more has not converged
+  std::int64_t min_steps = 10;
+  std::int64_t check_interval = 10;    ///< steps between convergence checks
+
+  std::int64_t steps = 0;   ///< Kind::steps
+  double duration = 0.0;    ///< Kind::duration (s)
+
+  /// Throws std::invalid_argument naming the field if a value is unusable.
+  void validate() const;
+};
+
+struct StageResult {
+  std::string name;
+  bool converged = false;       ///< equilibrium reached (always true for steps/duration stages)
+  std::int64_t steps = 0;       ///< steps taken in the stage
+  double time = 0.0;            ///< world time at the end (s)
+  EquilibriumMeasures measures;
+  std::string message;          ///< why the stage did not converge, empty otherwise
+};
+
+/// Progress reports: called now and then during a stage with (stage, steps taken, measures).
+using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
+
+/// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
+StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {});
+
+/// True when every active (not held) servo block's reaction is within its tolerance of target.
+bool servos_settled(const World& world);
+
+}  // namespace blockdem

@@ -1,0 +1,2 @@
+// Independent reference solvers used only by tests and benchmarks (slow, obviously correct).
+#pragma once

@@ -1,0 +1,145 @@
+// Polyhedron construction and exact mass properties against closed forms.
+#include "blockdem/geometry/polyhedron.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "blockdem/geometry/geometry_error.hpp"
+
+namespace blockdem {
+namespace {
+
+TEST(Polyhedron, BoxMassPropertiesMatchClosedForm) {
+  // Box a x b x c: V = abc, I_xx = V (b² + c²)/12 for unit density.
+  const Eigen::Vector3d s(0.3, 0.5, 0.7);
+  const Polyhedron p = Polyhedron::box(s);
+  const double v = s.prod();
+  EXPECT_NEAR(p.volume(), v, 1e-15);
+  EXPECT_LT(p.centroid().norm(), 1e-15);
+  EXPECT_NEAR(p.unit_inertia()(0, 0), v * (s.y() * s.y() + s.z() * s.z()) / 12, 1e-15);
+  EXPECT_NEAR(p.unit_inertia()(1, 1), v * (s.x() * s.x() + s.z() * s.z()) / 12, 1e-15);
+  EXPECT_NEAR(p.unit_inertia()(2, 2), v * (s.x() * s.x() + s.y() * s.y()) / 12, 1e-15);
+  EXPECT_NEAR(p.unit_inertia()(0, 1), 0.0, 1e-16);
+  EXPECT_EQ(p.vertices().size(), 8u);
+  EXPECT_EQ(p.faces().size(), 6u);
+  for (int f = 0; f < 6; ++f) EXPECT_EQ(p.faces()[f].vertices.size(), 4u);
+  EXPECT_NEAR(p.bounding_radius(), 0.5 * s.norm(), 1e-15);
+}
+
+TEST(Polyhedron, FacesAreCounterClockwiseAboutOutwardNormal) {
+  const Polyhedron p = Polyhedron::box({1, 2, 3});
+  for (const auto& f : p.faces()) {
+    const auto& v = p.vertices();
+    const Eigen::Vector3d n = (v[f.vertices[1]] - v[f.vertices[0]]).cross(v[f.vertices[2]] - v[f.vertices[1]]);
+    EXPECT_GT(n.dot(p.planes()[f.plane].normal), 0.0);
+  }
+  double area = 0;
+  for (int f = 0; f < 6; ++f) area += p.face_area(f);
+  EXPECT_NEAR(area, 2 * (1 * 2 + 2 * 3 + 1 * 3), 1e-12);
+}
+
+TEST(Polyhedron, TetrahedronFromVerticesMatchesClosedForm) {
+  // Right tetrahedron with legs a, b, c: V = abc/6, centroid (a, b, c)/4,
+  // ∫x² dV = V a²/10 about the origin, products ∫xy dV = V ab/20.
+  const double a = 1.0, b = 2.0, c = 3.0;
+  std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {a, 0, 0}, {0, b, 0}, {0, 0, c}};
+  const Polyhedron p = Polyhedron::from_vertices(pts);
+  const double v = a * b * c / 6;
+  EXPECT_NEAR(p.volume(), v, 1e-14);
+  EXPECT_LT((p.centroid() - Eigen::Vector3d(a, b, c) / 4).norm(), 1e-14);
+  // Second moments about the origin, then shifted to the centroid.
+  Eigen::Matrix3d m0;
+  m0 << a * a, a * b / 2, a * c / 2, a * b / 2, b * b, b * c / 2, a * c / 2, b * c / 2, c * c;
+  m0 *= v / 10;
+  const Eigen::Vector3d g = p.centroid();
+  const Eigen::Matrix3d cov = m0 - v * g * g.transpose();
+  const Eigen::Matrix3d inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
+  EXPECT_LT((p.unit_inertia() - inertia).norm(), 1e-13);
+  EXPECT_EQ(p.faces().size(), 4u);
+}
+
+TEST(Polyhedron, RotatedTranslatedBoxKeepsMassProperties) {
+  const Polyhedron p = Polyhedron::box({0.2, 0.4, 0.6});
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(1.5, -2.0, 0.25);
+  const Polyhedron q = p.transformed(r, t);
+  EXPECT_NEAR(q.volume(), p.volume(), 1e-14);
+  EXPECT_LT((q.centroid() - t).norm(), 1e-13);
+  EXPECT_LT((q.unit_inertia() - r * p.unit_inertia() * r.transpose()).norm(), 1e-14);
+}
+
+TEST(Polyhedron, RedundantPlanesAreDropped) {
+  std::vector<Halfspace> planes = Polyhedron::box({1, 1, 1}).planes();
+  planes.push_back(Halfspace{Eigen::Vector3d(1, 1, 0).normalized(), 5.0});  // far away
+  planes.push_back(planes[0]);                                              // duplicate
+  const Polyhedron p = Polyhedron::from_planes(planes);
+  EXPECT_EQ(p.planes().size(), 6u);
+  EXPECT_NEAR(p.volume(), 1.0, 1e-14);
+}
+
+TEST(Polyhedron, CutCornerPrismHasExactVolume) {
+  // Unit cube with the corner x + y > 1.5 cut off: removes a prism of volume 0.5·0.5·0.5/2·... = 0.125.
+  std::vector<Halfspace> planes = Polyhedron::box({1, 1, 1}).planes();
+  for (auto& h : planes) h.offset += h.normal.dot(Eigen::Vector3d(0.5, 0.5, 0.5));  // cube [0,1]^3
+  planes.push_back(Halfspace{Eigen::Vector3d(1, 1, 0).normalized(), 1.5 / std::sqrt(2.0)});
+  const Polyhedron p = Polyhedron::from_planes(planes);
+  EXPECT_NEAR(p.volume(), 1.0 - 0.5 * 0.5 * 0.5, 1e-14);
+  EXPECT_EQ(p.faces().size(), 7u);
+}
+
+TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
+  auto expect_error = [](auto make, const std::string& words) {
+    try {
+      make();
+      FAIL() << "expected a GeometryError mentioning '" << words << "'";
+    } catch (const GeometryError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  // Unbounded: a box without its top.
+  expect_error([] {
+    auto planes = Polyhedron::box({1, 1, 1}).planes();
+    planes.erase(planes.begin() + 4);
+    return Polyhedron::from_planes(planes);
+  }, "unbounded");
+  // Empty: x <= -1 and x >= 1.
+  expect_error([] {
+    auto planes = Polyhedron::box({1, 1, 1}).planes();
+    planes.push_back(Halfspace{Eigen::Vector3d::UnitX(), -1.0});
+    return Polyhedron::from_planes(planes);
+  }, "empty");
+  // Zero volume: a box of zero height.
+  expect_error([] { return Polyhedron::box({1, 1, 0}); }, "positive");
+  expect_error([] {
+    auto planes = Polyhedron::box({1, 1, 1}).planes();
+    planes[4].offset = -0.5;  // top plane at z = -0.5 meets the bottom
+    return Polyhedron::from_planes(planes);
+  }, "volume");
+  // Non-unit and NaN normals.
+  expect_error([] {
+    auto planes = Polyhedron::box({1, 1, 1}).planes();
+    planes[0].normal *= 2.0;
+    return Polyhedron::from_planes(planes);
+  }, "unit");
+  expect_error([] {
+    auto planes = Polyhedron::box({1, 1, 1}).planes();
+    planes[0].offset = std::nan("");
+    return Polyhedron::from_planes(planes);
+  }, "NaN");
+  // Non-convex vertex list: a cube's corners plus its centre.
+  expect_error([] {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    pts.emplace_back(0.5, 0.5, 0.5);
+    return Polyhedron::from_vertices(pts);
+  }, "not convex");
+  expect_error([] {
+    std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    return Polyhedron::from_vertices(pts);
+  }, "flat");
+}
+
+}  // namespace
+}  // namespace blockdem
