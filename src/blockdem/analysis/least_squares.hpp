@@ -1,0 +1,92 @@
+// Least-squares solvers for curve fits: linear least squares by column-pivoted QR, and a small
+// Levenberg-Marquardt solver for nonlinear models given residual and Jacobian functions.
+// Used by the line-of-thrust fits and by the joint-law calibration (exponential, power-law fits).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <string>
+
+namespace blockdem {
+
+/// Solution of the linear least-squares problem min ||A p - b||_2.
+struct LinearLeastSquaresSolution {
+  Eigen::VectorXd parameters;  ///< p minimising the residual norm (units of b / units of A)
+  Eigen::VectorXd residuals;   ///< A p - b (units of b)
+  double rms_residual = 0.0;   ///< sqrt(mean(residual^2)) (units of b)
+};
+
+/// Solves min ||A p - b|| by column-pivoted Householder QR (never the normal equations, whose
+/// condition number is the square of A's). Throws std::invalid_argument naming the problem if A
+/// has fewer rows than columns, sizes disagree, an entry is not finite, or A is rank deficient
+/// (relative threshold `rank_tolerance` on the pivots of R).
+LinearLeastSquaresSolution solve_linear_least_squares(const Eigen::MatrixXd& design_matrix,
+                                                      const Eigen::VectorXd& observations,
+                                                      double rank_tolerance = 1e-12);
+
+/// A nonlinear least-squares model: residuals r(p) (m values) and their Jacobian dr/dp (m x k).
+/// The cost minimised is 0.5 ||r(p)||^2.
+struct LeastSquaresModel {
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> residuals;  ///< r(p), size m
+  std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> jacobian;   ///< dr/dp, size m x k
+};
+
+/// Options of the Levenberg-Marquardt solver. Defaults suit well-scaled fits of a few parameters.
+struct LevenbergMarquardtOptions {
+  int max_iterations = 500;           ///< accepted plus rejected steps (-)
+  double gradient_tolerance = 1e-12;  ///< stop when max_j |cos(angle(r, J_j))| <= this (-)
+  double step_tolerance = 1e-14;      ///< stop when ||dp|| <= this * (||p|| + this) (-)
+  double cost_tolerance = 1e-15;      ///< stop when an accepted step lowers cost by < this (rel.)
+  double initial_damping_factor = 1e-3;  ///< mu0, multiplies the scaling D (-)
+
+  /// Throws std::invalid_argument naming the first option out of range.
+  void validate() const;
+};
+
+/// How the Levenberg-Marquardt solver stopped.
+enum class LevenbergMarquardtTermination {
+  gradient_small,  ///< first-order optimality reached
+  step_small,      ///< the parameter update became negligible
+  cost_stalled,    ///< accepted steps no longer lower the cost
+  max_iterations,  ///< iteration limit hit: NOT converged
+  non_finite,      ///< the model returned NaN/Inf at the start: NOT converged
+};
+
+/// Text name of a termination reason, e.g. "gradient_small".
+std::string to_string(LevenbergMarquardtTermination termination);
+
+/// Result of a Levenberg-Marquardt run.
+struct LevenbergMarquardtResult {
+  Eigen::VectorXd parameters;  ///< best parameters found (model units)
+  Eigen::VectorXd residuals;   ///< r at the best parameters (residual units)
+  double rms_residual = 0.0;   ///< sqrt(||r||^2 / m) (residual units)
+  int iterations = 0;          ///< steps tried, accepted or rejected (-)
+  LevenbergMarquardtTermination termination = LevenbergMarquardtTermination::max_iterations;
+  /// True unless the iteration limit was hit or the model was not finite.
+  bool converged() const {
+    return termination != LevenbergMarquardtTermination::max_iterations &&
+           termination != LevenbergMarquardtTermination::non_finite;
+  }
+};
+
+/// Minimises 0.5 ||r(p)||^2 from `initial_parameters` by Levenberg-Marquardt (Levenberg 1944,
+/// Marquardt 1963) with Marquardt's diagonal scaling D = diag(J^T J), kept non-decreasing over
+/// the run as in MINPACK (More 1978), and the gain-ratio damping update of Nielsen (1999) as
+/// presented in Madsen, Nielsen & Tingleff, "Methods for non-linear least squares problems"
+/// (IMM, DTU, 2004), section 3.2. Each step solves the damped problem
+///   min || [J; sqrt(mu D)] dp + [r; 0] ||
+/// by QR rather than forming (J^T J + mu D) dp = -J^T r. A step is accepted when it lowers the
+/// cost. Throws std::invalid_argument if the model is incomplete, the sizes disagree, or there
+/// are fewer residuals than parameters. Does not throw on non-convergence: check `converged()`.
+LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
+                                             const Eigen::VectorXd& initial_parameters,
+                                             const LevenbergMarquardtOptions& options = {});
+
+/// Central-difference Jacobian of `residuals` at `parameters`, step h_j = step * max(1, |p_j|).
+/// Meant for checking analytic Jacobians in tests and for quick prototypes.
+Eigen::MatrixXd finite_difference_jacobian(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residuals,
+    const Eigen::VectorXd& parameters, double step = 1e-6);
+
+}  // namespace blockdem
