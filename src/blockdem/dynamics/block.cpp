@@ -59,6 +59,12 @@ void Block::update_world_geometry() {
   }
 }
 
+Eigen::Vector3d Block::rotation_since_start() const {
+  const Eigen::AngleAxisd aa(orientation * initial_orientation.conjugate());
+  constexpr double kPi = 3.14159265358979323846;
+  return aa.angle() > kPi ? Eigen::Vector3d(-(2 * kPi - aa.angle()) * aa.axis()) : Eigen::Vector3d(aa.angle() * aa.axis());
+}
+
 double Block::kinetic_energy() const {
   const Eigen::Vector3d w_body = orientation.conjugate() * angular_velocity;
   return 0.5 * mass * velocity.squaredNorm() + 0.5 * w_body.dot(inertia.cwiseProduct(w_body));

@@ -77,6 +77,9 @@ struct Block {
   Eigen::Vector3d point_velocity(const Eigen::Vector3d& x) const {
     return velocity + angular_velocity.cross(x - position);
   }
+  /// Rotation since the initial pose as a rotation vector, world frame (rad): axis × angle,
+  /// angle in [0, π].
+  Eigen::Vector3d rotation_since_start() const;
   /// Kinetic energy, translational plus rotational (J).
   double kinetic_energy() const;
   /// World inertia tensor R diag(I) Rᵀ (kg m^2).

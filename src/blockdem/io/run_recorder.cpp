@@ -14,17 +14,6 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr double kStandardGravity = 9.80665;  // m/s^2, for g levels
 }  // namespace
 
-Eigen::Vector3d rotation_since_start(const Block& b) {
-  const Eigen::AngleAxisd aa(b.orientation * b.initial_orientation.conjugate());
-  double angle = aa.angle();
-  Eigen::Vector3d axis = aa.axis();
-  if (angle > 3.14159265358979323846) {
-    angle = 2 * 3.14159265358979323846 - angle;
-    axis = -axis;
-  }
-  return angle * axis;
-}
-
 RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk) : dir_(dir), vtk_(vtk) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
@@ -66,7 +55,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
 
   for (const auto& b : world.blocks()) {
     const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
-    const Eigen::Vector3d r = kRadToDeg * rotation_since_start(b);
+    const Eigen::Vector3d r = kRadToDeg * b.rotation_since_start();
     blocks_->cell(level).cell(stage.name).cell(b.name).cell(b.group).cell(b.position.x())
         .cell(b.position.y()).cell(b.position.z()).cell(u.x()).cell(u.y()).cell(u.z()).cell(r.norm())
         .cell(r.x()).cell(r.y()).cell(r.z()).cell(b.velocity.x()).cell(b.velocity.y())

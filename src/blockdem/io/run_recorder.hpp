@@ -12,9 +12,6 @@
 
 namespace blockdem {
 
-/// Rotation of a block since its initial pose as a rotation vector (rad): axis times angle.
-Eigen::Vector3d rotation_since_start(const Block& b);
-
 class RunRecorder {
  public:
   /// Creates `dir` if needed. Throws std::runtime_error when it cannot be written.
