@@ -349,7 +349,8 @@ nlohmann::ordered_json voussoir_report_json(const VoussoirBeamDef& beam,
                           "thrust_N_per_m",
                           "thrust_N",
                           "crushing_safety_factor",
-                          "sliding_safety_factor"};
+                          "sliding_safety_factor",
+                          "iterations"};
     for (const char* key : keys) out[key] = nullptr;
     out["message"] =
         "snap-through: no compression-zone ratio n in (0, 1] gives an equilibrium lever arm; the "
