@@ -91,13 +91,14 @@ std::string describe(const NormalLaw& law) {
 }
 
 double normal_stress(const NormalLaw& law, double closure) {
-  if (!(closure > 0.0)) return 0.0;
+  if (closure <= 0.0) return 0.0;
   if (const auto* lin = std::get_if<LinearNormal>(&law)) return lin->stiffness * closure;
   const auto& e = std::get<ExponentialNormal>(law);
   return e.a * std::expm1(e.b * closure);
 }
 
 double normal_tangent_stiffness(const NormalLaw& law, double closure) {
+  if (std::isnan(closure)) return closure;
   if (closure < 0.0) return 0.0;
   if (const auto* lin = std::get_if<LinearNormal>(&law)) return lin->stiffness;
   const auto& e = std::get<ExponentialNormal>(law);
@@ -105,7 +106,7 @@ double normal_tangent_stiffness(const NormalLaw& law, double closure) {
 }
 
 double normal_stress_integral(const NormalLaw& law, double closure) {
-  if (!(closure > 0.0)) return 0.0;
+  if (closure <= 0.0) return 0.0;
   if (const auto* lin = std::get_if<LinearNormal>(&law)) {
     return 0.5 * lin->stiffness * closure * closure;
   }
@@ -114,7 +115,7 @@ double normal_stress_integral(const NormalLaw& law, double closure) {
 }
 
 double normal_stress_second_integral(const NormalLaw& law, double closure) {
-  if (!(closure > 0.0)) return 0.0;
+  if (closure <= 0.0) return 0.0;
   if (const auto* lin = std::get_if<LinearNormal>(&law)) {
     return lin->stiffness * closure * closure * closure / 6.0;
   }

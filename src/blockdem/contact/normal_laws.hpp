@@ -53,6 +53,7 @@ std::string law_name(const NormalLaw& law);
 std::string describe(const NormalLaw& law);
 
 /// Normal stress sigma_n(u_n) (Pa) for closure u_n (m, compression positive); 0 for u_n <= 0.
+/// Like every function below, it returns NaN for a NaN closure rather than hiding it.
 /// The exponential law overflows to +inf for b u_n > ~709, a closure no joint survives; the
 /// world's divergence check is expected to stop such a run.
 double normal_stress(const NormalLaw& law, double closure);

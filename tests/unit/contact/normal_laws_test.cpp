@@ -28,6 +28,16 @@ TEST(NormalLaws, ZeroStressAndStiffnessWhenOpen) {
   }
 }
 
+TEST(NormalLaws, NanClosureStaysVisible) {
+  const double nan = std::nan("");
+  for (const NormalLaw law : {NormalLaw{LinearNormal{}}, NormalLaw{ExponentialNormal::eq4()}}) {
+    EXPECT_TRUE(std::isnan(normal_stress(law, nan))) << law_name(law);
+    EXPECT_TRUE(std::isnan(normal_tangent_stiffness(law, nan))) << law_name(law);
+    EXPECT_TRUE(std::isnan(normal_stress_integral(law, nan))) << law_name(law);
+    EXPECT_TRUE(std::isnan(normal_stress_second_integral(law, nan))) << law_name(law);
+  }
+}
+
 TEST(NormalLaws, LinearIsHookean) {
   const NormalLaw law = LinearNormal{10e9};
   EXPECT_DOUBLE_EQ(normal_stress(law, 2e-5), 2e5);
