@@ -42,6 +42,11 @@ struct Block {
 
   Motion motion = Motion::free;
   Servo servo;
+  /// Degrees of freedom held at zero for a free block, along the world axes x, y, z: translation
+  /// (blocked_translation) and rotation (blocked_rotation). E.g. plane motion in x-z: translation
+  /// (false, true, false), rotation (true, false, true).
+  Eigen::Matrix<bool, 3, 1> blocked_translation = Eigen::Matrix<bool, 3, 1>::Constant(false);
+  Eigen::Matrix<bool, 3, 1> blocked_rotation = Eigen::Matrix<bool, 3, 1>::Constant(false);
 
   // State. Orientation maps body to world coordinates.
   Eigen::Vector3d position = Eigen::Vector3d::Zero();         ///< centroid (m)

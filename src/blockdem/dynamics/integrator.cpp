@@ -51,9 +51,28 @@ void integrate_block(Block& b, double dt, double damping) {
       break;
   }
   // Translation.
-  const Eigen::Vector3d f = local_damping(b.force, b.velocity, damping);
+  Eigen::Vector3d f = local_damping(b.force, b.velocity, damping);
+  for (int i = 0; i < 3; ++i) {
+    if (b.blocked_translation[i]) {
+      f[i] = 0.0;
+      b.velocity[i] = 0.0;
+    }
+  }
   b.velocity += dt * f / b.mass;
   b.position += dt * b.velocity;
+
+  if (b.blocked_rotation.any()) {
+    // Rotation restricted to the free world axes: ω = P I⁻¹ L, L = I ω.
+    Eigen::Vector3d t = local_damping(b.torque, b.angular_velocity, damping);
+    Eigen::Vector3d w = b.world_inertia().inverse() * (b.angular_momentum + dt * t);
+    for (int i = 0; i < 3; ++i) {
+      if (b.blocked_rotation[i]) w[i] = 0.0;
+    }
+    b.orientation = (rotation_quaternion(dt * w) * b.orientation).normalized();
+    b.angular_velocity = w;
+    b.angular_momentum = b.world_inertia() * w;
+    return;
+  }
 
   // Rotation: damping acts on the world components of the torque against ω.
   const Eigen::Vector3d t = local_damping(b.torque, b.angular_velocity, damping);

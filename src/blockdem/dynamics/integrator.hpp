@@ -18,6 +18,10 @@ Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& theta);
 /// angular momentum L advances likewise, and the orientation by a two-stage exponential map
 /// (orientation at the half step from L_n ≈ L_{n-1/2} + dt T/2, then the full step with the
 /// angular velocity at the half step), which conserves L exactly when T = 0.
+/// Blocked degrees of freedom (Block::blocked_translation, blocked_rotation) have their force or
+/// torque component and velocity held at zero; with blocked rotations the angular velocity is
+/// the projection of I⁻¹L on the free axes (exact when a free axis is a principal axis, as for a
+/// box turning about one of its edges' directions).
 /// Prescribed and servo blocks move with their velocity and angular velocity; fixed blocks stay.
 void integrate_block(Block& block, double dt, double damping);
 

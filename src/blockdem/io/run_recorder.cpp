@@ -14,29 +14,64 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr double kStandardGravity = 9.80665;  // m/s^2, for g levels
 }  // namespace
 
-RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk) : dir_(dir), vtk_(vtk) {
+RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables)
+    : dir_(dir), vtk_(vtk) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  if (ec) throw std::runtime_error("cannot create output folder " + dir_.string() + ": " + ec.message());
+  if (ec)
+    throw std::runtime_error("cannot create output folder " + dir_.string() + ": " + ec.message());
   if (vtk_) std::filesystem::create_directories(dir_ / "vtk", ec);
-  history_ = std::make_unique<CsvWriter>(
-      dir_ / "history.csv",
-      std::vector<std::string>{"level", "stage", "converged", "steps", "time_s", "time_step_s",
-                               "gravity_x_m_s2", "gravity_y_m_s2", "gravity_z_m_s2", "g_level",
-                               "unbalanced_force_ratio", "kinetic_energy_J", "kinetic_energy_ratio",
-                               "contacts", "mean_contact_force_N", "max_overlap_mm"});
-  blocks_ = std::make_unique<CsvWriter>(
-      dir_ / "blocks.csv",
-      std::vector<std::string>{"level", "stage", "block", "group", "x_m", "y_m", "z_m", "ux_mm",
-                               "uy_mm", "uz_mm", "rotation_deg", "rotation_x_deg", "rotation_y_deg",
-                               "rotation_z_deg", "vx_m_s", "vy_m_s", "vz_m_s", "contact_fx_N",
-                               "contact_fy_N", "contact_fz_N"});
-  contacts_ = std::make_unique<CsvWriter>(
-      dir_ / "contacts.csv",
-      std::vector<std::string>{"level", "stage", "block_a", "block_b", "x_m", "y_m", "z_m", "nx",
-                               "ny", "nz", "overlap_mm", "area_mm2", "normal_stress_MPa",
-                               "normal_force_N", "shear_force_N", "shear_x_N", "shear_y_N",
-                               "shear_z_N", "plastic_slip_mm", "sliding"});
+  if (tables) {
+    history_ = std::make_unique<CsvWriter>(
+        dir_ / "history.csv",
+        std::vector<std::string>{"level", "stage", "converged", "steps", "time_s", "time_step_s",
+                                 "gravity_x_m_s2", "gravity_y_m_s2", "gravity_z_m_s2", "g_level",
+                                 "unbalanced_force_ratio", "kinetic_energy_J",
+                                 "kinetic_energy_ratio", "contacts", "mean_contact_force_N",
+                                 "max_overlap_mm"});
+    blocks_ =
+        std::make_unique<CsvWriter>(dir_ / "blocks.csv", std::vector<std::string>{"level",
+                                                                                  "stage",
+                                                                                  "block",
+                                                                                  "group",
+                                                                                  "x_m",
+                                                                                  "y_m",
+                                                                                  "z_m",
+                                                                                  "ux_mm",
+                                                                                  "uy_mm",
+                                                                                  "uz_mm",
+                                                                                  "rotation_deg",
+                                                                                  "rotation_x_deg",
+                                                                                  "rotation_y_deg",
+                                                                                  "rotation_z_deg",
+                                                                                  "vx_m_s",
+                                                                                  "vy_m_s",
+                                                                                  "vz_m_s",
+                                                                                  "contact_fx_N",
+                                                                                  "contact_fy_N",
+                                                                                  "contact_fz_N"});
+  }
+  contacts_ = std::make_unique<CsvWriter>(dir_ / "contacts.csv",
+                                          std::vector<std::string>{"level",
+                                                                   "stage",
+                                                                   "block_a",
+                                                                   "block_b",
+                                                                   "x_m",
+                                                                   "y_m",
+                                                                   "z_m",
+                                                                   "nx",
+                                                                   "ny",
+                                                                   "nz",
+                                                                   "overlap_mm",
+                                                                   "area_mm2",
+                                                                   "normal_stress_MPa",
+                                                                   "normal_force_N",
+                                                                   "shear_force_N",
+                                                                   "shear_x_N",
+                                                                   "shear_y_N",
+                                                                   "shear_z_N",
+                                                                   "plastic_slip_mm",
+                                                                   "sliding"});
 }
 
 void RunRecorder::record(const World& world, const StageResult& stage, int level) {
@@ -44,33 +79,75 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
   double max_overlap = 0.0;
   for (const Contact* c : contacts) max_overlap = std::max(max_overlap, c->geometry.overlap);
   const Eigen::Vector3d& g = world.settings().gravity;
-  history_->cell(level).cell(stage.name).cell(stage.converged ? 1 : 0).cell(static_cast<long long>(stage.steps))
-      .cell(world.time()).cell(world.last_time_step()).cell(g.x()).cell(g.y()).cell(g.z())
-      .cell(g.norm() / kStandardGravity).cell(stage.measures.unbalanced_force_ratio)
-      .cell(stage.measures.kinetic_energy).cell(stage.measures.kinetic_energy_ratio)
-      .cell(static_cast<long long>(contacts.size())).cell(stage.measures.mean_contact_force)
-      .cell(1e3 * max_overlap);
-  history_->end_row();
-  history_->flush();
+  if (history_) {
+    history_->cell(level)
+        .cell(stage.name)
+        .cell(stage.converged ? 1 : 0)
+        .cell(static_cast<long long>(stage.steps))
+        .cell(world.time())
+        .cell(world.last_time_step())
+        .cell(g.x())
+        .cell(g.y())
+        .cell(g.z())
+        .cell(g.norm() / kStandardGravity)
+        .cell(stage.measures.unbalanced_force_ratio)
+        .cell(stage.measures.kinetic_energy)
+        .cell(stage.measures.kinetic_energy_ratio)
+        .cell(static_cast<long long>(contacts.size()))
+        .cell(stage.measures.mean_contact_force)
+        .cell(1e3 * max_overlap);
+    history_->end_row();
+    history_->flush();
 
-  for (const auto& b : world.blocks()) {
-    const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
-    const Eigen::Vector3d r = kRadToDeg * b.rotation_since_start();
-    blocks_->cell(level).cell(stage.name).cell(b.name).cell(b.group).cell(b.position.x())
-        .cell(b.position.y()).cell(b.position.z()).cell(u.x()).cell(u.y()).cell(u.z()).cell(r.norm())
-        .cell(r.x()).cell(r.y()).cell(r.z()).cell(b.velocity.x()).cell(b.velocity.y())
-        .cell(b.velocity.z()).cell(b.contact_force.x()).cell(b.contact_force.y()).cell(b.contact_force.z());
-    blocks_->end_row();
+    for (const auto& b : world.blocks()) {
+      const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
+      const Eigen::Vector3d r = kRadToDeg * b.rotation_since_start();
+      blocks_->cell(level)
+          .cell(stage.name)
+          .cell(b.name)
+          .cell(b.group)
+          .cell(b.position.x())
+          .cell(b.position.y())
+          .cell(b.position.z())
+          .cell(u.x())
+          .cell(u.y())
+          .cell(u.z())
+          .cell(r.norm())
+          .cell(r.x())
+          .cell(r.y())
+          .cell(r.z())
+          .cell(b.velocity.x())
+          .cell(b.velocity.y())
+          .cell(b.velocity.z())
+          .cell(b.contact_force.x())
+          .cell(b.contact_force.y())
+          .cell(b.contact_force.z());
+      blocks_->end_row();
+    }
+    blocks_->flush();
   }
-  blocks_->flush();
 
   for (const Contact* c : contacts) {
     const auto& gm = c->geometry;
-    contacts_->cell(level).cell(stage.name).cell(world.blocks()[c->a].name).cell(world.blocks()[c->b].name)
-        .cell(gm.point.x()).cell(gm.point.y()).cell(gm.point.z()).cell(gm.normal.x()).cell(gm.normal.y())
-        .cell(gm.normal.z()).cell(1e3 * gm.overlap).cell(1e6 * gm.area).cell(1e-6 * c->normal_stress)
-        .cell(c->normal_force).cell(c->shear.force.norm()).cell(c->shear.force.x())
-        .cell(c->shear.force.y()).cell(c->shear.force.z()).cell(1e3 * c->shear.plastic_slip)
+    contacts_->cell(level)
+        .cell(stage.name)
+        .cell(world.blocks()[c->a].name)
+        .cell(world.blocks()[c->b].name)
+        .cell(gm.point.x())
+        .cell(gm.point.y())
+        .cell(gm.point.z())
+        .cell(gm.normal.x())
+        .cell(gm.normal.y())
+        .cell(gm.normal.z())
+        .cell(1e3 * gm.overlap)
+        .cell(1e6 * gm.area)
+        .cell(1e-6 * c->normal_stress)
+        .cell(c->normal_force)
+        .cell(c->shear.force.norm())
+        .cell(c->shear.force.x())
+        .cell(c->shear.force.y())
+        .cell(c->shear.force.z())
+        .cell(1e3 * c->shear.plastic_slip)
         .cell(c->sliding ? 1 : 0);
     contacts_->end_row();
   }

@@ -15,7 +15,8 @@ namespace blockdem {
 class RunRecorder {
  public:
   /// Creates `dir` if needed. Throws std::runtime_error when it cannot be written.
-  RunRecorder(const std::filesystem::path& dir, bool vtk);
+  /// `tables`: write history.csv and blocks.csv (a voussoir run writes its own instead).
+  RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables = true);
 
   /// Records the world at the end of stage `level` (0-based).
   void record(const World& world, const StageResult& stage, int level);

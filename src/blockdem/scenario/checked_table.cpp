@@ -153,6 +153,21 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key, std:
   return out;
 }
 
+std::vector<double> CheckedTable::numbers(const std::string& key) const {
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required (an array of numbers)");
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of numbers, got " + type_name(*n));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto v = as_number(*a->get(i));
+    if (!v) fail(key, "entry " + std::to_string(i + 1) + " must be a number, got " + type_name(*a->get(i)));
+    if (!std::isfinite(*v)) fail(key, "entry " + std::to_string(i + 1) + " must be finite");
+    out.push_back(*v);
+  }
+  return out;
+}
+
 std::vector<std::string> CheckedTable::strings(const std::string& key) const {
   const toml::node* n = get(key);
   if (n == nullptr) return {};

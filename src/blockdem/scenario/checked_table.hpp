@@ -56,6 +56,8 @@ class CheckedTable {
   /// An array of arrays of numbers, each of length `width`.
   std::vector<std::vector<double>> rows(const std::string& key, std::size_t width) const;
   std::vector<std::string> strings(const std::string& key) const;
+  /// A flat array of numbers.
+  std::vector<double> numbers(const std::string& key) const;
   /// A sub-table (inline or not).
   CheckedTable table(const std::string& key) const;
   /// An array of tables ([[key]]); empty when absent.

@@ -2,6 +2,7 @@
 #include "blockdem/scenario/scenario.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -116,14 +117,23 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   } else {
     b.motion = Motion::free;
   }
+  for (const auto& dof : t.strings("blocked_dofs")) {
+    static const std::vector<std::string> names = {"x", "y", "z", "rx", "ry", "rz"};
+    const auto it = std::find(names.begin(), names.end(), dof);
+    if (it == names.end()) t.fail("blocked_dofs", "unknown degree of freedom \"" + dof + "\" (use x, y, z, rx, ry, rz)");
+    const int k = static_cast<int>(it - names.begin());
+    if (k < 3) {
+      b.blocked_translation[k] = true;
+    } else {
+      b.blocked_rotation[k - 3] = true;
+    }
+  }
   if (motion != "servo" && t.has("servo")) t.fail("servo", "only a block with motion = \"servo\" takes a servo table");
   t.finish();
   return b;
 }
 
-JointLaw read_joint_law(const CheckedTable& t) {
-  JointLaw law;
-  law.name = t.string("name");
+void read_law_tables(const CheckedTable& t, JointLaw& law) {
   {
     const CheckedTable n = t.table("normal");
     const std::string kind = n.string("law");
@@ -145,8 +155,64 @@ JointLaw read_joint_law(const CheckedTable& t) {
     }
     s.finish();
   }
+}
+
+JointLaw read_joint_law(const CheckedTable& t) {
+  JointLaw law;
+  law.name = t.string("name");
+  read_law_tables(t, law);
   t.finish();
   return law;
+}
+
+VoussoirSpec read_voussoir(const CheckedTable& t) {
+  VoussoirSpec v;
+  const std::string beam = t.choice("beam", "full", {"full", "half"});
+  if (beam == "half") {
+    v.block_depth = 0.023;
+    v.g_levels = {2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+  }
+  v.blocks = static_cast<int>(t.integer("blocks", v.blocks));
+  if (v.blocks < 1) t.fail("blocks", "a beam needs at least one block");
+  v.block_length = t.positive("block_length", v.block_length);
+  v.block_width = t.positive("block_width", v.block_width);
+  v.block_depth = t.positive("block_depth", v.block_depth);
+  v.abutment_length = t.positive("abutment_length", v.abutment_length);
+  v.abutment_height = t.positive("abutment_height", v.abutment_height);
+  v.density = t.positive("density", v.density);
+  v.preload_force = t.positive("preload_force", v.preload_force);
+  v.preload_tolerance = t.positive("preload_tolerance", v.preload_tolerance);
+  if (t.has("g_levels")) {
+    v.g_levels = t.numbers("g_levels");
+  }
+  if (t.has("g_max")) {
+    // g_max alone: the default levels up to it (and g_max itself).
+    const double g_max = t.number("g_max");
+    if (!(g_max >= 1.0)) t.fail("g_max", "must be at least 1 (the preload is at 1 g)");
+    std::vector<double> kept;
+    for (double g : v.g_levels) {
+      if (g < g_max) kept.push_back(g);
+    }
+    kept.push_back(g_max);
+    v.g_levels = kept;
+  }
+  v.servo_side = t.choice("servo_side", v.servo_side, {"left", "right"});
+  v.plane_motion = t.boolean("plane_motion", v.plane_motion);
+  v.unbalanced_tolerance = t.positive("unbalanced_tolerance", v.unbalanced_tolerance);
+  v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
+  v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
+  v.law.name = "joint";
+  read_law_tables(t, v.law);
+  try {
+    v.validate();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    const auto colon = what.find(':');
+    t.fail(colon == std::string::npos ? "" : what.substr(0, colon),
+           colon == std::string::npos ? what : what.substr(colon + 2));
+  }
+  t.finish();
+  return v;
 }
 
 Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names) {
@@ -211,6 +277,26 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   sc.file = file;
   sc.title = t.string("title", "");
   if (t.has("settings")) read_settings(t.table("settings"), sc.settings);
+
+  if (t.has("voussoir")) {
+    for (const char* key : {"blocks", "stages", "joint_laws", "joints", "materials"}) {
+      if (t.has(key)) t.fail(key, "a [voussoir] scenario builds its own blocks, laws and stages; remove this");
+    }
+    sc.voussoir = read_voussoir(t.table("voussoir"));
+    VoussoirModel m = build_voussoir(*sc.voussoir);
+    sc.blocks = std::move(m.blocks);
+    sc.joint_laws.push_back(m.law);
+    sc.joint_rules.push_back(JointRule{"", "", 0});
+    sc.stages = std::move(m.stages);
+    sc.voussoir_layout = m.layout;
+    if (t.has("output")) {
+      const CheckedTable o = t.table("output");
+      sc.output.vtk = o.boolean("vtk", sc.output.vtk);
+      o.finish();
+    }
+    t.finish();
+    return sc;
+  }
 
   std::map<std::string, double> materials;
   for (const auto& m : t.tables("materials")) {

@@ -2,10 +2,12 @@
 // and outputs, read with every key checked, and turned into a World.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "blockdem/scenario/checked_table.hpp"
+#include "blockdem/scenario/voussoir.hpp"
 #include "blockdem/world/stage.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -24,6 +26,9 @@ struct Scenario {
   std::vector<JointRule> joint_rules;
   std::vector<Stage> stages;
   OutputSpec output;
+  /// Set for a [voussoir] scenario: the beam it was built from and where its parts are.
+  std::optional<VoussoirSpec> voussoir;
+  VoussoirLayout voussoir_layout;
 };
 
 /// Reads and checks a scenario file. Throws ScenarioError ("FILE: KEY: REASON").

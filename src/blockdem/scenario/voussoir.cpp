@@ -1,0 +1,102 @@
+// Voussoir beam geometry and loading sequence (DESIGN section 6).
+#include "blockdem/scenario/voussoir.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace blockdem {
+
+void VoussoirSpec::validate() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (blocks < 1) fail("blocks: a beam needs at least one block, got " + std::to_string(blocks));
+  auto positive = [&](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) fail(std::string(name) + ": must be positive, got " + std::to_string(v));
+  };
+  positive(block_length, "block_length");
+  positive(block_width, "block_width");
+  positive(block_depth, "block_depth");
+  positive(abutment_length, "abutment_length");
+  positive(abutment_height, "abutment_height");
+  positive(density, "density");
+  positive(preload_force, "preload_force");
+  positive(preload_tolerance, "preload_tolerance");
+  positive(unbalanced_tolerance, "unbalanced_tolerance");
+  positive(kinetic_tolerance, "kinetic_tolerance");
+  if (abutment_height < block_depth) {
+    fail("abutment_height: must be at least the beam depth (" + std::to_string(block_depth) +
+         " m) so the abutments cover the beam's end faces");
+  }
+  if (g_levels.empty()) fail("g_levels: at least one gravity level after the preload is needed");
+  double previous = 1.0;
+  for (double g : g_levels) {
+    if (!(g >= 1.0) || !std::isfinite(g)) fail("g_levels: every level must be at least 1 g, got " + std::to_string(g));
+    if (g < previous) fail("g_levels: levels must not decrease");
+    previous = g;
+  }
+  if (servo_side != "left" && servo_side != "right") fail("servo_side: must be \"left\" or \"right\"");
+  if (max_steps_per_level <= 0) fail("max_steps_per_level: must be positive");
+}
+
+VoussoirModel build_voussoir(const VoussoirSpec& spec) {
+  spec.validate();
+  VoussoirModel m;
+  m.law = spec.law;
+  const double s = spec.span();
+  const double t = spec.block_depth;
+  const double w = spec.block_width;
+  auto box = [](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return Polyhedron::box(hi - lo).transformed(Eigen::Matrix3d::Identity(), 0.5 * (lo + hi));
+  };
+  // Abutments: fixed, tops flush with the beam top, covering the end faces and reaching below.
+  const double ha = spec.abutment_height;
+  Block left = make_block(box({-spec.abutment_length, -w / 2, -ha}, {0, w / 2, 0}), spec.density,
+                          "abutment_left", "abutment");
+  Block right = make_block(box({s, -w / 2, -ha}, {s + spec.abutment_length, w / 2, 0}), spec.density,
+                           "abutment_right", "abutment");
+  left.motion = Motion::fixed;
+  right.motion = Motion::fixed;
+  Block& servo = spec.servo_side == "right" ? right : left;
+  servo.motion = Motion::servo;
+  servo.servo.axis = Eigen::Vector3d(spec.servo_side == "right" ? -1.0 : 1.0, 0.0, 0.0);
+  servo.servo.target_force = spec.preload_force;
+  servo.servo.tolerance = spec.preload_tolerance;
+  m.blocks.push_back(left);
+  m.blocks.push_back(right);
+  m.layout.left_abutment = 0;
+  m.layout.right_abutment = 1;
+  for (int i = 0; i < spec.blocks; ++i) {
+    const double x0 = i * spec.block_length;
+    char name[32];
+    std::snprintf(name, sizeof name, "block_%d", i + 1);
+    Block b = make_block(box({x0, -w / 2, -t}, {x0 + spec.block_length, w / 2, 0}), spec.density, name, "beam");
+    if (spec.plane_motion) {
+      b.blocked_translation = {false, true, false};
+      b.blocked_rotation = {true, false, true};
+    }
+    m.blocks.push_back(std::move(b));
+    m.layout.beam.push_back(i + 2);
+  }
+
+  // Stages: the preload at 1 g, then the gravity levels.
+  Stage pre;
+  pre.name = "preload";
+  pre.gravity = Eigen::Vector3d(0, 0, -kOneG);
+  pre.hold_servos_after = true;
+  pre.unbalanced_tolerance = spec.unbalanced_tolerance;
+  pre.kinetic_tolerance = spec.kinetic_tolerance;
+  pre.max_steps = spec.max_steps_per_level;
+  m.stages.push_back(pre);
+  for (double g : spec.g_levels) {
+    Stage st = pre;
+    st.hold_servos_after = false;
+    char name[32];
+    std::snprintf(name, sizeof name, "%gg", g);
+    st.name = name;
+    st.gravity = Eigen::Vector3d(0, 0, -g * kOneG);
+    m.stages.push_back(st);
+  }
+  return m;
+}
+
+}  // namespace blockdem
