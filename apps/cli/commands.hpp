@@ -13,6 +13,7 @@ int exit_code();
 void set_exit_code(int code);
 
 void register_run(CLI::App& app);
+void register_reproduce(CLI::App& app);
 void register_analytic(CLI::App& app);
 
 }  // namespace blockdem::cli

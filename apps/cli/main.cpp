@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
 
   // The subcommands. Each registers its own options and its callback.
   blockdem::cli::register_run(app);
+  blockdem::cli::register_reproduce(app);
   blockdem::cli::register_analytic(app);
 
   try {

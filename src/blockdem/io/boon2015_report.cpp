@@ -1,0 +1,270 @@
+// report.md for `blockdem reproduce boon2015`.
+#include "blockdem/io/boon2015_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "blockdem/analysis/voussoir_analytic.hpp"
+
+namespace blockdem {
+namespace {
+
+std::string f(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+const VoussoirLevel* level_at(const RunResult& r, double g) {
+  for (const auto& lv : r.levels) {
+    if (std::abs(lv.g_level - g) < 1e-9) return &lv;
+  }
+  return nullptr;
+}
+
+const Boon2015CaseRun* find(const std::vector<Boon2015CaseRun>& runs, const std::string& id) {
+  for (const auto& r : runs) {
+    if (r.spec.id == id) return &r;
+  }
+  return nullptr;
+}
+
+double final_deflection(const Boon2015CaseRun& r) {
+  return r.result.levels.empty() ? std::nan("") : r.result.levels.back().midspan_deflection;
+}
+
+bool complete(const Boon2015CaseRun& r) {
+  return r.result.status == "completed" && !r.result.levels.empty() &&
+         std::abs(r.result.levels.back().g_level - r.spec.g_max) < 1e-9;
+}
+
+}  // namespace
+
+void write_boon2015_report(const std::filesystem::path& dir, const std::vector<Boon2015CaseRun>& runs,
+                           const std::vector<std::string>& figures, const std::string& figure_note,
+                           double wall_time) {
+  std::ostringstream o;
+  o << "# Reproduction of Boon, Houlsby & Utili (2015)\n\n"
+    << "*DEM modelling of a jointed rock beam with emphasis on interface properties*, Géotechnique "
+       "Letters 5:49-55: the voussoir-beam centrifuge tests of Talesnick et al. (2007), every case of the "
+       "paper's Tables 2 and 3, written by `blockdem reproduce boon2015`.\n\n";
+
+  // Set-up.
+  const VoussoirSpec& any = runs.front().scenario.voussoir.value();
+  o << "## Model\n\n"
+    << "- Six gypsum blocks (" << any.density << " kg/m³) between two abutments; x along the span, z up, "
+       "beam top at z = 0. Full-block beam 46 × 46 × 46 mm blocks (span 276 mm, depth 46 mm); half-block beam "
+       "46 mm along the span, 46 mm wide, 23 mm deep.\n"
+    << "- Abutments: fixed blocks " << 1e3 * any.abutment_length << " mm along the span, "
+    << 1e3 * any.block_width << " mm wide, " << 1e3 * any.abutment_height
+    << " mm tall, tops flush with the beam top (they cover the beam's end faces and reach below it).\n"
+    << "- Loading: at 1 g the " << any.servo_side << " abutment is moved under servo control until its "
+       "horizontal reaction is " << any.preload_force << " N, then held; gravity is then raised in steps to "
+       "40 g (full) or 90 g (half), with static equilibrium at every step (unbalanced-force ratio below "
+    << any.unbalanced_tolerance << ", kinetic-energy ratio below " << any.kinetic_tolerance
+    << "). 1 g = " << kOneG << " m/s².\n"
+    << "- Contact mode `boon2012` (the paper's method): LP overlap test, analytic centre contact point, "
+       "rounded normal (r_round = "
+    << 1e3 * runs.front().scenario.settings.boon2012.rounding_distance
+    << " mm), chord overlap, exact slice area. Local damping "
+    << runs.front().scenario.settings.damping << ".\n"
+    << "- Beam blocks move in the x-z plane (no out-of-plane translation, no rotation about x or z). The "
+       "point contact transmits no twisting moment; without this constraint an out-of-plane mode grows "
+       "and the T2-1 beam buckles sideways at about 21 g. The centrifuge test is a plane problem.\n"
+    << "- Deflections are measured from the state after the 1 g preload, at the beam's bottom "
+       "(midspan: x = S/2; profile: bottom-face centre of each block), downward positive.\n\n";
+
+  // Main table.
+  o << "## Midspan deflection and thrust at the last level\n\n"
+    << "| case | beam | normal law | shear law | g | thrust (N) | midspan deflection (mm) | abutment slip (mm) | "
+       "max σ_n (MPa) | statics residual (max) | steps | status | the paper reports |\n"
+    << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : runs) {
+    const auto& lv = r.result.levels;
+    double worst = 0.0;
+    for (const auto& l : lv) {
+      if (std::isfinite(l.equilibrium_residual)) worst = std::max(worst, l.equilibrium_residual);
+    }
+    o << "| " << r.spec.id << " | " << r.spec.beam << " | " << r.spec.normal_law << " | " << r.spec.shear_law << " | ";
+    if (lv.empty()) {
+      o << "- | - | - | - | - | - | " << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports
+        << " |\n";
+      continue;
+    }
+    const auto& last = lv.back();
+    o << f("%g", last.g_level) << " | " << f("%.1f", last.thrust) << " | " << f("%.4f", 1e3 * last.midspan_deflection)
+      << " | " << f("%.4f", 1e3 * last.abutment_slip) << " | " << f("%.3f", 1e-6 * last.max_normal_stress) << " | "
+      << f("%.2e", worst) << " | " << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports
+      << " |\n";
+  }
+  o << "\nThe statics residual is |H z − W S/8| / (W S/8) for the half span (H: midspan joint force, z: height of "
+       "the midspan thrust point above the abutments' thrust points); it must stay below 1% at every level.\n\n";
+  for (const auto& r : runs) {
+    if (!complete(r)) {
+      o << "**" << r.spec.id << " did not reach " << r.spec.g_max << " g:** " << r.result.message << "\n\n";
+    }
+  }
+
+  // Ratios implied by Table 3.
+  o << "## Effect of the new contact laws (Table 3)\n\n"
+    << "Table 3 gives, against the same experiments, the discrepancy of the new laws (eq. 4 with continuously "
+       "yielding shear) and of the old ones (eqs 2 and 3). Their ratio (1 + new)/(1 + old) is the ratio of the "
+       "two predicted midspan deflections, which this reproduction can test without the experimental data.\n\n"
+    << "| ratio | blockdem | paper (implied by Table 3) | difference |\n|---|---|---|---|\n";
+  auto ratio_row = [&](const char* label, const char* a, const char* b, double paper) {
+    const auto* ra = find(runs, a);
+    const auto* rb = find(runs, b);
+    if (ra == nullptr || rb == nullptr || !complete(*ra) || !complete(*rb)) {
+      o << "| " << label << " | not available (a case did not complete) | " << f("%.3f", paper) << " | - |\n";
+      return;
+    }
+    const double ours = final_deflection(*ra) / final_deflection(*rb);
+    o << "| " << label << " | " << f("%.3f", ours) << " | " << f("%.3f", paper) << " | "
+      << f("%+.1f%%", 100 * (ours - paper) / paper) << " |\n";
+  };
+  ratio_row("T3-full / T2-2 (40 g)", "T3-full", "T2-2", boon2015_ratio_full());
+  ratio_row("T3-half / T3-half-old (90 g)", "T3-half", "T3-half-old", boon2015_ratio_half());
+  o << "\nThe full-beam value of the paper is the mean over tests 180-C0, 180-D and 180-E (2.135, 2.134, 2.131).\n\n";
+
+  // Thrust spread.
+  o << "## Thrust\n\nThe paper (Fig. 5) finds negligible differences of horizontal thrust between the contact "
+       "models of the full-block beam, and thrusts about 30% below the measured ones (the paper reads about "
+       "349 N from the strain gauges of test 180-E at 40 g).\n\n"
+    << "| g | ";
+  std::vector<const Boon2015CaseRun*> full;
+  for (const auto& r : runs) {
+    if (r.spec.beam == "full") full.push_back(&r);
+  }
+  for (const auto* r : full) o << r->spec.id << " (N) | ";
+  o << "spread (max−min)/mean |\n|---|";
+  for (std::size_t i = 0; i <= full.size(); ++i) o << "---|";
+  o << "\n";
+  for (double g : {1.0, 10.0, 20.0, 30.0, 40.0}) {
+    o << "| " << g << " | ";
+    double lo = 1e300, hi = -1e300, sum = 0.0;
+    int count = 0;
+    for (const auto* r : full) {
+      const auto* lv = level_at(r->result, g);
+      if (lv == nullptr) {
+        o << "- | ";
+        continue;
+      }
+      o << f("%.1f", lv->thrust) << " | ";
+      lo = std::min(lo, lv->thrust);
+      hi = std::max(hi, lv->thrust);
+      sum += lv->thrust;
+      ++count;
+    }
+    o << (count > 1 ? f("%.1f%%", 100 * (hi - lo) / (sum / count)) : std::string("-")) << " |\n";
+  }
+  if (const auto* r = find(runs, "T2-1"); r != nullptr && complete(*r)) {
+    const double t = r->result.levels.back().thrust;
+    o << "\nT2-1 at 40 g: " << f("%.0f", t) << " N, " << f("%.0f%%", 100 * (t - 349) / 349)
+      << " against the 349 N the paper reads from the strain gauges of test 180-E (the paper's DEM: about 30% below "
+         "the measurements).\n";
+  }
+
+  // Line of thrust.
+  o << "\n## Line of thrust: catenary and parabola (Fig. 7)\n\n"
+    << "Thrust points are the contact points of the seven joints (abutments included). Both curves are fitted by "
+       "least squares; the implied thrust uses the beam's weight per unit span (parabola: H = w/(2|c2|); "
+       "catenary: H = w a).\n\n"
+    << "| case | g | parabola RMS (mm) | catenary RMS (mm) | thrust: parabola / catenary / abutment (N) |\n"
+    << "|---|---|---|---|---|\n";
+  for (const auto& r : runs) {
+    for (double g : {10.0, 40.0, 90.0}) {
+      const auto* lv = level_at(r.result, g);
+      if (lv == nullptr || !lv->fit) continue;
+      o << "| " << r.spec.id << " | " << g << " | " << f("%.4f", 1e3 * lv->fit->parabola.rms_residual) << " | "
+        << f("%.4f", 1e3 * lv->fit->catenary.rms_residual) << " | " << f("%.1f", lv->fit->parabola_thrust) << " / "
+        << f("%.1f", lv->fit->catenary_thrust) << " / " << f("%.1f", lv->thrust) << " |\n";
+    }
+  }
+  o << "\nThe paper finds that both curves fit the contact points equally well at 10 g and 40 g.\n";
+
+  // Rotations.
+  o << "\n## Block rotations: abutment blocks against midspan blocks\n\n"
+    << "The paper notes that the DEM gives larger rotations at the abutment blocks than at midspan, as measured "
+       "(FLAC and DDA gave uniform rotations).\n\n"
+    << "| case | g | end blocks (deg) | blocks next to them (deg) | midspan blocks (deg) |\n|---|---|---|---|---|\n";
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  for (const auto& r : runs) {
+    if (r.result.levels.empty()) continue;
+    const auto& lv = r.result.levels.back();
+    const auto& b = lv.blocks;
+    if (b.size() != 6) continue;
+    auto mean_abs = [&](std::size_t i, std::size_t j) { return 0.5 * kDeg * (std::abs(b[i].rotation) + std::abs(b[j].rotation)); };
+    o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.4f", mean_abs(0, 5)) << " | " << f("%.4f", mean_abs(1, 4))
+      << " | " << f("%.4f", mean_abs(2, 3)) << " |\n";
+  }
+
+  // Analytical solution.
+  o << "\n## Analytical voussoir beam (Diederichs & Kaiser 1999) beside the DEM\n\n"
+    << "For the linear joints the rock-mass modulus of rigid blocks is E_rm = k_n s (s = 46 mm joint spacing). "
+       "The analytical beam has no preload and no abutment compliance, so its deflection is from zero load; the "
+       "DEM's is from the 1 g preload.\n\n"
+    << "| case | g | E_rm (MPa) | analytic deflection (mm) | DEM deflection (mm) | analytic thrust (N) | DEM thrust (N) | "
+       "analytic f_m (MPa) | DEM max σ_n (MPa) |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : runs) {
+    const auto* lin = std::get_if<LinearNormal>(&r.scenario.voussoir->law.normal);
+    if (lin == nullptr || r.result.levels.empty()) continue;
+    const auto& lv = r.result.levels.back();
+    const VoussoirSpec& v = *r.scenario.voussoir;
+    VoussoirBeamDef def;
+    def.span = v.span();
+    def.depth = v.block_depth;
+    def.unit_weight = v.density * lv.g_level * kOneG;
+    def.rock_mass_modulus = rock_mass_modulus_rigid_blocks(lin->stiffness, v.block_length);
+    def.width = v.block_width;
+    const VoussoirResult a = solve_voussoir_beam(def);
+    o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.0f", 1e-6 * def.rock_mass_modulus) << " | ";
+    if (a.equilibrium) {
+      o << f("%.4f", 1e3 * a.equilibrium->midspan_deflection) << " | " << f("%.4f", 1e3 * lv.midspan_deflection)
+        << " | " << f("%.1f", a.equilibrium->thrust.value_or(0.0)) << " | " << f("%.1f", lv.thrust) << " | "
+        << f("%.3f", 1e-6 * a.equilibrium->max_stress) << " | " << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
+    } else {
+      o << "snap-through | " << f("%.4f", 1e3 * lv.midspan_deflection) << " | - | " << f("%.1f", lv.thrust)
+        << " | - | " << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
+    }
+  }
+
+  // Differences and reasons.
+  o << "\n## Where the numbers differ from the paper, and why we think they do\n\n"
+    << "- **No FLAC or experimental curves are available here**, so the Table 2 and 3 discrepancies cannot be "
+       "recomputed; the ratios above test the part of Table 3 that does not need them.\n"
+    << "- **Contact area of a partly open joint.** blockdem computes the slice area of the overlap exactly. The "
+       "paper's implementation ignored faces nearly parallel to the contact plane while tracing the polygon, so "
+       "a partly opened joint kept its full face area until the relative rotation passed about 2 mrad, which "
+       "makes its beam stiffer: expect blockdem's deflections to be larger than the paper's, most for the "
+       "half-block beam at 90 g, whose joints open furthest.\n"
+    << "- **Contact point depends on the blocks' whole shape.** The analytic centre counts every plane of both "
+       "blocks, so the abutment joints' thrust points (and with them the lever arm, thrust and deflection) "
+       "depend on the abutments' size, which the paper does not give; ours are stated above.\n"
+    << "- **Plane motion.** See the model section: the point contact has no twisting stiffness, and the beam "
+       "is constrained to its plane.\n\n";
+
+  o << "## Figures\n\n";
+  if (figures.empty()) {
+    o << "No figures were drawn: " << figure_note << "\n\n";
+  } else {
+    for (const auto& fig : figures) o << "![" << fig << "](" << fig << ")\n\n";
+  }
+  o << "## Runs\n\n| case | steps | steps per level | wall time (s) |\n|---|---|---|---|\n";
+  for (const auto& r : runs) {
+    std::string per;
+    for (auto s : r.result.steps_per_stage) per += (per.empty() ? "" : ", ") + std::to_string(s);
+    o << "| " << r.spec.id << " | " << r.result.steps << " | " << per << " | " << f("%.2f", r.result.wall_time) << " |\n";
+  }
+  o << "\nTotal wall time " << f("%.2f", wall_time) << " s. Each case's outputs are in `<case>/` (history.csv, "
+       "joints.csv, blocks.csv, contacts.csv, summary.json, vtk/).\n";
+
+  std::ofstream out(dir / "report.md");
+  out << o.str();
+  if (!out) throw std::runtime_error("cannot write " + (dir / "report.md").string());
+}
+
+}  // namespace blockdem

@@ -1,0 +1,26 @@
+// The reproduction report of Boon et al. (2015): report.md comparing every case with what the
+// paper reports, with the statics, line-of-thrust and analytical checks beside them.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "blockdem/analysis/boon2015_cases.hpp"
+#include "blockdem/io/scenario_runner.hpp"
+
+namespace blockdem {
+
+struct Boon2015CaseRun {
+  Boon2015Case spec;
+  Scenario scenario;
+  RunResult result;
+};
+
+/// Writes DIR/report.md. `figures` lists the PNG files (relative to DIR) that exist, or is empty
+/// with `figure_note` saying why none were drawn.
+void write_boon2015_report(const std::filesystem::path& dir, const std::vector<Boon2015CaseRun>& runs,
+                           const std::vector<std::string>& figures, const std::string& figure_note,
+                           double wall_time);
+
+}  // namespace blockdem
