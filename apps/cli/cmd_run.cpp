@@ -4,6 +4,7 @@
 
 #include "blockdem/io/scenario_runner.hpp"
 #include "commands.hpp"
+#include "figures.hpp"
 #include "progress.hpp"
 
 namespace blockdem::cli {
@@ -13,6 +14,7 @@ struct RunOptions {
   std::string scenario;
   std::string out;
   bool quiet = false;
+  bool figures = true;
 };
 
 int run(const RunOptions& opt) {
@@ -23,9 +25,11 @@ int run(const RunOptions& opt) {
     if (!opt.quiet) progress.message(s);
   };
   RunResult r;
+  bool beam = false;
   try {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
+    beam = sc.voussoir.has_value();
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
@@ -33,6 +37,10 @@ int run(const RunOptions& opt) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "blockdem: error: " << opt.scenario << ": " << e.what() << "\n";
     return 2;
+  }
+  if (beam && opt.figures && !r.levels.empty()) {
+    std::string why;
+    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why)) std::cerr << "blockdem: warning: no figures: " << why << "\n";
   }
   if (r.exit_code != 0) {
     std::cerr << "blockdem: error: " << r.message << "\n"
@@ -55,6 +63,7 @@ void register_run(CLI::App& app) {
   cmd->add_option("scenario", opt->scenario, "Scenario file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", opt->out, "Output folder (created if missing)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
+  cmd->add_flag("!--no-figures", opt->figures, "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });
 }
 

@@ -37,9 +37,14 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, con
   // Abutment reactions: the contact force each abutment receives, along x.
   const double right_x = blocks[layout.right_abutment].contact_force.x();
   const double left_x = -blocks[layout.left_abutment].contact_force.x();
-  const bool servo_right = spec.servo_side == "right";
-  lv.thrust = servo_right ? right_x : left_x;
-  lv.thrust_left = servo_right ? left_x : right_x;
+  if (spec.servo_side == "both") {
+    lv.thrust = 0.5 * (right_x + left_x);
+    lv.thrust_left = left_x;
+  } else {
+    const bool servo_right = spec.servo_side == "right";
+    lv.thrust = servo_right ? right_x : left_x;
+    lv.thrust_left = servo_right ? left_x : right_x;
+  }
 
   // Joints, left to right.
   std::map<std::pair<int, int>, const Contact*> by_pair;

@@ -35,8 +35,8 @@ struct VoussoirBlockState {
 
 struct VoussoirLevel {
   double g_level = 0.0;
-  double thrust = 0.0;                ///< horizontal reaction of the servo-side abutment (N)
-  double thrust_left = 0.0;           ///< horizontal reaction of the other abutment (N)
+  double thrust = 0.0;                ///< horizontal reaction of the servo abutment (both: their mean) (N)
+  double thrust_left = 0.0;           ///< horizontal reaction of the other abutment (both: the left one) (N)
   double midspan_deflection = 0.0;    ///< downward, bottom of the beam at x = S/2 (m)
   double abutment_slip = 0.0;         ///< mean downward slip of the beam ends at the abutments (m)
   double max_normal_stress = 0.0;     ///< (Pa)

@@ -196,11 +196,12 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
     kept.push_back(g_max);
     v.g_levels = kept;
   }
-  v.servo_side = t.choice("servo_side", v.servo_side, {"left", "right"});
+  v.servo_side = t.choice("servo_side", v.servo_side, {"both", "left", "right"});
   v.plane_motion = t.boolean("plane_motion", v.plane_motion);
   v.unbalanced_tolerance = t.positive("unbalanced_tolerance", v.unbalanced_tolerance);
   v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
   v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
+  v.ramp_steps = t.integer("ramp_steps", v.ramp_steps);
   v.law.name = "joint";
   read_law_tables(t, v.law);
   try {
@@ -227,6 +228,9 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   }
   s.unbalanced_tolerance = t.positive("unbalanced_tolerance", s.unbalanced_tolerance);
   s.kinetic_tolerance = t.positive("kinetic_tolerance", s.kinetic_tolerance);
+  s.ramp_steps = t.integer("ramp_steps", s.ramp_steps);
+  if (s.ramp_steps < 0) t.fail("ramp_steps", "must be zero or positive");
+  if (s.ramp_steps > 0 && !s.gravity) t.fail("ramp_steps", "a ramp needs a new gravity in this stage");
   s.max_steps = t.integer("max_steps", s.max_steps);
   if (s.max_steps <= 0) t.fail("max_steps", "must be positive");
   s.min_steps = t.integer("min_steps", s.min_steps);

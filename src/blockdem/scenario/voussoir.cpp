@@ -34,8 +34,11 @@ void VoussoirSpec::validate() const {
     if (g < previous) fail("g_levels: levels must not decrease");
     previous = g;
   }
-  if (servo_side != "left" && servo_side != "right") fail("servo_side: must be \"left\" or \"right\"");
+  if (servo_side != "left" && servo_side != "right" && servo_side != "both") {
+    fail("servo_side: must be \"both\", \"left\" or \"right\"");
+  }
   if (max_steps_per_level <= 0) fail("max_steps_per_level: must be positive");
+  if (ramp_steps < 0) fail("ramp_steps: must be zero or positive");
 }
 
 VoussoirModel build_voussoir(const VoussoirSpec& spec) {
@@ -56,11 +59,14 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
                            "abutment_right", "abutment");
   left.motion = Motion::fixed;
   right.motion = Motion::fixed;
-  Block& servo = spec.servo_side == "right" ? right : left;
-  servo.motion = Motion::servo;
-  servo.servo.axis = Eigen::Vector3d(spec.servo_side == "right" ? -1.0 : 1.0, 0.0, 0.0);
-  servo.servo.target_force = spec.preload_force;
-  servo.servo.tolerance = spec.preload_tolerance;
+  auto make_servo = [&](Block& b, double direction) {
+    b.motion = Motion::servo;
+    b.servo.axis = Eigen::Vector3d(direction, 0.0, 0.0);
+    b.servo.target_force = spec.preload_force;
+    b.servo.tolerance = spec.preload_tolerance;
+  };
+  if (spec.servo_side != "right") make_servo(left, 1.0);
+  if (spec.servo_side != "left") make_servo(right, -1.0);
   m.blocks.push_back(left);
   m.blocks.push_back(right);
   m.layout.left_abutment = 0;
@@ -94,6 +100,8 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
     std::snprintf(name, sizeof name, "%gg", g);
     st.name = name;
     st.gravity = Eigen::Vector3d(0, 0, -g * kOneG);
+    st.ramp_steps = spec.ramp_steps;
+    st.max_steps = spec.max_steps_per_level + spec.ramp_steps;
     m.stages.push_back(st);
   }
   return m;

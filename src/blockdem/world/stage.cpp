@@ -17,6 +17,7 @@ void Stage::validate() const {
   if (!(unbalanced_tolerance > 0.0)) fail("unbalanced_tolerance must be positive");
   if (!(kinetic_tolerance > 0.0)) fail("kinetic_tolerance must be positive");
   if (max_steps <= 0) fail("max_steps must be positive");
+  if (ramp_steps < 0) fail("ramp_steps must be zero or positive");
   if (check_interval <= 0) fail("check_interval must be positive");
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
@@ -37,7 +38,8 @@ bool servos_settled(const World& world) {
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress) {
   stage.validate();
-  if (stage.gravity) world.settings().gravity = *stage.gravity;
+  const Eigen::Vector3d gravity_before = world.settings().gravity;
+  if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
   if (stage.damping) world.settings().damping = *stage.damping;
   for (const auto& cmd : stage.servos) {
     const int i = world.find_block(cmd.block);
@@ -60,6 +62,11 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   const double t0 = world.time();
   auto last_report = std::chrono::steady_clock::now();
   for (std::int64_t k = 1;; ++k) {
+    const bool ramping = stage.gravity && k <= stage.ramp_steps;
+    if (ramping) {
+      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
+      world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
+    }
     world.step();
     r.steps = k;
     const bool check = k % stage.check_interval == 0;
@@ -78,7 +85,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       r.converged = true;
       break;
     }
-    if (stage.kind == Stage::Kind::equilibrium && check && k >= stage.min_steps) {
+    if (stage.kind == Stage::Kind::equilibrium && check && k >= stage.min_steps && !ramping) {
       const EquilibriumMeasures m = world.equilibrium();
       if (m.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
           m.kinetic_energy_ratio <= stage.kinetic_tolerance && servos_settled(world)) {

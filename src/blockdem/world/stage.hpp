@@ -25,6 +25,10 @@ struct Stage {
   Kind kind = Kind::equilibrium;
 
   std::optional<Eigen::Vector3d> gravity;  ///< new gravity from this stage on (m/s^2)
+  /// Gravity moves linearly from its previous value to `gravity` over this many steps at the
+  /// start of the stage (0: at once). A ramp keeps a loading step quasi-static: a sudden jump
+  /// sends a transient through the joints that can make them slip.
+  std::int64_t ramp_steps = 0;
   std::optional<double> damping;           ///< new local damping from this stage on (-)
   std::vector<ServoCommand> servos;        ///< servo targets set at the stage start
   std::vector<std::string> hold;           ///< servo blocks stopped (held in place) at the start
