@@ -288,6 +288,21 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
     }
     sc.voussoir = read_voussoir(t.table("voussoir"));
     VoussoirModel m = build_voussoir(*sc.voussoir);
+    {
+      // The preload must be reachable: the end-face stress it needs must come at a closure the
+      // run accepts (below max_overlap_fraction of a block's radius).
+      const VoussoirSpec& v = *sc.voussoir;
+      const double needed = v.preload_force / (v.block_width * v.block_depth);
+      const double max_closure = sc.settings.max_overlap_fraction * m.blocks[m.layout.beam.front()].shape.bounding_radius();
+      const double available = normal_stress(v.law.normal, max_closure);
+      if (!(needed < available)) {
+        std::ostringstream msg;
+        msg << "a preload of " << v.preload_force << " N needs a joint stress of " << needed
+            << " Pa, which the normal law reaches only beyond the largest closure a run accepts (" << max_closure
+            << " m, where it gives " << available << " Pa): the preload cannot be reached";
+        throw ScenarioError(file, "voussoir.preload_force", msg.str());
+      }
+    }
     sc.blocks = std::move(m.blocks);
     sc.joint_laws.push_back(m.law);
     sc.joint_rules.push_back(JointRule{"", "", 0});

@@ -1,0 +1,101 @@
+// The voussoir beam of Boon, Houlsby & Utili (2015), every case of Tables 2 and 3 as shipped in
+// scenarios/boon2015: statics (H z = W S / 8 within 1% at every level), symmetry of the
+// symmetric beam (1e-6 relative; 1e-4 with the continuously-yielding law, see below), the preload (within 1% of 60 N), and the ratios of midspan
+// deflections implied by the paper's Table 3 (within 5%).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "blockdem/analysis/boon2015_cases.hpp"
+#include "blockdem/io/scenario_runner.hpp"
+
+namespace blockdem {
+namespace {
+
+RunResult run_case(const std::string& id) {
+  Scenario sc = load_scenario(std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/boon2015/" + id + ".toml");
+  sc.output.vtk = false;
+  const auto out = std::filesystem::temp_directory_path() / ("blockdem_voussoir_" + id);
+  std::filesystem::remove_all(out);
+  RunResult r = run_scenario(sc, out);
+  std::filesystem::remove_all(out);
+  return r;
+}
+
+class VoussoirCase : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(VoussoirCase, StaticsSymmetryAndPreload) {
+  const std::string id = GetParam();
+  const RunResult r = run_case(id);
+  ASSERT_EQ(r.status, "completed") << r.message;
+  double g_max = 0;
+  for (const auto& c : boon2015_cases()) {
+    if (c.id == id) g_max = c.g_max;
+  }
+  ASSERT_FALSE(r.levels.empty());
+  EXPECT_DOUBLE_EQ(r.levels.back().g_level, g_max);
+
+  // Preload: both abutments push with 60 N within 1%.
+  const VoussoirLevel& pre = r.levels.front();
+  EXPECT_NEAR(pre.thrust, 60.0, 0.6);
+  EXPECT_NEAR(pre.thrust_left, 60.0, 0.6);
+
+  // The continuously-yielding law has no elastic range at the start (mu(0) = 0, eq. 8): every
+  // joint slips from the first increment, the split of the beam's weight between the abutments
+  // is path-dependent, and round-off differences between mirrored force sums are not damped but
+  // carried along. Measured asymmetry ~1e-5; the elastic-shear cases stay below 1e-6.
+  const bool plastic = id.rfind("T3-", 0) == 0 && id != "T3-half-old";
+  const double sym = plastic ? 1e-4 : 1e-6;
+  for (const VoussoirLevel& lv : r.levels) {
+    SCOPED_TRACE("g = " + std::to_string(lv.g_level));
+    // Statics of the half span.
+    ASSERT_TRUE(std::isfinite(lv.equilibrium_residual));
+    EXPECT_LT(lv.equilibrium_residual, 0.01);
+    // Symmetry: thrust points mirror about the midspan joint, the profile about midspan.
+    const auto& j = lv.joints;
+    const std::size_t n = j.size();
+    const double x_mid = j[n / 2].x;
+    const double depth = 0.046;
+    for (std::size_t k = 0; k < n / 2; ++k) {
+      EXPECT_NEAR(j[k].x + j[n - 1 - k].x, 2 * x_mid, sym * 0.276);
+      EXPECT_NEAR(j[k].z, j[n - 1 - k].z, sym * depth);
+      EXPECT_NEAR(j[k].normal_force, j[n - 1 - k].normal_force, sym * j[k].normal_force);
+    }
+    double scale = 0.0, turn = 0.0;
+    for (const auto& b : lv.blocks) {
+      scale = std::max(scale, std::abs(b.deflection));
+      turn = std::max(turn, std::abs(b.rotation));
+    }
+    const std::size_t m = lv.blocks.size();
+    for (std::size_t k = 0; k < m / 2; ++k) {
+      EXPECT_NEAR(lv.blocks[k].deflection, lv.blocks[m - 1 - k].deflection, sym * scale + 1e-15);
+      // Rotations are differences of nearly equal orientations: 10 sym of the largest.
+      EXPECT_NEAR(lv.blocks[k].rotation, -lv.blocks[m - 1 - k].rotation, 10 * sym * turn + 1e-15);
+    }
+    EXPECT_GE(lv.midspan_deflection, -1e-12);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Boon2015, VoussoirCase,
+                         ::testing::Values("T2-1", "T2-2", "T2-3", "F8", "T3-full", "T3-half", "T3-half-old"),
+                         [](const ::testing::TestParamInfo<std::string>& p) {
+                           std::string s = p.param;
+                           for (char& c : s) c = (c == '-') ? '_' : c;
+                           return s;
+                         });
+
+// Table 3 implies that the new laws predict (1 + new)/(1 + old) times the midspan deflection of
+// the old ones: 2.13 for the full beam (mean over three tests) and 2.125 for the half beam.
+TEST(VoussoirPaper, Table3DeflectionRatios) {
+  const double full = run_case("T3-full").levels.back().midspan_deflection /
+                      run_case("T2-2").levels.back().midspan_deflection;
+  const double half = run_case("T3-half").levels.back().midspan_deflection /
+                      run_case("T3-half-old").levels.back().midspan_deflection;
+  EXPECT_NEAR(full, boon2015_ratio_full(), 0.05 * boon2015_ratio_full());
+  EXPECT_NEAR(half, boon2015_ratio_half(), 0.05 * boon2015_ratio_half());
+}
+
+}  // namespace
+}  // namespace blockdem
