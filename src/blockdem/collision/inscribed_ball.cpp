@@ -18,10 +18,14 @@
 // in the highly degenerate face-to-face contacts. After a run of degenerate (zero-length) steps
 // the choices switch to Bland's smallest-index rule, which cannot cycle.
 //
-// Dual simplex (warm start; e.g. Chvatal, Linear Programming, ch. 10): at the previous step's
-// vertex (4 planes, basis matrix B), the multipliers mu = B^-T c are usually still >= 0 after the
-// blocks moved slightly; planes violated at the vertex then enter one by one, the leaving plane
-// being chosen by the ratio test on mu, until the vertex is feasible.
+// Warm starts. (a) Dual simplex (e.g. Chvatal, Linear Programming, ch. 10): at the previous
+// step's vertex (4 planes, basis matrix B), the multipliers mu = B^-T c are usually still >= 0
+// after the blocks moved slightly; planes violated at the vertex then enter one by one, the
+// leaving plane being chosen by the ratio test on mu, until the vertex is feasible.
+// (b) An optimum with fewer than 4 tight planes (face-to-face contact: a segment or polygon of
+// optimal centres) is re-entered at the nearest point where those planes are tight again; if it
+// is feasible, the primal method continues from there, usually only confirming optimality.
+// Anything else restarts the primal method from the previous centre.
 #include "blockdem/collision/inscribed_ball.hpp"
 
 #include <algorithm>
@@ -56,6 +60,7 @@ struct Problem {
   double* gap = nullptr;          ///< d_j - n_j·x at the current x; the slack is gap_j - r (m)
   double* alpha = nullptr;        ///< a_j·p for the current step direction p (-)
   double feasibility_tol = -1.0;  ///< slack tolerance (m); negative until set by the first pass
+  double min_gap = 0.0;           ///< min_j gap_j, kept by every pass that writes the gaps (m)
   int max_iterations = 0;
 
   Vec4 row(int j) const {
@@ -84,6 +89,11 @@ struct State {
                            std::to_string(pb.m) + " planes (non-unit or non-finite normals?)");
 }
 
+[[noreturn]] void throw_non_finite() {
+  throw std::invalid_argument(
+      "largest_inscribed_ball: a plane has a non-finite normal or offset (NaN or infinity)");
+}
+
 // Removes entry i of the working set, keeping insertion order (Gram-Schmidt relies on it: each
 // row then has a residual against the rows before it at least as large as when it entered).
 void remove_working(State& st, int i) {
@@ -97,17 +107,21 @@ void remove_working(State& st, int i) {
 void start_at(Problem& pb, const Eigen::Vector3d& x, State& st) {
   double rmin = std::numeric_limits<double>::infinity();
   double extent = 0.0;
+  double probe = 0.0;  // becomes NaN if any gap is NaN or infinite
   int argmin = 0;
   for (int j = 0; j < pb.m; ++j) {
     const double g = pb.d(j) - pb.normal_dot(j, x.x(), x.y(), x.z());
     pb.gap[j] = g;
     extent = std::max(extent, std::abs(g));
+    probe += 0.0 * g;
     if (g < rmin) {
       rmin = g;
       argmin = j;
     }
   }
+  if (probe != 0.0) throw_non_finite();
   if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
+  pb.min_gap = rmin;
   st.y << x, rmin;
   st.working = {argmin, -1, -1, -1};
   st.size = 1;
@@ -119,12 +133,14 @@ void start_at(Problem& pb, const Eigen::Vector3d& x, State& st) {
 // enough", Giraud et al. 2005).
 struct WorkingBasis {
   std::array<Vec4, 4> q;
-  double rr[4][4];
+  double rr[4][4];     ///< R above the diagonal
+  double inv_diag[4];  ///< 1 / R_ii
 
   // Orthogonalises working row i against rows 0..i-1; false if it is dependent on them.
+  // (Squared norms are compared, to keep square roots off the critical path.)
   bool orthogonalize(const Problem& pb, const State& st, int i) {
     Vec4 v = pb.row(st.working[i]);
-    double norm_before = v.norm();
+    double norm2_before = v.squaredNorm();
     for (int l = 0; l < i; ++l) rr[l][i] = 0.0;
     for (int pass = 0; pass < 2; ++pass) {
       for (int l = 0; l < i; ++l) {
@@ -132,14 +148,14 @@ struct WorkingBasis {
         v -= c * q[l];
         rr[l][i] += c;
       }
-      const double norm_after = v.norm();
-      if (i == 0 || norm_after > 0.5 * norm_before) break;
-      norm_before = norm_after;
+      const double norm2_after = v.squaredNorm();
+      if (i == 0 || norm2_after > 0.25 * norm2_before) break;
+      norm2_before = norm2_after;
     }
-    const double norm = v.norm();
-    if (norm <= kDependentTol) return false;
-    rr[i][i] = norm;
-    q[i] = v / norm;
+    const double norm2 = v.squaredNorm();
+    if (!(norm2 > kDependentTol * kDependentTol)) return false;
+    inv_diag[i] = 1.0 / std::sqrt(norm2);
+    q[i] = v * inv_diag[i];
     return true;
   }
 
@@ -156,14 +172,13 @@ struct WorkingBasis {
   }
 };
 
-// Primal active-set iterations from a feasible state. Returns false if r is unbounded.
-bool solve_primal(const Problem& pb, State& st) {
+// Primal active-set iterations from a feasible state whose working rows have the orthonormal
+// basis `basis`. Returns false if r is unbounded.
+bool solve_primal(Problem& pb, State& st, WorkingBasis& basis) {
   const int m = pb.m;
   int last_dropped = -1;
   int degenerate_run = 0;
   bool bland = false;
-  WorkingBasis basis;
-  basis.rebuild(pb, st);
   for (;; ++st.iterations) {
     if (st.iterations > pb.max_iterations) throw_iteration_limit(pb);
 
@@ -171,19 +186,19 @@ bool solve_primal(const Problem& pb, State& st) {
     // short so that the step keeps the working planes tight to round-off however short z is.
     Vec4 z = Vec4::UnitW();
     for (int l = 0; l < st.size; ++l) z -= basis.q[l][3] * basis.q[l];
-    double z_norm = z.norm();
-    if (z_norm < 0.5) {
+    double z_norm2 = z.squaredNorm();
+    if (z_norm2 < 0.25) {
       for (int l = 0; l < st.size; ++l) z -= basis.q[l].dot(z) * basis.q[l];
-      z_norm = z.norm();
+      z_norm2 = z.squaredNorm();
     }
 
-    if (z_norm <= kDirectionTol) {
+    if (z_norm2 <= kDirectionTol * kDirectionTol) {
       // c = A_W^T mu: solve R mu = Q^T c by back substitution.
       double mu[4] = {};
       for (int i = st.size - 1; i >= 0; --i) {
         double sum = basis.q[i][3];
         for (int l = i + 1; l < st.size; ++l) sum -= basis.rr[i][l] * mu[l];
-        mu[i] = sum / basis.rr[i][i];
+        mu[i] = sum * basis.inv_diag[i];
       }
       int drop = -1;
       for (int i = 0; i < st.size; ++i) {
@@ -196,22 +211,27 @@ bool solve_primal(const Problem& pb, State& st) {
       basis.rebuild(pb, st);
       continue;
     }
-    const Vec4 p = z / z_norm;
+    const Vec4 p = z / std::sqrt(z_norm2);
 
     // Harris (1973) ratio test. Pass 1: the longest step t_max that violates no plane by more
     // than the feasibility tolerance; the slack of plane j is gap_j - r. Working planes
     // (a_j·p = 0 to round-off) and the plane just dropped (a_j·p < 0) cannot block.
+    // t_max is kept as the fraction t_num / t_den (both positive), so that the loops compare
+    // cross products instead of dividing.
     const double r = st.y[3];
     const double tol = pb.feasibility_tol;
-    double t_max = std::numeric_limits<double>::infinity();
+    double t_num = 1.0;
+    double t_den = 0.0;  // t_max = +infinity
     for (int j = 0; j < m; ++j) {
       const double a = pb.normal_dot(j, p[0], p[1], p[2]) + p[3];
       pb.alpha[j] = a;
-      if (a > kPivotTol && j != last_dropped) {
-        t_max = std::min(t_max, (std::max(pb.gap[j] - r, 0.0) + tol) / a);
+      const double bound = std::max(pb.gap[j] - r, 0.0) + tol;
+      if (a > kPivotTol && j != last_dropped && bound * t_den < t_num * a) {
+        t_num = bound;
+        t_den = a;
       }
     }
-    if (t_max == std::numeric_limits<double>::infinity()) {
+    if (t_den == 0.0) {
       return false;  // c·p > 0 and nothing blocks: r is unbounded
     }
     // Pass 2: among the planes blocking within t_max, the largest pivot a_j·p, which keeps the
@@ -220,7 +240,8 @@ bool solve_primal(const Problem& pb, State& st) {
     double best_alpha = kPivotTol;
     for (int j = 0; j < m; ++j) {
       const double a = pb.alpha[j];
-      if (a > best_alpha && j != last_dropped && std::max(pb.gap[j] - r, 0.0) <= t_max * a) {
+      if (a > best_alpha && j != last_dropped &&
+          std::max(pb.gap[j] - r, 0.0) * t_den <= t_num * a) {
         enter = j;
         best_alpha = a;
         if (bland) break;
@@ -231,8 +252,13 @@ bool solve_primal(const Problem& pb, State& st) {
     // Step (x moves by t p_x, so gap_j by -t n_j·p_x = -t (a_j - p_r)); add the blocking plane.
     st.y += t * p;
     const double dr = t * p[3];
-    for (int j = 0; j < m; ++j) pb.gap[j] -= t * pb.alpha[j] - dr;
+    double min_gap = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < m; ++j) {
+      pb.gap[j] -= t * pb.alpha[j] - dr;
+      min_gap = std::min(min_gap, pb.gap[j]);
+    }
     pb.gap[enter] = st.y[3];
+    pb.min_gap = std::min(min_gap, st.y[3]);
     st.working[st.size++] = enter;
     if (!basis.orthogonalize(pb, st, st.size - 1)) remove_working(st, st.size - 1);
     last_dropped = -1;
@@ -268,18 +294,23 @@ bool solve_dual(Problem& pb, State& st) {
     st.y = b_inv * rhs;
     // The most violated plane enters. On the first pass the tolerance is set from the planes'
     // extent seen from the vertex.
-    double worst = 0.0;
+    double min_gap = std::numeric_limits<double>::infinity();
     double extent = 0.0;
+    double probe = 0.0;  // becomes NaN if any gap is NaN or infinite
     int enter = -1;
     for (int j = 0; j < m; ++j) {
       const double g = pb.d(j) - pb.normal_dot(j, st.y[0], st.y[1], st.y[2]);
       pb.gap[j] = g;
       extent = std::max(extent, std::abs(g));
-      if (g - st.y[3] < worst) {
-        worst = g - st.y[3];
+      probe += 0.0 * g;
+      if (g < min_gap) {
+        min_gap = g;
         enter = j;
       }
     }
+    if (probe != 0.0) return false;  // the primal restart reports it
+    pb.min_gap = min_gap;
+    const double worst = std::min(min_gap - st.y[3], 0.0);
     if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
     if (worst >= -pb.feasibility_tol) {
       st.size = 4;
@@ -311,8 +342,8 @@ bool solve_dual(Problem& pb, State& st) {
 }
 
 // Fills the public result from a solved state. The radius is min_j (d_j - n_j·x) at the returned
-// centre (not the r of the state, which may exceed it by the feasibility tolerance), so that
-// the ball of that radius there is inside every half-space.
+// centre (kept by the last pass over the planes; not the r of the state, which may exceed it by
+// the feasibility tolerance), so that the ball of that radius there is inside every half-space.
 InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
   InscribedBall out;
   out.center = st.y.head<3>();
@@ -324,9 +355,7 @@ InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
     out.radius = std::numeric_limits<double>::infinity();
     return out;
   }
-  double r = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < pb.m; ++j) r = std::min(r, pb.gap[j]);
-  out.radius = r;
+  out.radius = pb.min_gap;
   return out;
 }
 
@@ -365,7 +394,9 @@ InscribedBall solve_cold(Problem& pb, const Eigen::Vector3d& x0, int iterations_
   State st;
   st.iterations = iterations_so_far;
   start_at(pb, x0, st);
-  const bool bounded = solve_primal(pb, st);
+  WorkingBasis basis;
+  basis.rebuild(pb, st);
+  const bool bounded = solve_primal(pb, st, basis);
   return make_result(pb, st, bounded);
 }
 
@@ -387,10 +418,9 @@ bool valid_warm_set(const InscribedBall& previous, int m) {
 // old working planes are tight with the new plane data, y = y_prev + Q R^-T (d_W - A_W y_prev).
 // If that point is feasible, the primal method continues from it (often just confirming the
 // optimality conditions); otherwise returns false with the gaps undefined.
-bool projected_start(Problem& pb, const InscribedBall& previous, State& st) {
+bool projected_start(Problem& pb, const InscribedBall& previous, State& st, WorkingBasis& basis) {
   st.working = previous.active;
   st.size = previous.num_active;
-  WorkingBasis basis;
   basis.rebuild(pb, st);
   if (st.size == 0) return false;
   Vec4 y_prev;
@@ -402,20 +432,24 @@ bool projected_start(Problem& pb, const InscribedBall& previous, State& st) {
     const int j = st.working[i];
     double sum = pb.d(j) - pb.row(j).dot(y_prev);
     for (int l = 0; l < i; ++l) sum -= basis.rr[l][i] * u[l];
-    u[i] = sum / basis.rr[i][i];
+    u[i] = sum * basis.inv_diag[i];
     st.y += u[i] * basis.q[i];
   }
   if (!st.y.allFinite()) return false;
-  double worst = 0.0;
+  double min_gap = std::numeric_limits<double>::infinity();
   double extent = 0.0;
+  double probe = 0.0;  // becomes NaN if any gap is NaN or infinite
   for (int j = 0; j < pb.m; ++j) {
     const double g = pb.d(j) - pb.normal_dot(j, st.y[0], st.y[1], st.y[2]);
     pb.gap[j] = g;
     extent = std::max(extent, std::abs(g));
-    worst = std::min(worst, g - st.y[3]);
+    probe += 0.0 * g;
+    min_gap = std::min(min_gap, g);
   }
+  if (probe != 0.0) return false;  // the primal restart reports it
+  pb.min_gap = min_gap;
   if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
-  return worst >= -pb.feasibility_tol;
+  return min_gap - st.y[3] >= -pb.feasibility_tol;
 }
 
 }  // namespace
@@ -437,8 +471,8 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
         st.working = previous.active;
         st.size = 4;
         if (solve_dual(pb, st)) return make_result(pb, st, true);
-      } else if (projected_start(pb, previous, st)) {
-        const bool bounded = solve_primal(pb, st);
+      } else if (WorkingBasis basis; projected_start(pb, previous, st, basis)) {
+        const bool bounded = solve_primal(pb, st, basis);
         return make_result(pb, st, bounded);
       } else {
         st.y.setConstant(std::numeric_limits<double>::quiet_NaN());

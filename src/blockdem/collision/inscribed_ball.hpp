@@ -35,17 +35,19 @@ struct InscribedBall {
 /// Cold solve. `planes` holds unit outward normals (the caller's contract: normalised, finite).
 /// Starts from the mean of the planes' foot points d_j n_j and walks up the active-set path.
 /// No heap allocation for up to `kInscribedBallStackPlanes` planes; longer lists use a heap
-/// buffer. Throws std::invalid_argument for an empty list and std::runtime_error if the
-/// iteration limit is hit (a numerical failure, never expected).
+/// buffer. Throws std::invalid_argument for an empty list or a non-finite plane, and
+/// std::runtime_error if the iteration limit is hit (a numerical failure, never expected).
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes);
 
 /// Warm start from the solution of the same pair at the previous time step. The plane list must
 /// have the same order as then (e.g. the planes of A, then those of B); the planes may have moved.
 /// If `previous` has a full active set (4 planes) that is still dual feasible (non-negative
 /// multipliers) with the new planes, a dual simplex repairs primal feasibility, usually in 0-2
-/// pivots; otherwise the primal active-set method restarts from `previous.center`. The optimum
-/// radius is the same as a cold solve gives (to round-off); the centre may differ where it is
-/// not unique.
+/// pivots. A smaller active set (a non-vertex optimum, e.g. face-to-face contact) is re-entered
+/// at the nearest point where its planes are tight, if that point is feasible. Otherwise the
+/// primal active-set method restarts from `previous.center`. Any `previous` is safe (an
+/// unrelated one only costs time). The optimum radius is the same as a cold solve gives (to
+/// round-off, within 1e-13 of the planes' extent); the centre may differ where it is not unique.
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous);
 

@@ -190,6 +190,26 @@ TEST(InscribedBall, EmptyPlaneListIsAnError) {
   EXPECT_THROW(largest_inscribed_ball(Planes{}, InscribedBall{}), std::invalid_argument);
 }
 
+// A NaN or infinite plane is reported, not skipped (every comparison with NaN is false, so a
+// careless solver would silently ignore the plane), for cold and warm starts alike.
+TEST(InscribedBall, NonFinitePlaneIsAnError) {
+  const Planes cube = test_shapes::box(Eigen::Vector3d::Constant(0.5));
+  const InscribedBall previous = largest_inscribed_ball(test_shapes::concat(cube, cube));
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    for (int field = 0; field < 2; ++field) {
+      Planes planes = test_shapes::concat(cube, cube);
+      if (field == 0) {
+        planes[7].offset = bad;
+      } else {
+        planes[7].normal.y() = bad;
+      }
+      EXPECT_THROW(largest_inscribed_ball(planes), std::invalid_argument);
+      EXPECT_THROW(largest_inscribed_ball(planes, previous), std::invalid_argument);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Agreement with the CLP oracle.
 //
