@@ -271,8 +271,11 @@ void check_pair(const Planes& pair, double size, int expect_sign, const Inscribe
   } else if (expect_sign == -1) {
     EXPECT_LT(cold.radius, -overlap_tol) << what;
   }
-  // x* carries a ball of radius r*: every plane is at least r* away (the returned radius is this
-  // minimum by construction, so check it against CLP's optimum instead).
+  // The reported radius is the smallest slack at the reported centre (a ball of that radius
+  // there lies in both blocks), and that ball is as large as CLP's optimum.
+  const double round_off = 1e-12 * std::max(std::abs(cold.radius), size);
+  EXPECT_NEAR(cold.radius, min_slack(pair, cold.center), round_off) << what;
+  EXPECT_NEAR(warm.radius, min_slack(pair, warm.center), round_off) << what;
   EXPECT_GE(min_slack(pair, cold.center), clp.radius - tol) << what;
 }
 
