@@ -60,7 +60,8 @@ struct Problem {
   double* gap = nullptr;          ///< d_j - n_j·x at the current x; the slack is gap_j - r (m)
   double* alpha = nullptr;        ///< a_j·p for the current step direction p (-)
   double feasibility_tol = -1.0;  ///< slack tolerance (m); negative until set by the first pass
-  double min_gap = 0.0;           ///< min_j gap_j, kept by every pass that writes the gaps (m)
+  double min_gap = 0.0;           ///< min_j gap_j, if min_gap_valid (m)
+  bool min_gap_valid = false;     ///< set by the passes that compute the gaps from scratch
   int max_iterations = 0;
 
   Vec4 row(int j) const {
@@ -122,6 +123,7 @@ void start_at(Problem& pb, const Eigen::Vector3d& x, State& st) {
   if (probe != 0.0) throw_non_finite();
   if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
   pb.min_gap = rmin;
+  pb.min_gap_valid = true;
   st.y << x, rmin;
   st.working = {argmin, -1, -1, -1};
   st.size = 1;
@@ -252,13 +254,9 @@ bool solve_primal(Problem& pb, State& st, WorkingBasis& basis) {
     // Step (x moves by t p_x, so gap_j by -t n_j·p_x = -t (a_j - p_r)); add the blocking plane.
     st.y += t * p;
     const double dr = t * p[3];
-    double min_gap = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < m; ++j) {
-      pb.gap[j] -= t * pb.alpha[j] - dr;
-      min_gap = std::min(min_gap, pb.gap[j]);
-    }
+    for (int j = 0; j < m; ++j) pb.gap[j] -= t * pb.alpha[j] - dr;
     pb.gap[enter] = st.y[3];
-    pb.min_gap = std::min(min_gap, st.y[3]);
+    pb.min_gap_valid = false;
     st.working[st.size++] = enter;
     if (!basis.orthogonalize(pb, st, st.size - 1)) remove_working(st, st.size - 1);
     last_dropped = -1;
@@ -310,6 +308,7 @@ bool solve_dual(Problem& pb, State& st) {
     }
     if (probe != 0.0) return false;  // the primal restart reports it
     pb.min_gap = min_gap;
+    pb.min_gap_valid = true;
     const double worst = std::min(min_gap - st.y[3], 0.0);
     if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
     if (worst >= -pb.feasibility_tol) {
@@ -342,8 +341,8 @@ bool solve_dual(Problem& pb, State& st) {
 }
 
 // Fills the public result from a solved state. The radius is min_j (d_j - n_j·x) at the returned
-// centre (kept by the last pass over the planes; not the r of the state, which may exceed it by
-// the feasibility tolerance), so that the ball of that radius there is inside every half-space.
+// centre (from the gaps; not the r of the state, which may exceed it by the feasibility
+// tolerance), so that the ball of that radius there is inside every half-space.
 InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
   InscribedBall out;
   out.center = st.y.head<3>();
@@ -355,7 +354,9 @@ InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
     out.radius = std::numeric_limits<double>::infinity();
     return out;
   }
-  out.radius = pb.min_gap;
+  out.radius = pb.min_gap_valid
+                   ? pb.min_gap
+                   : Eigen::Map<const Eigen::ArrayXd>(pb.gap, pb.m).minCoeff();  // vectorised
   return out;
 }
 
@@ -448,6 +449,7 @@ bool projected_start(Problem& pb, const InscribedBall& previous, State& st, Work
   }
   if (probe != 0.0) return false;  // the primal restart reports it
   pb.min_gap = min_gap;
+  pb.min_gap_valid = true;
   if (pb.feasibility_tol < 0.0) pb.feasibility_tol = kFeasibilityRel * extent;
   return min_gap - st.y[3] >= -pb.feasibility_tol;
 }
