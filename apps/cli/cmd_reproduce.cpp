@@ -21,6 +21,7 @@ struct ReproduceOptions {
   std::string out;
   std::string scenarios;
   std::vector<std::string> cases;
+  std::string modes = "both";
   int jobs = 0;
   bool quiet = false;
   bool figures = true;
@@ -36,22 +37,43 @@ int reproduce(const ReproduceOptions& opt) {
       opt.scenarios.empty() ? std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" / "boon2015"
                             : std::filesystem::path(opt.scenarios);
   // Select and read every case before running any.
+  // Each case in mode boon2012 (the paper's) and, with the suffix -fi, face_integrated.
+  std::vector<ContactMode> modes;
+  if (opt.modes != "face_integrated") modes.push_back(ContactMode::boon2012);
+  if (opt.modes != "boon2012") modes.push_back(ContactMode::face_integrated);
+  auto wanted = [&](const std::string& id) {
+    return opt.cases.empty() || std::find(opt.cases.begin(), opt.cases.end(), id) != opt.cases.end();
+  };
   std::vector<Boon2015CaseRun> runs;
-  for (const auto& c : boon2015_cases()) {
-    if (!opt.cases.empty() && std::find(opt.cases.begin(), opt.cases.end(), c.id) == opt.cases.end()) continue;
-    Boon2015CaseRun r;
-    r.spec = c;
-    try {
-      r.scenario = load_scenario((scen_dir / (c.id + ".toml")).string());
-    } catch (const ScenarioError& e) {
-      std::cerr << "blockdem: error: " << e.what() << "\n";
-      return 2;
+  for (const ContactMode mode : modes) {
+    for (const auto& c : boon2015_cases()) {
+      const std::string id = c.id + (mode == ContactMode::face_integrated ? "-fi" : "");
+      if (!wanted(id) && !wanted(c.id)) continue;
+      Boon2015CaseRun r;
+      r.spec = c;
+      r.spec.id = id;
+      r.base_id = c.id;
+      r.mode = mode;
+      try {
+        r.scenario = load_scenario((scen_dir / (c.id + ".toml")).string());
+      } catch (const ScenarioError& e) {
+        std::cerr << "blockdem: error: " << e.what() << "\n";
+        return 2;
+      }
+      r.scenario.settings.contact_mode = mode;
+      runs.push_back(std::move(r));
     }
-    runs.push_back(std::move(r));
   }
+  // Longest first, so that two threads finish together.
+  std::stable_sort(runs.begin(), runs.end(), [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
+    auto cost = [](const Boon2015CaseRun& r) {
+      return (r.spec.beam == "half" ? 3.0 : 1.0) * (r.mode == ContactMode::face_integrated ? 3.0 : 1.0);
+    };
+    return cost(x) > cost(y);
+  });
   for (const auto& id : opt.cases) {
     const bool known = std::any_of(boon2015_cases().begin(), boon2015_cases().end(),
-                                   [&](const Boon2015Case& c) { return c.id == id; });
+                                   [&](const Boon2015Case& c) { return c.id == id || c.id + "-fi" == id; });
     if (!known) {
       std::string list;
       for (const auto& c : boon2015_cases()) list += (list.empty() ? "" : ", ") + c.id;
@@ -134,7 +156,9 @@ void register_reproduce(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("reproduce", "Reproduce a published study (boon2015: Boon, Houlsby & Utili 2015)");
   cmd->add_option("study", opt->study, "Study id: boon2015")->required();
   cmd->add_option("--out", opt->out, "Output folder")->required();
-  cmd->add_option("--case", opt->cases, "Run only these cases (repeatable), e.g. --case T2-1");
+  cmd->add_option("--case", opt->cases, "Run only these cases (repeatable), e.g. --case T2-1 or --case T2-1-fi");
+  cmd->add_option("--mode", opt->modes, "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
+      ->check(CLI::IsMember({"both", "boon2012", "face_integrated"}));
   cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")->check(CLI::PositiveNumber);
   cmd->add_option("--scenarios", opt->scenarios, "Folder of the case files (default: the source tree's scenarios/boon2015)");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");

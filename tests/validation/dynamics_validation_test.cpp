@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <tuple>
 
 #include "blockdem/world/stage.hpp"
 #include "scenes.hpp"
@@ -16,11 +18,24 @@ constexpr double kRho = 1207.0;  // gypsum of the paper's Table 1 (kg/m^3)
 constexpr double kKn = 10e9;     // Table 2 (Pa/m)
 constexpr double kKs = 1e9;      // Table 2 (Pa/m)
 
+// Every test runs with both contact modes (point contact and face integration): for these
+// scenes (uniform closure over a face, or no contact) both must give the closed form.
+class Validation : public ::testing::TestWithParam<ContactMode> {
+ protected:
+  WorldSettings settings() const {
+    WorldSettings s;
+    s.contact_mode = GetParam();
+    return s;
+  }
+};
+
+std::string mode_name(const ::testing::TestParamInfo<ContactMode>& p) { return to_string(p.param); }
+
 // Free fall. Central difference integrates constant acceleration exactly when the stored
 // velocity is read as v(t - dt/2): x(t_n) = x0 + v(0) t + g t²/2 with v(0) = v_{-1/2} + g dt/2.
 // Tolerance: round-off only (1e-12 relative).
-TEST(Validation, FreeFallIsExactForCentralDifference) {
-  WorldSettings s;
+TEST_P(Validation, FreeFallIsExactForCentralDifference) {
+  WorldSettings s = settings();
   s.gravity = {0, 0, -kG};
   s.time_step = 1e-4;
   World w = test::linear_world(kKn, kKs, 40, s);
@@ -38,8 +53,8 @@ TEST(Validation, FreeFallIsExactForCentralDifference) {
 
 // A block resting on a fixed base: the joint closes by δ = W / (k_n A) (linear law, full face
 // area A). Tolerance 1e-6 relative, set by the equilibrium tolerance of the stage.
-TEST(Validation, RestingBlockClosureIsWeightOverStiffnessTimesArea) {
-  WorldSettings s;
+TEST_P(Validation, RestingBlockClosureIsWeightOverStiffnessTimesArea) {
+  WorldSettings s = settings();
   s.damping = 0.7;
   World w = test::linear_world(kKn, kKs, 40, s);
   const double a = 0.046;
@@ -65,12 +80,12 @@ TEST(Validation, RestingBlockClosureIsWeightOverStiffnessTimesArea) {
 // Started at half the static closure at rest, it oscillates about the static closure with
 // amplitude half of it and never separates. Leapfrog's period error is O((ω dt)²): with
 // ω dt = 0.02 it is below 1e-4; tolerance 5e-4 relative.
-TEST(Validation, UndampedOscillationPeriod) {
+TEST_P(Validation, UndampedOscillationPeriod) {
   const double a = 0.046;
   const double m = kRho * a * a * a;
   const double k = kKn * a * a;
   const double period = 2 * kPi * std::sqrt(m / k);
-  WorldSettings s;
+  WorldSettings s = settings();
   s.gravity = {0, 0, -kG};
   s.time_step = 0.02 / std::sqrt(k / m);
   World w = test::linear_world(kKn, kKs, 40, s);
@@ -101,13 +116,14 @@ TEST(Validation, UndampedOscillationPeriod) {
 // by the elastic shear deflection m g sinθ / (k_s A) (within a factor 2 for the transient) and
 // does not creep. Above, undamped, it slides with a = g (sinθ − cosθ tanφ) (Mohr-Coulomb cap);
 // tolerance 1% on the acceleration.
-class InclineTest : public ::testing::TestWithParam<double> {};
+class InclineTest : public ::testing::TestWithParam<std::tuple<double, ContactMode>> {};
 
 TEST_P(InclineTest, SticksBelowFrictionAngleSlidesAboveWithCoulombAcceleration) {
-  const double theta = GetParam() * kPi / 180.0;
+  const double theta = std::get<0>(GetParam()) * kPi / 180.0;
   const double phi = 40.0 * kPi / 180.0;
   const Eigen::Vector3d size(0.1, 0.1, 0.02);
   WorldSettings s;
+  s.contact_mode = std::get<1>(GetParam());
   s.gravity = kG * Eigen::Vector3d(std::sin(theta), 0, -std::cos(theta));
   if (theta < phi) s.damping = 0.7;
   World w = test::linear_world(kKn, kKs, 40, s);
@@ -143,16 +159,22 @@ TEST_P(InclineTest, SticksBelowFrictionAngleSlidesAboveWithCoulombAcceleration) 
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Angles, InclineTest, ::testing::Values(20.0, 35.0, 45.0, 55.0));
+INSTANTIATE_TEST_SUITE_P(Angles, InclineTest,
+                         ::testing::Combine(::testing::Values(20.0, 35.0, 45.0, 55.0),
+                                            ::testing::Values(ContactMode::boon2012, ContactMode::face_integrated)),
+                         [](const ::testing::TestParamInfo<std::tuple<double, ContactMode>>& p) {
+                           return std::to_string(static_cast<int>(std::get<0>(p.param))) + "deg_" +
+                                  to_string(std::get<1>(p.param));
+                         });
 
 // A block launched along a flat fixed base slides to rest after d = v0² / (2 g tanφ).
 // Undamped; the elastic shear deflection at rest (μ m g / (k_s A) ~ 1e-7 m) and the step
 // discretisation are far below the 0.5% tolerance.
-TEST(Validation, SlidingBlockStopsAfterCoulombDistance) {
+TEST_P(Validation, SlidingBlockStopsAfterCoulombDistance) {
   const double phi = 40.0 * kPi / 180.0;
   const double v0 = 0.5;
   const Eigen::Vector3d size(0.1, 0.1, 0.02);
-  WorldSettings s;
+  WorldSettings s = settings();
   s.gravity = {0, 0, -kG};
   World w = test::linear_world(kKn, kKs, 40, s);
   w.add_block(test::box_block({1.0, 0.3, 0.05}, {0.3, 0, -0.025}, kRho, Motion::fixed, "base"));
@@ -171,8 +193,8 @@ TEST(Validation, SlidingBlockStopsAfterCoulombDistance) {
 
 // A column of blocks at rest on a fixed base: each joint carries the weight of the blocks above
 // it (statics). Tolerance 1e-6 relative, from the stage's equilibrium tolerance.
-TEST(Validation, ColumnContactForcesEqualWeightAbove) {
-  WorldSettings s;
+TEST_P(Validation, ColumnContactForcesEqualWeightAbove) {
+  WorldSettings s = settings();
   s.damping = 0.7;
   World w = test::linear_world(kKn, kKs, 40, s);
   const double a = 0.046;
@@ -199,8 +221,8 @@ TEST(Validation, ColumnContactForcesEqualWeightAbove) {
 // A torque-free tumbling block: the world angular momentum is conserved to round-off (the
 // scheme updates L exactly), and the kinetic energy to the integrator's second order: with
 // |ω| dt = 1e-3 the drift over 50 turns stays below 1e-5 relative.
-TEST(Validation, TumblingBlockConservesAngularMomentumAndEnergy) {
-  WorldSettings s;
+TEST_P(Validation, TumblingBlockConservesAngularMomentumAndEnergy) {
+  WorldSettings s = settings();
   s.time_step = 1e-4;
   World w = test::linear_world(kKn, kKs, 40, s);
   Block b = test::box_block({0.1, 0.2, 0.3}, {0, 0, 0}, kRho);
@@ -219,6 +241,9 @@ TEST(Validation, TumblingBlockConservesAngularMomentumAndEnergy) {
   EXPECT_LT((w.blocks()[0].angular_momentum - l0).norm(), 1e-12 * l0.norm());
   EXPECT_LT(worst, 1e-5);
 }
+
+INSTANTIATE_TEST_SUITE_P(Modes, Validation, ::testing::Values(ContactMode::boon2012, ContactMode::face_integrated),
+                         mode_name);
 
 }  // namespace
 }  // namespace blockdem

@@ -15,13 +15,17 @@ namespace blockdem {
 struct VoussoirJoint {
   int left = -1, right = -1;      ///< block indices
   bool in_contact = false;
-  double x = 0.0, z = 0.0;        ///< thrust point: the contact point (m)
+  double x = 0.0, z = 0.0;        ///< thrust point: contact point (boon2012) or centre of pressure (m)
   double normal_force = 0.0;      ///< (N)
   double horizontal_force = 0.0;  ///< x component of the force the left block receives from the right, sign flipped: compression positive (N)
   double shear_force = 0.0;       ///< |shear force| (N)
   double normal_stress = 0.0;     ///< (Pa)
-  double closure = 0.0;           ///< overlap δ (m)
-  double area = 0.0;              ///< contact area (m^2)
+  double closure = 0.0;           ///< overlap δ (boon2012) or largest closure (integrated) (m)
+  double area = 0.0;              ///< contact area (m^2): slice area, or compressed area when integrated
+  double peak_stress = 0.0;       ///< (Pa)
+  /// Depth of the compressed zone across the beam (m): compressed area / block width (the
+  /// hinge depth of an integrated face contact).
+  double compressed_depth = 0.0;
   double plastic_slip = 0.0;      ///< (m)
   bool sliding = false;
 };

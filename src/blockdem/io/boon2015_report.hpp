@@ -12,7 +12,9 @@
 namespace blockdem {
 
 struct Boon2015CaseRun {
-  Boon2015Case spec;
+  Boon2015Case spec;  ///< for a face-integrated run, spec.id carries the suffix "-fi"
+  std::string base_id;  ///< the paper's case id, without suffix
+  ContactMode mode = ContactMode::boon2012;
   Scenario scenario;
   RunResult result;
 };

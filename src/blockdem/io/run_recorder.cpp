@@ -71,7 +71,14 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                                                    "shear_y_N",
                                                                    "shear_z_N",
                                                                    "plastic_slip_mm",
-                                                                   "sliding"});
+                                                                   "sliding",
+                                                                   "integrated",
+                                                                   "force_point_x_m",
+                                                                   "force_point_y_m",
+                                                                   "force_point_z_m",
+                                                                   "compressed_area_mm2",
+                                                                   "peak_stress_MPa",
+                                                                   "peak_closure_mm"});
 }
 
 void RunRecorder::record(const World& world, const StageResult& stage, int level) {
@@ -148,7 +155,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(c->shear.force.y())
         .cell(c->shear.force.z())
         .cell(1e3 * c->shear.plastic_slip)
-        .cell(c->sliding ? 1 : 0);
+        .cell(c->sliding ? 1 : 0).cell(c->integrated ? 1 : 0).cell(c->force_point.x()).cell(c->force_point.y())
+        .cell(c->force_point.z()).cell(1e6 * c->compressed_area).cell(1e-6 * c->peak_stress)
+        .cell(1e3 * c->peak_closure);
     contacts_->end_row();
   }
   contacts_->flush();

@@ -34,7 +34,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["scenario"] = sc.file;
   summary["title"] = sc.title;
   summary["blocks"] = world.blocks().size();
-  summary["contact_mode"] = "boon2012";
+  summary["contact_mode"] = to_string(sc.settings.contact_mode);
   summary["citations"] = {
       "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between convex "
       "polygonal and polyhedral particles in the discrete element method. Computers and Geotechnics 44:73-82.",

@@ -23,7 +23,8 @@ VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, const World
       dir / "joints.csv",
       std::vector<std::string>{"level", "g_level", "joint", "left_block", "right_block", "in_contact", "x_mm",
                                "z_mm", "normal_force_N", "horizontal_force_N", "shear_force_N",
-                               "normal_stress_MPa", "closure_mm", "area_mm2", "plastic_slip_mm", "sliding"});
+                               "normal_stress_MPa", "peak_stress_MPa", "closure_mm", "area_mm2", "compressed_depth_mm",
+                               "plastic_slip_mm", "sliding"});
 }
 
 void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const std::string& stage, bool converged,
@@ -50,8 +51,9 @@ void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const
     const auto& j = lv.joints[k];
     joints_->cell(index).cell(lv.g_level).cell(static_cast<int>(k)).cell(blocks[j.left].name)
         .cell(blocks[j.right].name).cell(j.in_contact ? 1 : 0).cell(1e3 * j.x).cell(1e3 * j.z).cell(j.normal_force)
-        .cell(j.horizontal_force).cell(j.shear_force).cell(1e-6 * j.normal_stress).cell(1e3 * j.closure)
-        .cell(1e6 * j.area).cell(1e3 * j.plastic_slip).cell(j.sliding ? 1 : 0);
+        .cell(j.horizontal_force).cell(j.shear_force).cell(1e-6 * j.normal_stress).cell(1e-6 * j.peak_stress)
+        .cell(1e3 * j.closure).cell(1e6 * j.area).cell(1e3 * j.compressed_depth).cell(1e3 * j.plastic_slip)
+        .cell(j.sliding ? 1 : 0);
     joints_->end_row();
   }
   joints_->flush();

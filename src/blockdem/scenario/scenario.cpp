@@ -29,8 +29,11 @@ void read_settings(const CheckedTable& t, WorldSettings& s) {
   }
   s.safety_factor = t.positive("safety_factor", s.safety_factor);
   if (s.safety_factor > 1.0) t.fail("safety_factor", "must be at most 1");
-  t.choice("contact_mode", "boon2012", {"boon2012"});
-  s.contact_mode = ContactMode::boon2012;
+  const std::string mode = t.choice("contact_mode", to_string(s.contact_mode), {"boon2012", "face_integrated"});
+  s.contact_mode = mode == "face_integrated" ? ContactMode::face_integrated : ContactMode::boon2012;
+  const double face_angle_deg = t.positive("face_angle_deg", s.face_contact.face_angle * 180.0 / kPi);
+  if (face_angle_deg >= 45.0) t.fail("face_angle_deg", "must be below 45 degrees");
+  s.face_contact.face_angle = face_angle_deg * kPi / 180.0;
   s.boon2012.rounding_distance = t.positive("rounding_distance", s.boon2012.rounding_distance);
   s.boon2012.overlap_tolerance = t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
   s.max_speed = t.positive("max_speed", s.max_speed);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/dynamics/integrator.hpp"
 
 namespace blockdem {
@@ -17,6 +18,10 @@ std::uint64_t pair_key(int a, int b) {
 }
 
 }  // namespace
+
+const char* to_string(ContactMode mode) {
+  return mode == ContactMode::face_integrated ? "face_integrated" : "boon2012";
+}
 
 void WorldSettings::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
@@ -168,45 +173,82 @@ void World::compute_contacts(double dt) {
     const JointLaw& law = laws_[law_index];
     const Eigen::Vector3d& n = ct.geometry.normal;
 
-    // Normal force: σ_n(δ) A_c (DESIGN section 2 step 6).
-    ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
-    ct.normal_force = ct.normal_stress * ct.geometry.area;
+    // Normal force: σ_n(δ) A_c at x_c (DESIGN section 2 step 6), or the law integrated over
+    // the contact, acting at the centre of pressure (section 3).
+    ct.integrated = false;
+    if (settings_.contact_mode == ContactMode::face_integrated) {
+      const FaceContactGeometry fc = face_contact_geometry(a.world_planes, b.world_planes, ct.geometry.point, n,
+                                                           extent, settings_.face_contact);
+      if (fc.face_type) {
+        double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
+        Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+        for (const auto& cell : fc.cells) {
+          const PolygonStressResultant r = integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
+          force += r.force;
+          compressed += r.compressed_area;
+          peak = std::max(peak, r.peak_stress);
+          if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
+          for (double gc : cell.closures) closure = std::max(closure, gc);
+        }
+        if (!(force > 0.0)) {
+          // Touching, but no closure anywhere to integrate: no force this step.
+          contacts_.erase(it);
+          continue;
+        }
+        ct.integrated = true;
+        ct.normal_force = force;
+        ct.compressed_area = compressed;
+        ct.normal_stress = force / compressed;
+        ct.peak_stress = peak;
+        ct.peak_closure = closure;
+        ct.force_point = moment / force;
+      }
+    }
+    if (!ct.integrated) {
+      ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
+      ct.normal_force = ct.normal_stress * ct.geometry.area;
+      ct.force_point = ct.geometry.point;
+      ct.compressed_area = ct.geometry.area;
+      ct.peak_stress = ct.normal_stress;
+      ct.peak_closure = ct.geometry.overlap;
+    }
+    const Eigen::Vector3d& xf = ct.force_point;
 
     // Shear: carry the stored force into the new tangent plane, then add the increment from the
     // relative velocity of the material points at x_c over the step (DESIGN section 4).
     if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
-    const Eigen::Vector3d v_rel = b.point_velocity(ct.geometry.point) - a.point_velocity(ct.geometry.point);
+    const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
     ShearIncrement inc;
     inc.displacement = ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt)
                                       : Eigen::Vector3d::Zero();
     inc.normal_force = ct.normal_force;
     inc.normal_stress = ct.normal_stress;
-    inc.contact_area = ct.geometry.area;
+    inc.contact_area = ct.compressed_area;
     inc.normal = n;
     const ShearResult sr = update_shear(law.shear, ct.shear, inc);
     ct.sliding = sr.sliding;
     ct.previous_normal = n;
     ct.has_history = true;
 
-    // Loads on both blocks, applied at x_c.
+    // Loads on both blocks, applied at the force point.
     const Eigen::Vector3d f = ct.force_on_b();
     b.force += f;
     b.contact_force += f;
-    b.torque += (ct.geometry.point - b.position).cross(f);
+    b.torque += (xf - b.position).cross(f);
     a.force -= f;
     a.contact_force -= f;
-    a.torque -= (ct.geometry.point - a.position).cross(f);
+    a.torque -= (xf - a.position).cross(f);
 
     // Stiffness sums for the automatic time step: normal and shear springs k A (N/m), and for
     // rotation k A (|r|² + A/12), the second term the rocking stiffness of a spread face.
-    const double kn = normal_tangent_stiffness(law.normal, ct.geometry.overlap) * ct.geometry.area;
+    const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
     const double ks = sr.stiffness;
     const double k = kn + ks;
-    const double spread = ct.geometry.area / 12.0;
+    const double spread = ct.compressed_area / 12.0;
     stiffness_[ia] += k;
     stiffness_[ib] += k;
-    rotational_stiffness_[ia] += k * ((ct.geometry.point - a.position).squaredNorm() + spread);
-    rotational_stiffness_[ib] += k * ((ct.geometry.point - b.position).squaredNorm() + spread);
+    rotational_stiffness_[ia] += k * ((xf - a.position).squaredNorm() + spread);
+    rotational_stiffness_[ib] += k * ((xf - b.position).squaredNorm() + spread);
   }
   std::erase_if(contacts_, [](const auto& kv) { return kv.second.law == -2; });
 

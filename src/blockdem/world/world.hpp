@@ -12,6 +12,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/broad_phase.hpp"
+#include "blockdem/collision/face_contact.hpp"
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
@@ -21,8 +22,12 @@ namespace blockdem {
 
 /// How contacts are detected and turned into forces.
 enum class ContactMode {
-  boon2012,  ///< point contact of Boon et al. (2012): analytic centre, slice area (the paper)
+  boon2012,         ///< point contact of Boon et al. (2012): analytic centre, slice area (the paper)
+  face_integrated,  ///< the joint law integrated over the contact (DESIGN section 3)
 };
+
+/// "boon2012" or "face_integrated".
+const char* to_string(ContactMode mode);
 
 /// A joint law: the normal and shear kernels used by one joint set.
 struct JointLaw {
@@ -44,8 +49,9 @@ struct WorldSettings {
   double damping = 0.0;              ///< Cundall local damping coefficient α in [0, 1) (-)
   double time_step = 0.0;            ///< fixed time step (s); 0 = automatic
   double safety_factor = 0.3;        ///< automatic step = factor · sqrt(m / K) (-)
-  ContactMode contact_mode = ContactMode::boon2012;
+  ContactMode contact_mode = ContactMode::face_integrated;
   Boon2012Settings boon2012;
+  FaceContactSettings face_contact;
   /// A run stops as diverged when a block moves faster than this (m/s).
   double max_speed = 100.0;
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).

@@ -1,0 +1,48 @@
+// Face-integrated contact geometry (DESIGN section 3): the overlap A∩B seen along the contact
+// normal, split into cells over which the closure is linear, so that a joint law can be
+// integrated exactly over the contact.
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "blockdem/geometry/halfspace.hpp"
+
+namespace blockdem {
+
+/// A convex cell of the contact plane with the closure at each vertex; the closure varies
+/// linearly inside the cell.
+struct ClosureCell {
+  std::vector<Eigen::Vector3d> vertices;  ///< on the contact plane, in order (m)
+  std::vector<double> closures;           ///< closure at each vertex, >= 0 (m)
+};
+
+struct FaceContactGeometry {
+  /// True when at least one block presents a face to the contact plane (face-to-face,
+  /// edge-to-face or vertex-to-face contact); false for edge-to-edge and similar contacts, which
+  /// the caller treats as point contacts.
+  bool face_type = false;
+  std::vector<ClosureCell> cells;  ///< empty when !face_type or nothing overlaps
+};
+
+struct FaceContactSettings {
+  /// A block presents a face when the angle between one of its face normals and the contact
+  /// normal is below this (rad).
+  double face_angle = 0.2;
+  /// Planes whose normal makes |n_j · n| below this with the contact normal bound the contact
+  /// laterally instead of closing it (-).
+  double lateral_tolerance = 1e-9;
+};
+
+/// The chord of A∩B along n through a point y of the plane through `origin` normal to n is
+/// g(y) = min over planes facing +n of (s_j/c_j) - max over planes facing -n of (s_j/c_j),
+/// with c_j = n_j·n and s_j the slack of plane j at y. Each pair (upper plane, lower plane)
+/// that is active somewhere gives one cell where g is linear; the cells tile the projection of
+/// A∩B on the plane exactly. `extent` (m) must exceed the size of A∩B.
+FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
+                                          std::span<const Halfspace> planes_b,
+                                          const Eigen::Vector3d& origin, const Eigen::Vector3d& normal,
+                                          double extent, const FaceContactSettings& settings = {});
+
+}  // namespace blockdem
