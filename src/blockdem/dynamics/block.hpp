@@ -59,6 +59,10 @@ struct Block {
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond initial_orientation = Eigen::Quaterniond::Identity();
 
+  // Constant applied loads (world frame), added every step to free blocks.
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();   ///< (N), acts at the centroid
+  Eigen::Vector3d external_torque = Eigen::Vector3d::Zero();  ///< (N m)
+
   // Loads of the current step.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();          ///< total, including gravity (N)
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();         ///< about the centroid (N m)

@@ -97,6 +97,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   Block b = make_block(poly, density, name, group);
 
   const std::string motion = t.choice("motion", "free", {"free", "fixed", "prescribed", "servo"});
+  b.external_force = t.vec3("external_force", Eigen::Vector3d::Zero());
+  b.external_torque = t.vec3("external_torque", Eigen::Vector3d::Zero());
   b.velocity = t.vec3("velocity", Eigen::Vector3d::Zero());
   b.angular_velocity = t.vec3("angular_velocity", Eigen::Vector3d::Zero());
   if (motion == "fixed") {

@@ -326,8 +326,8 @@ void World::step() {
   const double dt = next_time_step();
   update_geometry();
   for (auto& b : blocks_) {
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity) : Eigen::Vector3d::Zero();
-    b.torque.setZero();
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force) : Eigen::Vector3d::Zero();
+    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   }
   compute_contacts(dt);
