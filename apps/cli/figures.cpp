@@ -38,10 +38,12 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     why = "no Python with matplotlib and numpy was found (on Debian: apt-get install python3-matplotlib)";
     return false;
   }
-  std::string cmd = python + " " + quote(path);
+  std::string cmd = python;
+  cmd.append(" ").append(quote(path));
   for (const auto& a : args) cmd += " " + quote(a);
   if (std::system(cmd.c_str()) != 0) {
-    why = "the plotting script failed: " + cmd;
+    why = std::string("the plotting script failed: ");
+    why.append(cmd);
     return false;
   }
   return true;
