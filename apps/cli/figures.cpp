@@ -9,8 +9,15 @@ namespace {
 
 std::string quote(const std::string& s) {
   std::string out = "'";
-  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out.append("'\\''");
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('\'');
+  return out;
 }
 
 }  // namespace
@@ -40,7 +47,7 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
   }
   std::string cmd = python;
   cmd.append(" ").append(quote(path));
-  for (const auto& a : args) cmd += " " + quote(a);
+  for (const auto& a : args) cmd.append(" ").append(quote(a));
   if (std::system(cmd.c_str()) != 0) {
     why = std::string("the plotting script failed: ");
     why.append(cmd);
