@@ -15,6 +15,7 @@ void set_exit_code(int code);
 void register_run(CLI::App& app);
 void register_reproduce(CLI::App& app);
 void register_analytic(CLI::App& app);
+void register_lab(CLI::App& app);
 void register_calibrate(CLI::App& app);
 
 }  // namespace blockdem::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   blockdem::cli::register_run(app);
   blockdem::cli::register_reproduce(app);
   blockdem::cli::register_analytic(app);
+  blockdem::cli::register_lab(app);
   blockdem::cli::register_calibrate(app);
 
   try {
