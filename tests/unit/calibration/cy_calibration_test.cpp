@@ -7,6 +7,7 @@
 
 #include "blockdem/calibration/cy_calibration.hpp"
 #include "blockdem/calibration/shear_path.hpp"
+#include "blockdem/lab/shear_test.hpp"
 #include "calibration_test_support.hpp"
 
 namespace blockdem {
@@ -107,6 +108,25 @@ TEST(CyCalibration, RecoversParametersWithin5PercentFrom2PercentNoiseAndRoundTri
     // 200 rows: the RMS of the 2 % noise itself is 0.02 +- 0.001 (one standard deviation).
     EXPECT_LT(cal.curves[c].quality.rms_relative_residual, 0.025);
     EXPECT_GT(cal.curves[c].quality.rms_relative_residual, 0.016);
+
+    // The same law in `blockdem lab`'s direct shear test (2000 kernel increments to the largest
+    // displacement), interpolated linearly at the data's displacements: within the noise too.
+    ShearTestDef lab;
+    lab.law = cal.law;
+    lab.normal_stress = t.normal_stress;
+    lab.max_displacement = t.displacement.back();
+    const std::vector<ShearPoint> points = run_shear_kernel(lab).points;
+    std::size_t k = 1;
+    for (std::size_t i = 1; i < t.displacement.size(); ++i) {
+      while (k + 1 < points.size() && points[k].shear_displacement < t.displacement[i]) ++k;
+      const ShearPoint& p0 = points[k - 1];
+      const ShearPoint& p1 = points[k];
+      const double f = (t.displacement[i] - p0.shear_displacement) /
+                       (p1.shear_displacement - p0.shear_displacement);
+      const double tau_lab = p0.shear_stress + f * (p1.shear_stress - p0.shear_stress);
+      EXPECT_LT(relative_error(tau_lab, t.shear_stress[i]), 0.02)
+          << "lab, sigma_n " << t.normal_stress << " u " << t.displacement[i];
+    }
   }
 }
 
