@@ -4,67 +4,154 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "blockdem/collision/analytic_centre.hpp"
 #include "blockdem/collision/inscribed_ball.hpp"
+#include "blockdem/collision/plane_columns.hpp"
 
 namespace blockdem {
 
-Eigen::Vector3d potential_gradient(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
-                                   double rounding_distance) {
-  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
-  double nearest = -std::numeric_limits<double>::infinity();
-  const Halfspace* nearest_plane = nullptr;
-  bool any = false;
-  for (const auto& p : planes) {
-    const double h = p.normal.dot(x) - p.offset;  // negative inside
-    if (h + rounding_distance > 0.0) {
-      grad += 2.0 * (h + rounding_distance) * p.normal;
-      any = true;
+namespace {
+
+// Per-plane values at the contact point x_c: slack s_j = d_j - n_j·x_c (m) and the in-plane
+// components (n_j·u, n_j·v) of the normal for the slice (-); on the stack for up to
+// PlaneColumns::kStackPlanes planes.
+class PointColumns {
+ public:
+  explicit PointColumns(std::size_t m) {
+    data_ = stack_.data();
+    if (m > PlaneColumns::kStackPlanes) {
+      heap_.resize(3 * m);
+      data_ = heap_.data();
     }
-    if (h > nearest) {
-      nearest = h;
-      nearest_plane = &p;
-    }
+    slack = data_;
+    a_u = data_ + m;
+    a_v = data_ + 2 * m;
   }
-  if (!any && nearest_plane != nullptr) grad = 2.0 * rounding_distance * nearest_plane->normal;
-  return grad;
+  PointColumns(const PointColumns&) = delete;
+  PointColumns& operator=(const PointColumns&) = delete;
+
+  double* slack = nullptr;
+  double* a_u = nullptr;
+  double* a_v = nullptr;
+
+ private:
+  std::array<double, 3 * PlaneColumns::kStackPlanes> stack_;
+  std::vector<double> heap_;
+  double* data_ = nullptr;
+};
+
+// Step 3 for planes [begin, end) with slacks s_j at x: the gradient 2 Σ <r - s_j> n_j, or
+// 2 r n of the nearest face (the first of equals) when every bracket is zero.
+Eigen::Vector3d gradient_of(const PlaneColumns& c, const double* slack, std::size_t begin,
+                            std::size_t end, double rounding_distance) {
+  const double* nx = c.nx();
+  const double* ny = c.ny();
+  const double* nz = c.nz();
+  double gx = 0.0, gy = 0.0, gz = 0.0;
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t j = begin; j < end; ++j) {
+    const double w = 2.0 * std::max(rounding_distance - slack[j], 0.0);
+    gx += w * nx[j];
+    gy += w * ny[j];
+    gz += w * nz[j];
+    least = std::min(least, slack[j]);
+  }
+  if (rounding_distance - least > 0.0 || begin == end) return Eigen::Vector3d(gx, gy, gz);
+  std::size_t j = begin;
+  while (slack[j] != least) ++j;
+  return 2.0 * rounding_distance * Eigen::Vector3d(nx[j], ny[j], nz[j]);
 }
 
-double chord_length(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
-                    const Eigen::Vector3d& u) {
+// Fills the slacks at x.
+void fill_slacks(const PlaneColumns& c, const Eigen::Vector3d& x, double* slack) {
+  for (std::size_t j = 0; j < c.size(); ++j) {
+    slack[j] = c.d()[j] - (c.nx()[j] * x.x() + c.ny()[j] * x.y() + c.nz()[j] * x.z());
+  }
+}
+
+// Step 4 from the slacks at x: exit distances along +u and -u, summed. Also fills the slice's
+// in-plane normal components for the axes (axis_u, axis_v) when `pc` is given.
+double chord_of(const PlaneColumns& c, const double* slack, const Eigen::Vector3d& u,
+                PointColumns* pc, const Eigen::Vector3d& axis_u, const Eigen::Vector3d& axis_v) {
+  const double* nx = c.nx();
+  const double* ny = c.ny();
+  const double* nz = c.nz();
   double forward = std::numeric_limits<double>::infinity();
   double backward = std::numeric_limits<double>::infinity();
-  for (const auto& p : planes) {
-    const double c = p.normal.dot(u);
-    const double s = p.offset - p.normal.dot(x);  // slack, positive inside
-    if (c > 1e-14) forward = std::min(forward, s / c);
-    if (c < -1e-14) backward = std::min(backward, -s / c);
+  for (std::size_t j = 0; j < c.size(); ++j) {
+    const double cos = nx[j] * u.x() + ny[j] * u.y() + nz[j] * u.z();
+    if (cos > 1e-14) forward = std::min(forward, slack[j] / cos);
+    if (cos < -1e-14) backward = std::min(backward, -slack[j] / cos);
+    if (pc != nullptr) {
+      pc->a_u[j] = nx[j] * axis_u.x() + ny[j] * axis_u.y() + nz[j] * axis_u.z();
+      pc->a_v[j] = nx[j] * axis_v.x() + ny[j] * axis_v.y() + nz[j] * axis_v.z();
+    }
   }
   return forward + backward;
 }
 
-ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
-                                 std::span<const Halfspace> planes_b, double extent,
-                                 const Boon2012Settings& settings, Boon2012Cache* cache) {
-  ContactGeometry out;
-  // All planes of both blocks, in one buffer (on the stack for ordinary blocks).
+}  // namespace
+
+Eigen::Vector3d potential_gradient(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
+                                   double rounding_distance) {
+  const PlaneColumns columns(planes);
+  PointColumns at_x(planes.size());
+  fill_slacks(columns, x, at_x.slack);
+  return gradient_of(columns, at_x.slack, 0, planes.size(), rounding_distance);
+}
+
+double chord_length(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
+                    const Eigen::Vector3d& u) {
+  const PlaneColumns columns(planes);
+  PointColumns at_x(planes.size());
+  fill_slacks(columns, x, at_x.slack);
+  return chord_of(columns, at_x.slack, u, nullptr, u, u);
+}
+
+namespace {
+
+// Runs f on one span holding the planes of A followed by those of B: on the stack (left
+// uninitialised until the copy) for up to kStack planes, on the heap beyond.
+template <typename F>
+auto with_both(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b, F&& f) {
   constexpr std::size_t kStack = 96;
-  Halfspace stack_buffer[kStack];
+  union Storage {
+    Storage() {}
+    Halfspace planes[kStack];
+  } storage;
   std::vector<Halfspace> heap_buffer;
   const std::size_t total = planes_a.size() + planes_b.size();
-  Halfspace* all = stack_buffer;
+  Halfspace* all = storage.planes;
   if (total > kStack) {
     heap_buffer.resize(total);
     all = heap_buffer.data();
   }
-  std::copy(planes_a.begin(), planes_a.end(), all);
-  std::copy(planes_b.begin(), planes_b.end(), all + planes_a.size());
-  const std::span<const Halfspace> both(all, total);
+  std::uninitialized_copy(planes_a.begin(), planes_a.end(), all);
+  std::uninitialized_copy(planes_b.begin(), planes_b.end(), all + planes_a.size());
+  return f(std::span<const Halfspace>(all, total));
+}
 
-  // 1. Overlap test: the largest ball inside A∩B (4-variable LP).
-  const InscribedBall ball = largest_inscribed_ball(both);
+// Clears the cache if it was filled for other plane lists.
+void match_cache(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b,
+                 Boon2012Cache* cache) {
+  if (cache == nullptr) return;
+  const int size_a = static_cast<int>(planes_a.size());
+  const int size_b = static_cast<int>(planes_b.size());
+  if (cache->planes_a == size_a && cache->planes_b == size_b) return;
+  *cache = Boon2012Cache{};
+  cache->planes_a = size_a;
+  cache->planes_b = size_b;
+}
+
+// Steps 2-5 given the LP solution for the planes of A then those of B.
+ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
+                                  std::span<const Halfspace> planes_b, const InscribedBall& ball,
+                                  double extent, const Boon2012Settings& settings,
+                                  Boon2012Cache* cache) {
+  ContactGeometry out;
   out.inscribed_radius = ball.radius;
   out.inscribed_centre = ball.center;
   if (!ball.bounded || !(ball.radius > settings.overlap_tolerance)) return out;
@@ -72,31 +159,63 @@ ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
 
   // 2. Contact point: analytic centre of all planes, from the previous step's point when it is
   //    still strictly inside, otherwise from the ball's centre.
-  Eigen::Vector3d start = ball.center;
-  if (cache != nullptr && cache->valid) {
-    bool inside = true;
-    for (const auto& p : both) inside = inside && p.offset - p.normal.dot(cache->last_point) > 0.0;
-    if (inside) start = cache->last_point;
-  }
-  const AnalyticCentreResult centre = analytic_centre(both, start);
+  const PlaneColumns columns(planes_a, planes_b);
+  AnalyticCentreResult centre;
+  if (cache != nullptr && cache->has_point) centre = analytic_centre(columns, cache->last_point);
+  if (!centre.start_inside) centre = analytic_centre(columns, ball.center);
   out.point = centre.point;
   if (cache != nullptr) {
-    cache->valid = true;
+    cache->has_point = true;
     cache->last_point = out.point;
   }
 
   // 3. Normal from the two inner potential particles, A to B.
-  const Eigen::Vector3d ga = potential_gradient(planes_a, out.point, settings.rounding_distance);
-  const Eigen::Vector3d gb = potential_gradient(planes_b, out.point, settings.rounding_distance);
+  PointColumns at_point(columns.size());
+  fill_slacks(columns, out.point, at_point.slack);
+  const double r = settings.rounding_distance;
+  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a.size(), r);
+  const Eigen::Vector3d gb =
+      gradient_of(columns, at_point.slack, planes_a.size(), columns.size(), r);
   out.normal = (ga - gb).normalized();
 
   // 4. Overlap distance: the chord of A∩B through x_c along n.
-  out.overlap = chord_length(both, out.point, out.normal);
+  Eigen::Vector3d axis_u, axis_v;
+  plane_axes(out.normal, axis_u, axis_v);
+  out.overlap = chord_of(columns, at_point.slack, out.normal, &at_point, axis_u, axis_v);
 
   // 5. Contact area: the slice of A∩B by the plane through x_c normal to n.
-  out.slice = slice_halfspaces(both, out.point, out.normal, extent);
+  const SliceLines lines{at_point.a_u, at_point.a_v, at_point.slack, columns.size()};
+  out.slice = slice_lines(lines, out.point, out.normal, axis_u, axis_v, extent,
+                          cache != nullptr ? &cache->slice : nullptr);
   out.area = out.slice.area();
   return out;
+}
+
+}  // namespace
+
+ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
+                                 std::span<const Halfspace> planes_b, double extent,
+                                 const Boon2012Settings& settings, Boon2012Cache* cache) {
+  // 1. Overlap test: the largest ball inside A∩B (4-variable LP), warm-started from this pair's
+  //    solution at the previous step when the cache has one for the same plane lists.
+  match_cache(planes_a, planes_b, cache);
+  const bool warm = cache != nullptr && cache->has_ball;
+  const InscribedBall ball = with_both(planes_a, planes_b, [&](std::span<const Halfspace> both) {
+    return warm ? largest_inscribed_ball(both, cache->ball) : largest_inscribed_ball(both);
+  });
+  if (cache != nullptr) {
+    cache->ball = ball;
+    cache->has_ball = true;
+  }
+  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
+}
+
+ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
+                                           std::span<const Halfspace> planes_b,
+                                           const InscribedBall& ball, double extent,
+                                           const Boon2012Settings& settings, Boon2012Cache* cache) {
+  match_cache(planes_a, planes_b, cache);
+  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
 }
 
 }  // namespace blockdem

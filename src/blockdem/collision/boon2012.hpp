@@ -5,6 +5,7 @@
 #include <span>
 
 #include "blockdem/collision/contact_geometry.hpp"
+#include "blockdem/collision/inscribed_ball.hpp"
 #include "blockdem/geometry/halfspace.hpp"
 
 namespace blockdem {
@@ -18,17 +19,39 @@ struct Boon2012Settings {
   double overlap_tolerance = 0.0;
 };
 
-/// Optional memory between time steps for a persistent contact (warm starts).
+/// Memory of one pair between time steps (warm starts). Results do not depend on it beyond
+/// round-off: the overlap LP has a unique optimum radius, the analytic centre is unique and a
+/// warm-started slice is verified to be the exact slice. The cache belongs to the plane lists of
+/// A and B in a fixed order; a call with other plane counts clears it.
 struct Boon2012Cache {
-  bool valid = false;
+  int planes_a = -1;  ///< plane counts of A and B the cache was filled for (-1: empty)
+  int planes_b = -1;
+  /// The overlap LP's solution at the last call, for the planes of A followed by those of B.
+  InscribedBall ball;
+  bool has_ball = false;
+  /// The contact point x_c of the last call that found a contact, where the analytic centre
+  /// starts if it is still strictly inside A∩B (m).
   Eigen::Vector3d last_point = Eigen::Vector3d::Zero();
+  bool has_point = false;
+  SliceWarmStart slice;  ///< the planes of the last slice polygon's edges
 };
 
 /// Contact geometry of blocks A and B given their planes in world coordinates. `extent` (m) must
-/// exceed the size of A∩B (e.g. the sum of the blocks' bounding radii).
+/// exceed the size of A∩B (e.g. the sum of the blocks' bounding radii). With a cache, the overlap
+/// LP is warm-started from the cached solution and the cache is updated.
 ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
                                  std::span<const Halfspace> planes_b, double extent,
                                  const Boon2012Settings& settings, Boon2012Cache* cache = nullptr);
+
+/// Steps 2-5 of the narrow phase for a pair whose overlap LP (step 1) has been solved already:
+/// `ball` is the LP's solution for the planes of A followed by those of B, by any solver (the
+/// benchmarks and tests pass a CLP solution here). Reads and updates the cache's contact point,
+/// not its ball.
+ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
+                                           std::span<const Halfspace> planes_b,
+                                           const InscribedBall& ball, double extent,
+                                           const Boon2012Settings& settings,
+                                           Boon2012Cache* cache = nullptr);
 
 /// Rounded normal of one block at x (DESIGN section 2 step 3): the gradient of
 /// f(x) = Σ_i <n_i·x - (d_i - r_round)>², i.e. 2 Σ_i <n_i·x - d_i + r_round> n_i; when x lies
