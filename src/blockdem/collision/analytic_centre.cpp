@@ -115,6 +115,7 @@ AnalyticCentreResult analytic_centre(const PlaneColumns& planes, const Eigen::Ve
     if (it == 0) out.start_inside = true;
     Eigen::Vector3d step;
     const double lambda2 = d.newton_step(step);
+    out.decrement = std::sqrt(lambda2);
     if (!std::isfinite(lambda2)) break;
     if (lambda2 < 1e-20) {
       x += step;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <span>
 
 #include "blockdem/collision/plane_columns.hpp"
@@ -14,6 +15,8 @@ struct AnalyticCentreResult {
   int iterations = 0;                               ///< gradient and Hessian evaluations
   bool converged = false;
   bool start_inside = false;  ///< the start was strictly inside every plane (else nothing done)
+  /// The Newton decrement λ measured at the last evaluation (-); NaN if none was made.
+  double decrement = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Minimiser of φ(x) = -Σ_j ln(d_j - n_j·x) over the interior of {n_j·x <= d_j}, by Newton's

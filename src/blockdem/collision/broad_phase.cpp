@@ -1,21 +1,43 @@
-// Sweep and prune: ordering of box starts along x.
+// Sweep and prune: choice of the sweep axis and ordering of box starts along it.
 #include "blockdem/collision/broad_phase.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 namespace blockdem {
 
-void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min) {
-  if (order_.size() != box_min.size()) {
-    order_.resize(box_min.size());
+void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min,
+                                 const std::vector<Eigen::Vector3d>& box_max) {
+  const std::size_t n = box_min.size();
+  // Spread of the box centres per axis: the sum of squared deviations from their mean.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) mean += 0.5 * (box_min[i] + box_max[i]);
+  if (n > 0) mean /= static_cast<double>(n);
+  Eigen::Vector3d spread = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    spread += (0.5 * (box_min[i] + box_max[i]) - mean).cwiseAbs2();
+  }
+  int best = axis_;
+  for (int k = 0; k < 3; ++k) {
+    if (spread[k] > 1.25 * spread[best]) best = k;
+  }
+  const bool rebuild = order_.size() != n || best != axis_;
+  axis_ = best;
+  const int s = axis_;
+  if (rebuild) {
+    order_.resize(n);
     std::iota(order_.begin(), order_.end(), 0);
+    std::sort(order_.begin(), order_.end(), [&](int a, int b) {
+      return box_min[a][s] < box_min[b][s] || (box_min[a][s] == box_min[b][s] && a < b);
+    });
+    return;
   }
   // Insertion sort: nearly sorted input from the previous step costs O(n).
-  for (std::size_t k = 1; k < order_.size(); ++k) {
+  for (std::size_t k = 1; k < n; ++k) {
     const int v = order_[k];
-    const double key = box_min[v].x();
+    const double key = box_min[v][s];
     std::size_t m = k;
-    while (m > 0 && box_min[order_[m - 1]].x() > key) {
+    while (m > 0 && box_min[order_[m - 1]][s] > key) {
       order_[m] = order_[m - 1];
       --m;
     }

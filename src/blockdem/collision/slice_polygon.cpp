@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace blockdem {
 
@@ -145,19 +146,22 @@ std::size_t clip(Workspace& w, double extent, Eigen::Vector2d*& cur, int*& label
   cur[3] = {-extent, extent};
   std::fill(label, label + 4, -1);
   std::size_t n = 4;
+  double radius2 = 2.0 * extent * extent;  // the largest squared distance of a vertex from 0
   double* value = w.values;
   for (std::size_t j = 0; j < w.m; ++j) {
     const double au = w.au[j], av = w.av[j], s = w.s[j];
+    // A line farther from the origin than every vertex cuts nothing off (a·y <= |a| |y| < s).
+    if (s > 0.0 && s * s > (1.0 + 1e-12) * (au * au + av * av) * radius2) continue;
     // Values a·y - s at the vertices; a plane that cuts nothing off is skipped.
-    bool any_out = false;
-    bool all_out = true;
+    double largest = -std::numeric_limits<double>::infinity();
+    double smallest = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
       value[i] = au * cur[i].x() + av * cur[i].y() - s;
-      any_out = any_out || value[i] > 0.0;
-      all_out = all_out && value[i] > 0.0;
+      largest = std::max(largest, value[i]);
+      smallest = std::min(smallest, value[i]);
     }
-    if (!any_out) continue;
-    if (all_out) return 0;
+    if (!(largest > 0.0)) continue;
+    if (smallest > 0.0) return 0;
     std::size_t k = 0;
     const int plane = static_cast<int>(j);
     for (std::size_t i = 0; i < n; ++i) {
@@ -179,6 +183,8 @@ std::size_t clip(Workspace& w, double extent, Eigen::Vector2d*& cur, int*& label
     std::swap(label, next_label);
     n = k;
     if (n < 3) return 0;
+    radius2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) radius2 = std::max(radius2, cur[i].squaredNorm());
   }
   return n;
 }

@@ -94,11 +94,13 @@ std::vector<Trajectory> trajectories(Rng& rng, int pairs) {
 }
 
 // Compares two contact geometries of the same pair. The contact point is the analytic centre to
-// a Newton decrement of 1e-10, so two runs from different starts agree to ~1e-10 of the
-// overlap's size in each direction (thickness across, block size along); normal, chord and
-// slice follow it smoothly (measured: at most 5e-12 of the size for the point, 5e-11 relative
-// for the others). Tolerances: 1e-10 of the size, 1e-9 for the rest. (Vertex counts are not
-// compared: an edge shorter than round-off may come and go.)
+// a Newton decrement at round-off level (~1e-12), so two runs from different starts agree to
+// ~1e-12 of the overlap's size in each direction (thickness across, block size along); normal
+// and chord follow it smoothly. The area is worse conditioned: where a joint is partly open, a
+// contact face cuts the slice at a grazing angle θ (down to 1e-4 rad here), which amplifies
+// round-off in the normal by ~1/θ. Measured: point 5e-12 of the size, normal 2e-13, chord
+// 3e-11 relative, area 2e-9 relative. Tolerances: 1e-10 of the size, 1e-9, 1e-9, 1e-8.
+// (Vertex counts are not compared: an edge shorter than round-off may come and go.)
 void expect_same_geometry(const ContactGeometry& g, const ContactGeometry& ref, double size,
                           const std::string& where) {
   ASSERT_EQ(g.touching, ref.touching) << where;
@@ -107,7 +109,7 @@ void expect_same_geometry(const ContactGeometry& g, const ContactGeometry& ref, 
   EXPECT_LT((g.point - ref.point).norm(), 1e-10 * size) << where;
   EXPECT_LT((g.normal - ref.normal).norm(), 1e-9) << where;
   EXPECT_NEAR(g.overlap, ref.overlap, 1e-9 * ref.overlap) << where;
-  EXPECT_NEAR(g.area, ref.area, 1e-9 * ref.area) << where;
+  EXPECT_NEAR(g.area, ref.area, 1e-8 * ref.area) << where;
 }
 
 // Warm starts (LP from the last solution, analytic centre from the last point, slice from the
