@@ -44,7 +44,8 @@ class PointColumns {
 };
 
 // Step 3 for planes [begin, end) with slacks s_j at x: the gradient 2 Σ <r - s_j> n_j, or
-// 2 r n of the nearest face (the first of equals) when every bracket is zero.
+// 2 r n of the nearest face (the first of equals) when every bracket is zero (NaN if the slacks
+// are not numbers).
 Eigen::Vector3d gradient_of(const PlaneColumns& c, const double* slack, std::size_t begin,
                             std::size_t end, double rounding_distance) {
   const double* nx = c.nx();
@@ -61,8 +62,18 @@ Eigen::Vector3d gradient_of(const PlaneColumns& c, const double* slack, std::siz
   }
   if (rounding_distance - least > 0.0 || begin == end) return Eigen::Vector3d(gx, gy, gz);
   std::size_t j = begin;
-  while (slack[j] != least) ++j;
+  while (j < end && slack[j] != least) ++j;
+  if (j == end) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   return 2.0 * rounding_distance * Eigen::Vector3d(nx[j], ny[j], nz[j]);
+}
+
+// The in-plane components (n_j·u, n_j·v) of the normals, for the slice's lines.
+void fill_in_plane(const PlaneColumns& c, const Eigen::Vector3d& axis_u,
+                   const Eigen::Vector3d& axis_v, PointColumns& pc) {
+  for (std::size_t j = 0; j < c.size(); ++j) {
+    pc.a_u[j] = c.nx()[j] * axis_u.x() + c.ny()[j] * axis_u.y() + c.nz()[j] * axis_u.z();
+    pc.a_v[j] = c.nx()[j] * axis_v.x() + c.ny()[j] * axis_v.y() + c.nz()[j] * axis_v.z();
+  }
 }
 
 // Fills the slacks at x.
@@ -72,8 +83,9 @@ void fill_slacks(const PlaneColumns& c, const Eigen::Vector3d& x, double* slack)
   }
 }
 
-// Step 4 from the slacks at x: exit distances along +u and -u, summed. Also fills the slice's
-// in-plane normal components for the axes (axis_u, axis_v) when `pc` is given.
+// Step 4 from the slacks at x: exit distances along +u and -u, summed. When `pc` is given, also
+// fills the in-plane components for the axes (axis_u, axis_v), as fill_in_plane, in the same
+// pass over the planes.
 double chord_of(const PlaneColumns& c, const double* slack, const Eigen::Vector3d& u,
                 PointColumns* pc, const Eigen::Vector3d& axis_u, const Eigen::Vector3d& axis_v) {
   const double* nx = c.nx();
@@ -124,7 +136,7 @@ bool face_contact_start(const PlaneColumns& c, std::size_t planes_a, const Inscr
   plane_axes(normal, axis_u, axis_v);
   PointColumns at_centre(c.size());
   fill_slacks(c, ball.center, at_centre.slack);
-  chord_of(c, at_centre.slack, normal, &at_centre, axis_u, axis_v);
+  fill_in_plane(c, axis_u, axis_v, at_centre);
   const SliceLines lines{at_centre.a_u, at_centre.a_v, at_centre.slack, c.size()};
   const SlicePolygon slice =
       slice_lines(lines, ball.center, normal, axis_u, axis_v, extent, &edges);
