@@ -1,6 +1,6 @@
 // The voussoir beam of Boon, Houlsby & Utili (2015), every case of Tables 2 and 3 as shipped in
 // scenarios/boon2015: statics (H z = W S / 8 within 1% at every level), symmetry of the
-// symmetric beam (5e-6 relative; 1e-4 with the continuously-yielding law, see below), the preload (within 1% of 60 N), and the ratios of midspan
+// symmetric beam (1e-5 relative; 1e-4 with the continuously-yielding law, see below), the preload (within 1% of 60 N), and the ratios of midspan
 // deflections implied by the paper's Table 3 (within 5%).
 #include <gtest/gtest.h>
 
@@ -46,9 +46,10 @@ TEST_P(VoussoirCase, StaticsSymmetryAndPreload) {
   // joint slips from the first increment, the split of the beam's weight between the abutments
   // is path-dependent, and round-off differences between mirrored force sums are not damped but
   // carried along. Measured asymmetry ~1e-5. The elastic-shear cases measured 1.4e-6 at most
-  // (the warm-started analytic centre stops at its Newton tolerance): tolerance 5e-6.
+  // and reversing the order of one sum in the analytic centre alone gives 6.5e-6: round-off
+  // amplified by the relaxation, not a modelling asymmetry. Tolerance 1e-5.
   const bool plastic = id.rfind("T3-", 0) == 0 && id != "T3-half-old";
-  const double sym = plastic ? 1e-4 : 5e-6;
+  const double sym = plastic ? 1e-4 : 1e-5;
   for (const VoussoirLevel& lv : r.levels) {
     SCOPED_TRACE("g = " + std::to_string(lv.g_level));
     // Statics of the half span.
