@@ -41,7 +41,8 @@ void BM_ContactPoint(benchmark::State& state) {
   const Joint j = beam_joint(static_cast<double>(state.range(0)) * 1e-4);
   const NormalLaw& law = law_of(static_cast<int>(state.range(1)));
   Boon2012Cache cache;
-  if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching) state.SkipWithError("no contact");
+  if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching)
+    state.SkipWithError("no contact");
   for (auto _ : state) {
     const ContactGeometry g = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}, &cache);
     benchmark::DoNotOptimize(normal_stress(law, g.overlap) * g.area);
@@ -52,12 +53,14 @@ void BM_ContactFaceIntegrated(benchmark::State& state) {
   const Joint j = beam_joint(static_cast<double>(state.range(0)) * 1e-4);
   const NormalLaw& law = law_of(static_cast<int>(state.range(1)));
   Boon2012Cache cache;
-  if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching) state.SkipWithError("no contact");
+  if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching)
+    state.SkipWithError("no contact");
   for (auto _ : state) {
     const ContactGeometry g = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}, &cache);
     const FaceContactGeometry fc = face_contact_geometry(j.a, j.b, g.point, g.normal, 0.2);
     double force = 0.0;
-    for (const auto& cell : fc.cells) force += integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures).force;
+    for (const auto& cell : fc.cells)
+      force += integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures).force;
     benchmark::DoNotOptimize(force);
   }
 }

@@ -42,7 +42,8 @@ int reproduce(const ReproduceOptions& opt) {
   if (opt.modes != "face_integrated") modes.push_back(ContactMode::boon2012);
   if (opt.modes != "boon2012") modes.push_back(ContactMode::face_integrated);
   auto wanted = [&](const std::string& id) {
-    return opt.cases.empty() || std::find(opt.cases.begin(), opt.cases.end(), id) != opt.cases.end();
+    return opt.cases.empty() ||
+           std::find(opt.cases.begin(), opt.cases.end(), id) != opt.cases.end();
   };
   std::vector<Boon2015CaseRun> runs;
   for (const ContactMode mode : modes) {
@@ -65,19 +66,23 @@ int reproduce(const ReproduceOptions& opt) {
     }
   }
   // Longest first, so that two threads finish together.
-  std::stable_sort(runs.begin(), runs.end(), [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
-    auto cost = [](const Boon2015CaseRun& r) {
-      return (r.spec.beam == "half" ? 3.0 : 1.0) * (r.mode == ContactMode::face_integrated ? 3.0 : 1.0);
-    };
-    return cost(x) > cost(y);
-  });
+  std::stable_sort(runs.begin(), runs.end(),
+                   [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
+                     auto cost = [](const Boon2015CaseRun& r) {
+                       return (r.spec.beam == "half" ? 3.0 : 1.0) *
+                              (r.mode == ContactMode::face_integrated ? 3.0 : 1.0);
+                     };
+                     return cost(x) > cost(y);
+                   });
   for (const auto& id : opt.cases) {
-    const bool known = std::any_of(boon2015_cases().begin(), boon2015_cases().end(),
-                                   [&](const Boon2015Case& c) { return c.id == id || c.id + "-fi" == id; });
+    const bool known =
+        std::any_of(boon2015_cases().begin(), boon2015_cases().end(),
+                    [&](const Boon2015Case& c) { return c.id == id || c.id + "-fi" == id; });
     if (!known) {
       std::string list;
       for (const auto& c : boon2015_cases()) list += (list.empty() ? "" : ", ") + c.id;
-      std::cerr << "blockdem: error: no case \"" << id << "\" in boon2015 (cases: " << list << ")\n";
+      std::cerr << "blockdem: error: no case \"" << id << "\" in boon2015 (cases: " << list
+                << ")\n";
       return 2;
     }
   }
@@ -85,7 +90,8 @@ int reproduce(const ReproduceOptions& opt) {
   // Run the cases on a few threads; each writes its own folder.
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
-  const int jobs = opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int jobs =
+      opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::atomic<std::size_t> next{0};
   std::mutex io;
   Progress progress(!opt.quiet);
@@ -108,14 +114,16 @@ int reproduce(const ReproduceOptions& opt) {
       std::lock_guard<std::mutex> lock(io);
       if (!opt.quiet) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, "%-12s %-13s %8lld steps  %6.2f s", r.spec.id.c_str(), r.result.status.c_str(),
-                      static_cast<long long>(r.result.steps), r.result.wall_time);
+        std::snprintf(buf, sizeof buf, "%-12s %-13s %8lld steps  %6.2f s", r.spec.id.c_str(),
+                      r.result.status.c_str(), static_cast<long long>(r.result.steps),
+                      r.result.wall_time);
         progress.message(buf);
       }
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 0; t < std::min<int>(jobs, static_cast<int>(runs.size())); ++t) pool.emplace_back(worker);
+  for (int t = 0; t < std::min<int>(jobs, static_cast<int>(runs.size())); ++t)
+    pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!errors[i].empty()) {
@@ -123,7 +131,8 @@ int reproduce(const ReproduceOptions& opt) {
       return 1;
     }
   }
-  const double run_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double run_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   // Figures, then the report that shows them.
   std::vector<std::string> figures;
@@ -133,7 +142,8 @@ int reproduce(const ReproduceOptions& opt) {
     for (const auto& r : runs) args.push_back(r.spec.id);
     if (run_plot_script("plot_voussoir.py", args, note)) {
       for (const auto& entry : std::filesystem::directory_iterator(out / "figures")) {
-        if (entry.path().extension() == ".png") figures.push_back("figures/" + entry.path().filename().string());
+        if (entry.path().extension() == ".png")
+          figures.push_back("figures/" + entry.path().filename().string());
       }
       std::sort(figures.begin(), figures.end());
     } else {
@@ -142,10 +152,11 @@ int reproduce(const ReproduceOptions& opt) {
   }
   write_boon2015_report(out, runs, figures, note, run_time);
   if (!opt.quiet) {
-    std::fprintf(stderr, "blockdem: %zu cases in %.2f s (%d threads); report: %s\n", runs.size(), run_time, jobs,
-                 (out / "report.md").string().c_str());
+    std::fprintf(stderr, "blockdem: %zu cases in %.2f s (%d threads); report: %s\n", runs.size(),
+                 run_time, jobs, (out / "report.md").string().c_str());
   }
-  const bool all_ok = std::all_of(runs.begin(), runs.end(), [](const Boon2015CaseRun& r) { return r.result.exit_code == 0; });
+  const bool all_ok = std::all_of(runs.begin(), runs.end(),
+                                  [](const Boon2015CaseRun& r) { return r.result.exit_code == 0; });
   return all_ok ? 0 : 3;
 }
 
@@ -153,14 +164,20 @@ int reproduce(const ReproduceOptions& opt) {
 
 void register_reproduce(CLI::App& app) {
   auto opt = std::make_shared<ReproduceOptions>();
-  CLI::App* cmd = app.add_subcommand("reproduce", "Reproduce a published study (boon2015: Boon, Houlsby & Utili 2015)");
+  CLI::App* cmd = app.add_subcommand(
+      "reproduce", "Reproduce a published study (boon2015: Boon, Houlsby & Utili 2015)");
   cmd->add_option("study", opt->study, "Study id: boon2015")->required();
   cmd->add_option("--out", opt->out, "Output folder")->required();
-  cmd->add_option("--case", opt->cases, "Run only these cases (repeatable), e.g. --case T2-1 or --case T2-1-fi");
-  cmd->add_option("--mode", opt->modes, "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
+  cmd->add_option("--case", opt->cases,
+                  "Run only these cases (repeatable), e.g. --case T2-1 or --case T2-1-fi");
+  cmd->add_option(
+         "--mode", opt->modes,
+         "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
       ->check(CLI::IsMember({"both", "boon2012", "face_integrated"}));
-  cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")->check(CLI::PositiveNumber);
-  cmd->add_option("--scenarios", opt->scenarios, "Folder of the case files (default: the source tree's scenarios/boon2015)");
+  cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--scenarios", opt->scenarios,
+                  "Folder of the case files (default: the source tree's scenarios/boon2015)");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->add_flag("!--no-figures", opt->figures, "Do not draw figures (no Python needed)");
   cmd->callback([opt] { set_exit_code(reproduce(*opt)); });

@@ -40,12 +40,13 @@ int run(const RunOptions& opt) {
   }
   if (beam && opt.figures && !r.levels.empty()) {
     std::string why;
-    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why)) std::cerr << "blockdem: warning: no figures: " << why << "\n";
+    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
+      std::cerr << "blockdem: warning: no figures: " << why << "\n";
   }
   if (r.exit_code != 0) {
     std::cerr << "blockdem: error: " << r.message << "\n"
-              << "blockdem: outputs up to the last good state are in " << opt.out << " (summary.json status \""
-              << r.status << "\")\n";
+              << "blockdem: outputs up to the last good state are in " << opt.out
+              << " (summary.json status \"" << r.status << "\")\n";
   } else if (!opt.quiet) {
     char buf[128];
     std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ", r.wall_time,
@@ -59,11 +60,13 @@ int run(const RunOptions& opt) {
 
 void register_run(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Run a scenario file (TOML; see docs/scenario-files.md)");
+  CLI::App* cmd =
+      app.add_subcommand("run", "Run a scenario file (TOML; see docs/scenario-files.md)");
   cmd->add_option("scenario", opt->scenario, "Scenario file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", opt->out, "Output folder (created if missing)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->add_flag("!--no-figures", opt->figures, "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
+  cmd->add_flag("!--no-figures", opt->figures,
+                "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });
 }
 

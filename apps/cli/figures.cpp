@@ -27,7 +27,8 @@ std::string tools_dir() {
   return std::string(BLOCKDEM_SOURCE_DIR) + "/tools";
 }
 
-bool run_plot_script(const std::string& script, const std::vector<std::string>& args, std::string& why) {
+bool run_plot_script(const std::string& script, const std::vector<std::string>& args,
+                     std::string& why) {
   const std::string path = tools_dir() + "/" + script;
   if (!std::filesystem::exists(path)) {
     why = "the plotting script " + path + " is missing (set BLOCKDEM_TOOLS_DIR)";
@@ -35,14 +36,17 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
   }
   std::string python;
   for (const char* candidate : {"/usr/bin/python3", "python3"}) {
-    const std::string probe = std::string(candidate) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
+    const std::string probe =
+        std::string(candidate) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
     if (std::system(probe.c_str()) == 0) {
       python = candidate;
       break;
     }
   }
   if (python.empty()) {
-    why = "no Python with matplotlib and numpy was found (on Debian: apt-get install python3-matplotlib)";
+    why =
+        "no Python with matplotlib and numpy was found (on Debian: apt-get install "
+        "python3-matplotlib)";
     return false;
   }
   std::string cmd = python;

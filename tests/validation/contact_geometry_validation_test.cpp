@@ -28,7 +28,8 @@ Eigen::Vector3d barrier_gradient(const std::vector<Halfspace>& a, const std::vec
 
 // Minimiser of the barrier along the z axis through (0, 0), by bisection on its derivative:
 // the hand-side of the analytic centre when symmetry puts it on that axis.
-double centre_on_z_axis(const std::vector<Halfspace>& a, const std::vector<Halfspace>& b, double lo, double hi) {
+double centre_on_z_axis(const std::vector<Halfspace>& a, const std::vector<Halfspace>& b, double lo,
+                        double hi) {
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     (barrier_gradient(a, b, {0, 0, mid}).z() > 0 ? hi : lo) = mid;
@@ -72,7 +73,8 @@ TEST(ContactGeometryValidation, FaceToFaceShifted) {
 // 1 x 2(z_c - z_apex) rectangle.
 TEST(ContactGeometryValidation, EdgeToFace) {
   const double h = 1e-4;
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const double z_apex = 0.5 - h;
   const auto a = cube(Eigen::Matrix3d::Identity(), {0, 0, 0});
   const auto b = cube(r, {0, 0, z_apex + std::sqrt(0.5)});
@@ -93,9 +95,9 @@ TEST(ContactGeometryValidation, EdgeToFace) {
 TEST(ContactGeometryValidation, VertexToFace) {
   const double h = 1e-4;
   // Rotation taking the diagonal (1,1,1)/√3 to -z, so the vertex (-½,-½,-½)... is the lowest.
-  const Eigen::Matrix3d r =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(1, 1, 1).normalized(), Eigen::Vector3d::UnitZ())
-          .toRotationMatrix();
+  const Eigen::Matrix3d r = Eigen::Quaterniond::FromTwoVectors(
+                                Eigen::Vector3d(1, 1, 1).normalized(), Eigen::Vector3d::UnitZ())
+                                .toRotationMatrix();
   const double half_diagonal = std::sqrt(3.0) / 2;
   const double z_apex = 0.5 - h;
   const auto a = cube(Eigen::Matrix3d::Identity(), {0, 0, 0});
@@ -116,8 +118,10 @@ TEST(ContactGeometryValidation, VertexToFace) {
 // Apart and touching: no contact.
 TEST(ContactGeometryValidation, SeparatedAndTouchingCubesHaveNoContact) {
   const auto a = cube(Eigen::Matrix3d::Identity(), {0, 0, 0});
-  EXPECT_FALSE(boon2012_contact(a, cube(Eigen::Matrix3d::Identity(), {0, 0, 1.001}), 4.0, kSettings).touching);
-  EXPECT_FALSE(boon2012_contact(a, cube(Eigen::Matrix3d::Identity(), {0, 0, 1.0}), 4.0, kSettings).touching);
+  EXPECT_FALSE(boon2012_contact(a, cube(Eigen::Matrix3d::Identity(), {0, 0, 1.001}), 4.0, kSettings)
+                   .touching);
+  EXPECT_FALSE(
+      boon2012_contact(a, cube(Eigen::Matrix3d::Identity(), {0, 0, 1.0}), 4.0, kSettings).touching);
 }
 
 }  // namespace

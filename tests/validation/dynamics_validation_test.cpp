@@ -29,7 +29,9 @@ class Validation : public ::testing::TestWithParam<ContactMode> {
   }
 };
 
-std::string mode_name(const ::testing::TestParamInfo<ContactMode>& p) { return to_string(p.param); }
+std::string mode_name(const ::testing::TestParamInfo<ContactMode>& p) {
+  return to_string(p.param);
+}
 
 // Free fall. Central difference integrates constant acceleration exactly when the stored
 // velocity is read as v(t - dt/2): x(t_n) = x0 + v(0) t + g t²/2 with v(0) = v_{-1/2} + g dt/2.
@@ -107,7 +109,8 @@ TEST_P(Validation, UndampedOscillationPeriod) {
     ASSERT_LT(w.time(), 20 * period);
     ASSERT_EQ(w.contact_count(), 1u) << "the block must never separate";
   }
-  const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double measured =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   EXPECT_NEAR(measured, period, 5e-4 * period);
 }
 
@@ -161,7 +164,8 @@ TEST_P(InclineTest, SticksBelowFrictionAngleSlidesAboveWithCoulombAcceleration) 
 
 INSTANTIATE_TEST_SUITE_P(Angles, InclineTest,
                          ::testing::Combine(::testing::Values(20.0, 35.0, 45.0, 55.0),
-                                            ::testing::Values(ContactMode::boon2012, ContactMode::face_integrated)),
+                                            ::testing::Values(ContactMode::boon2012,
+                                                              ContactMode::face_integrated)),
                          [](const ::testing::TestParamInfo<std::tuple<double, ContactMode>>& p) {
                            return std::to_string(static_cast<int>(std::get<0>(p.param))) + "deg_" +
                                   to_string(std::get<1>(p.param));
@@ -213,7 +217,8 @@ TEST_P(Validation, ColumnContactForcesEqualWeightAbove) {
   for (const Contact* c : contacts) {
     // Contact between block c->a and c->b (indices: base 0, blocks 1..n bottom to top).
     const int above = n - c->a;
-    EXPECT_NEAR(c->normal_force, above * weight, 1e-6 * above * weight) << "joint under block " << c->b;
+    EXPECT_NEAR(c->normal_force, above * weight, 1e-6 * above * weight)
+        << "joint under block " << c->b;
     EXPECT_LT(c->shear.force.norm(), 1e-9 * weight);
   }
 }
@@ -235,14 +240,16 @@ TEST_P(Validation, TumblingBlockConservesAngularMomentumAndEnergy) {
   for (int i = 0; i < steps; ++i) {
     w.step();
     const Block& bb = w.blocks()[0];
-    const double e = 0.5 * bb.angular_momentum.dot(bb.world_inertia().inverse() * bb.angular_momentum);
+    const double e =
+        0.5 * bb.angular_momentum.dot(bb.world_inertia().inverse() * bb.angular_momentum);
     worst = std::max(worst, std::abs(e - e0) / e0);
   }
   EXPECT_LT((w.blocks()[0].angular_momentum - l0).norm(), 1e-12 * l0.norm());
   EXPECT_LT(worst, 1e-5);
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, Validation, ::testing::Values(ContactMode::boon2012, ContactMode::face_integrated),
+INSTANTIATE_TEST_SUITE_P(Modes, Validation,
+                         ::testing::Values(ContactMode::boon2012, ContactMode::face_integrated),
                          mode_name);
 
 }  // namespace

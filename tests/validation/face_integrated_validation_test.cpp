@@ -27,8 +27,9 @@ struct Resultant {
 };
 
 // What the world does for one face contact: cells, then the law over each.
-Resultant integrate(const std::vector<Halfspace>& a, const std::vector<Halfspace>& b, const Eigen::Vector3d& origin,
-                    const Eigen::Vector3d& normal, const NormalLaw& law) {
+Resultant integrate(const std::vector<Halfspace>& a, const std::vector<Halfspace>& b,
+                    const Eigen::Vector3d& origin, const Eigen::Vector3d& normal,
+                    const NormalLaw& law) {
   const FaceContactGeometry g = face_contact_geometry(a, b, origin, normal, 10.0);
   EXPECT_TRUE(g.face_type);
   Resultant r;
@@ -56,9 +57,12 @@ struct Tilted {
 
 Tilted tilted_block(double La, double Wa, double theta, double d0) {
   Tilted t;
-  t.base = Polyhedron::box({La, Wa, 0.05}).transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.025}).planes();
+  t.base = Polyhedron::box({La, Wa, 0.05})
+               .transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.025})
+               .planes();
   const Eigen::Matrix3d r = Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  const Polyhedron p = Polyhedron::box({3 * La, 3 * Wa, 0.05}).transformed(r, Eigen::Vector3d::Zero());
+  const Polyhedron p =
+      Polyhedron::box({3 * La, 3 * Wa, 0.05}).transformed(r, Eigen::Vector3d::Zero());
   // The bottom plane n·x = d meets the z axis at z = d / n_z; move it to z = -d0.
   const Halfspace* bottom = nullptr;
   for (const auto& h : p.planes()) {
@@ -80,8 +84,8 @@ Tilted tilted_block(double La, double Wa, double theta, double d0) {
 TEST(FaceIntegrated, TrapezoidalPressureMatchesClosedForm) {
   const double k = 10e9;
   const Tilted t = tilted_block(0.08, 0.04, 1e-4, 2e-5);  // g from 2.4e-5 down to 1.6e-5
-  const Resultant r = integrate(t.base, t.block, Eigen::Vector3d(0, 0, -1e-5), Eigen::Vector3d::UnitZ(),
-                                LinearNormal{k});
+  const Resultant r = integrate(t.base, t.block, Eigen::Vector3d(0, 0, -1e-5),
+                                Eigen::Vector3d::UnitZ(), LinearNormal{k});
   const double l = t.length;
   ASSERT_GT(t.closure(l / 2), 0.0) << "the whole face must be compressed";
   const double force = k * t.width * l * t.d0;
@@ -99,8 +103,8 @@ TEST(FaceIntegrated, TrapezoidalPressureMatchesClosedForm) {
 TEST(FaceIntegrated, TriangularPressureMatchesClosedForm) {
   const double k = 10e9;
   const Tilted t = tilted_block(0.08, 0.04, 1e-3, 1e-5);  // open beyond x = 0.01 m
-  const Resultant r = integrate(t.base, t.block, Eigen::Vector3d(0, 0, -5e-6), Eigen::Vector3d::UnitZ(),
-                                LinearNormal{k});
+  const Resultant r = integrate(t.base, t.block, Eigen::Vector3d(0, 0, -5e-6),
+                                Eigen::Vector3d::UnitZ(), LinearNormal{k});
   const double c = t.d0 / t.slope + t.length / 2;
   ASSERT_LT(c, t.length);
   const double g_max = t.closure(-t.length / 2);
@@ -115,7 +119,8 @@ TEST(FaceIntegrated, TriangularPressureMatchesClosedForm) {
 TEST(FaceIntegrated, ExponentialLawMatchesHighOrderQuadrature) {
   const NormalLaw law = ExponentialNormal::eq3();
   const Tilted t = tilted_block(0.08, 0.04, 2e-4, 2e-5);  // g from 2.8e-5 to 1.2e-5
-  const Resultant r = integrate(t.base, t.block, Eigen::Vector3d(0, 0, -1e-5), Eigen::Vector3d::UnitZ(), law);
+  const Resultant r =
+      integrate(t.base, t.block, Eigen::Vector3d(0, 0, -1e-5), Eigen::Vector3d::UnitZ(), law);
   // Gauss-Legendre nodes by Newton on P_40.
   const int n = 40;
   double force = 0.0, moment = 0.0;
@@ -147,10 +152,13 @@ TEST(FaceIntegrated, ExponentialLawMatchesHighOrderQuadrature) {
 TEST(FaceIntegrated, UniformClosureGivesThePointContactForce) {
   const double h = 3e-5;
   const auto a = Polyhedron::box({1, 1, 1}).planes();
-  const auto b = Polyhedron::box({1, 1, 1}).transformed(Eigen::Matrix3d::Identity(), {0.2, 0.1, 1 - h}).planes();
+  const auto b = Polyhedron::box({1, 1, 1})
+                     .transformed(Eigen::Matrix3d::Identity(), {0.2, 0.1, 1 - h})
+                     .planes();
   const ContactGeometry g = boon2012_contact(a, b, 4.0, Boon2012Settings{});
   ASSERT_TRUE(g.touching);
-  for (const NormalLaw& law : {NormalLaw(LinearNormal{1e10}), NormalLaw(ExponentialNormal::eq4())}) {
+  for (const NormalLaw& law :
+       {NormalLaw(LinearNormal{1e10}), NormalLaw(ExponentialNormal::eq4())}) {
     const double point = normal_stress(law, g.overlap) * g.area;
     const Resultant r = integrate(a, b, g.point, g.normal, law);
     EXPECT_NEAR(r.force, point, 1e-12 * point);
@@ -239,13 +247,14 @@ double rocking_energy_error(double dt, double* rocking_energy) {
     for (const Contact* c : w.contacts()) {
       const auto& ba = w.blocks()[c->a];
       const auto& bb = w.blocks()[c->b];
-      const FaceContactGeometry fc =
-          face_contact_geometry(ba.world_planes, bb.world_planes, c->geometry.point, c->geometry.normal, 2.0);
+      const FaceContactGeometry fc = face_contact_geometry(
+          ba.world_planes, bb.world_planes, c->geometry.point, c->geometry.normal, 2.0);
       for (const auto& cell : fc.cells) {
         for (std::size_t i = 1; i + 1 < cell.vertices.size(); ++i) {
           const double g0 = cell.closures[0], g1 = cell.closures[i], g2 = cell.closures[i + 1];
-          const double area =
-              0.5 * (cell.vertices[i] - cell.vertices[0]).cross(cell.vertices[i + 1] - cell.vertices[0]).norm();
+          const double area = 0.5 * (cell.vertices[i] - cell.vertices[0])
+                                        .cross(cell.vertices[i + 1] - cell.vertices[0])
+                                        .norm();
           e += 0.5 * k * area / 6 * (g0 * g0 + g1 * g1 + g2 * g2 + g0 * g1 + g1 * g2 + g0 * g2);
         }
       }
@@ -254,7 +263,8 @@ double rocking_energy_error(double dt, double* rocking_energy) {
     return e;
   };
   // Leapfrog keeps velocities at half steps: the kinetic energy at step n uses the mean of
-  // v_{n-1/2} and v_{n+1/2}, and the step that computes v_{n+1/2} also evaluates the contact at x_n.
+  // v_{n-1/2} and v_{n+1/2}, and the step that computes v_{n+1/2} also evaluates the contact at
+  // x_n.
   auto step_energy = [&]() {
     const Eigen::Vector3d v0 = w.blocks()[1].velocity, w0 = w.blocks()[1].angular_velocity;
     w.step();

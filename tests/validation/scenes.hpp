@@ -21,7 +21,8 @@ inline World linear_world(double kn, double ks, double friction_deg, WorldSettin
 /// A box block of the given size centred at `centre`.
 inline Block box_block(const Eigen::Vector3d& size, const Eigen::Vector3d& centre, double density,
                        Motion motion = Motion::free, const std::string& name = "block") {
-  Block b = make_block(Polyhedron::box(size).transformed(Eigen::Matrix3d::Identity(), centre), density, name);
+  Block b = make_block(Polyhedron::box(size).transformed(Eigen::Matrix3d::Identity(), centre),
+                       density, name);
   b.motion = motion;
   return b;
 }

@@ -1,7 +1,8 @@
 // The voussoir beam of Boon, Houlsby & Utili (2015), every case of Tables 2 and 3 as shipped in
 // scenarios/boon2015: statics (H z = W S / 8 within 1% at every level), symmetry of the
-// symmetric beam (1e-5 relative; 1e-4 with the continuously-yielding law, see below), the preload (within 1% of 60 N), and the ratios of midspan
-// deflections implied by the paper's Table 3 (within 5%).
+// symmetric beam (1e-5 relative; 1e-4 with the continuously-yielding law, see below), the preload
+// (within 1% of 60 N), and the ratios of midspan deflections implied by the paper's Table 3 (within
+// 5%).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,7 +16,8 @@ namespace blockdem {
 namespace {
 
 RunResult run_case(const std::string& id) {
-  Scenario sc = load_scenario(std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/boon2015/" + id + ".toml");
+  Scenario sc =
+      load_scenario(std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/boon2015/" + id + ".toml");
   sc.output.vtk = false;
   const auto out = std::filesystem::temp_directory_path() / ("blockdem_voussoir_" + id);
   std::filesystem::remove_all(out);
@@ -81,7 +83,8 @@ TEST_P(VoussoirCase, StaticsSymmetryAndPreload) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Boon2015, VoussoirCase,
-                         ::testing::Values("T2-1", "T2-2", "T2-3", "F8", "T3-full", "T3-half", "T3-half-old"),
+                         ::testing::Values("T2-1", "T2-2", "T2-3", "F8", "T3-full", "T3-half",
+                                           "T3-half-old"),
                          [](const ::testing::TestParamInfo<std::string>& p) {
                            std::string s = p.param;
                            for (char& c : s) c = (c == '-') ? '_' : c;

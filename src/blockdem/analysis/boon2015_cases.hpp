@@ -9,10 +9,10 @@
 namespace blockdem {
 
 struct Boon2015Case {
-  std::string id;           ///< e.g. "T2-1"; the scenario is scenarios/boon2015/<id>.toml
-  std::string beam;         ///< "full" or "half"
-  std::string normal_law;   ///< description
-  std::string shear_law;    ///< description
+  std::string id;          ///< e.g. "T2-1"; the scenario is scenarios/boon2015/<id>.toml
+  std::string beam;        ///< "full" or "half"
+  std::string normal_law;  ///< description
+  std::string shear_law;   ///< description
   double g_max = 40.0;
   std::string paper_reports;  ///< the paper's stated discrepancy for this case
 };

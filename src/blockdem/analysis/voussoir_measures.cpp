@@ -19,15 +19,18 @@ VoussoirReference capture_reference(const World& world) {
 namespace {
 
 // Displacement since the reference of the material point at world position x_ref (reference).
-Eigen::Vector3d point_displacement(const Block& b, const VoussoirReference& ref, const Eigen::Vector3d& x_ref) {
-  const Eigen::Vector3d body = ref.orientations[b.index].conjugate() * (x_ref - ref.positions[b.index]);
+Eigen::Vector3d point_displacement(const Block& b, const VoussoirReference& ref,
+                                   const Eigen::Vector3d& x_ref) {
+  const Eigen::Vector3d body =
+      ref.orientations[b.index].conjugate() * (x_ref - ref.positions[b.index]);
   return b.to_world(body) - x_ref;
 }
 
 }  // namespace
 
-VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, const VoussoirLayout& layout,
-                               const VoussoirReference& ref, double g_level) {
+VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec,
+                               const VoussoirLayout& layout, const VoussoirReference& ref,
+                               double g_level) {
   VoussoirLevel lv;
   lv.g_level = g_level;
   const auto& blocks = world.blocks();
@@ -91,7 +94,8 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, con
     const Eigen::Vector3d u = b.position - ref.positions[i];
     st.ux = u.x();
     st.uz = u.z();
-    const Eigen::Vector3d bottom_ref(ref.positions[i].x(), ref.positions[i].y(), ref.positions[i].z() - t / 2);
+    const Eigen::Vector3d bottom_ref(ref.positions[i].x(), ref.positions[i].y(),
+                                     ref.positions[i].z() - t / 2);
     st.deflection = -point_displacement(b, ref, bottom_ref).z();
     const Eigen::AngleAxisd rot(b.orientation * ref.orientations[i].conjugate());
     st.rotation = rot.angle() * rot.axis().y();
@@ -106,10 +110,10 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, con
   } else {
     const Block& l = blocks[layout.beam[n / 2 - 1]];
     const Block& r = blocks[layout.beam[n / 2]];
-    const Eigen::Vector3d corner(ref.positions[l.index].x() + spec.block_length / 2, ref.positions[l.index].y(),
-                                 ref.positions[l.index].z() - t / 2);
-    const Eigen::Vector3d corner_r(ref.positions[r.index].x() - spec.block_length / 2, ref.positions[r.index].y(),
-                                   ref.positions[r.index].z() - t / 2);
+    const Eigen::Vector3d corner(ref.positions[l.index].x() + spec.block_length / 2,
+                                 ref.positions[l.index].y(), ref.positions[l.index].z() - t / 2);
+    const Eigen::Vector3d corner_r(ref.positions[r.index].x() - spec.block_length / 2,
+                                   ref.positions[r.index].y(), ref.positions[r.index].z() - t / 2);
     lv.midspan_deflection =
         -0.5 * (point_displacement(l, ref, corner).z() + point_displacement(r, ref, corner_r).z());
   }
@@ -122,7 +126,8 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, con
                                 ref.positions[first.index].y(), ref.positions[first.index].z());
     const Eigen::Vector3d end_r(ref.positions[last.index].x() + spec.block_length / 2,
                                 ref.positions[last.index].y(), ref.positions[last.index].z());
-    lv.abutment_slip = -0.5 * (point_displacement(first, ref, end_l).z() + point_displacement(last, ref, end_r).z());
+    lv.abutment_slip = -0.5 * (point_displacement(first, ref, end_l).z() +
+                               point_displacement(last, ref, end_r).z());
   }
 
   // Statics of the half span (DESIGN section 6): H z = W S / 8.
@@ -146,9 +151,10 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec, con
     zs.push_back(j.z);
   }
   try {
-    lv.fit = fit_thrust_line(Eigen::Map<Eigen::VectorXd>(xs.data(), static_cast<Eigen::Index>(xs.size())),
-                             Eigen::Map<Eigen::VectorXd>(zs.data(), static_cast<Eigen::Index>(zs.size())),
-                             lv.beam_weight / s);
+    lv.fit = fit_thrust_line(
+        Eigen::Map<Eigen::VectorXd>(xs.data(), static_cast<Eigen::Index>(xs.size())),
+        Eigen::Map<Eigen::VectorXd>(zs.data(), static_cast<Eigen::Index>(zs.size())),
+        lv.beam_weight / s);
   } catch (const std::exception& e) {
     lv.fit_error = e.what();
   }

@@ -17,7 +17,8 @@ struct Linear {
 };
 
 // Keeps the part of `poly` where f(y) <= 0 (Sutherland-Hodgman, one half-plane).
-void clip(std::vector<Eigen::Vector2d>& poly, const Linear& f, std::vector<Eigen::Vector2d>& scratch) {
+void clip(std::vector<Eigen::Vector2d>& poly, const Linear& f,
+          std::vector<Eigen::Vector2d>& scratch) {
   scratch.clear();
   const std::size_t n = poly.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -25,7 +26,8 @@ void clip(std::vector<Eigen::Vector2d>& poly, const Linear& f, std::vector<Eigen
     const Eigen::Vector2d& q = poly[(i + 1) % n];
     const double fp = f(p), fq = f(q);
     if (fp <= 0.0) scratch.push_back(p);
-    if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0)) scratch.push_back(p + (fp / (fp - fq)) * (q - p));
+    if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0))
+      scratch.push_back(p + (fp / (fp - fq)) * (q - p));
   }
   poly.swap(scratch);
   if (poly.size() < 3) poly.clear();
@@ -35,8 +37,9 @@ void clip(std::vector<Eigen::Vector2d>& poly, const Linear& f, std::vector<Eigen
 
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
-                                          const Eigen::Vector3d& origin, const Eigen::Vector3d& normal,
-                                          double extent, const FaceContactSettings& settings) {
+                                          const Eigen::Vector3d& origin,
+                                          const Eigen::Vector3d& normal, double extent,
+                                          const FaceContactSettings& settings) {
   FaceContactGeometry out;
   const double cos_face = std::cos(settings.face_angle);
   bool face = false;
@@ -51,7 +54,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   std::vector<Linear> top, bottom, lateral;
   auto add = [&](const Halfspace& p) {
     const double c = p.normal.dot(normal);
-    const Linear slack{p.offset - p.normal.dot(origin), Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
+    const Linear slack{p.offset - p.normal.dot(origin),
+                       Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (std::abs(c) <= settings.lateral_tolerance) {
       lateral.push_back({-slack.c0, -slack.c});  // inside where -slack <= 0
     } else if (c > 0.0) {

@@ -42,7 +42,8 @@ struct FaceContactSettings {
 /// A∩B on the plane exactly. `extent` (m) must exceed the size of A∩B.
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
-                                          const Eigen::Vector3d& origin, const Eigen::Vector3d& normal,
-                                          double extent, const FaceContactSettings& settings = {});
+                                          const Eigen::Vector3d& origin,
+                                          const Eigen::Vector3d& normal, double extent,
+                                          const FaceContactSettings& settings = {});
 
 }  // namespace blockdem

@@ -9,7 +9,8 @@
 
 namespace blockdem {
 
-Block make_block(const Polyhedron& world_shape, double density, std::string name, std::string group) {
+Block make_block(const Polyhedron& world_shape, double density, std::string name,
+                 std::string group) {
   if (!(density > 0.0) || !std::isfinite(density)) {
     throw GeometryError("density must be positive and finite, got " + std::to_string(density));
   }
@@ -62,7 +63,8 @@ void Block::update_world_geometry() {
 Eigen::Vector3d Block::rotation_since_start() const {
   const Eigen::AngleAxisd aa(orientation * initial_orientation.conjugate());
   constexpr double kPi = 3.14159265358979323846;
-  return aa.angle() > kPi ? Eigen::Vector3d(-(2 * kPi - aa.angle()) * aa.axis()) : Eigen::Vector3d(aa.angle() * aa.axis());
+  return aa.angle() > kPi ? Eigen::Vector3d(-(2 * kPi - aa.angle()) * aa.axis())
+                          : Eigen::Vector3d(aa.angle() * aa.axis());
 }
 
 double Block::kinetic_energy() const {

@@ -24,10 +24,10 @@ enum class Motion {
 struct Servo {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< unit direction of travel (-)
   double target_force = 0.0;                        ///< (N)
-  double gain = 0.0;                                ///< (m/s/N); 0: chosen from the contact stiffness
-  double max_speed = 0.0;                           ///< (m/s); 0: chosen from the time step
-  double tolerance = 0.01;                          ///< converged when |F - F_target| <= tol·F_target
-  bool hold = false;                                ///< when true the block stays where it is
+  double gain = 0.0;        ///< (m/s/N); 0: chosen from the contact stiffness
+  double max_speed = 0.0;   ///< (m/s); 0: chosen from the time step
+  double tolerance = 0.01;  ///< converged when |F - F_target| <= tol·F_target
+  bool hold = false;        ///< when true the block stays where it is
 };
 
 struct Block {
@@ -35,9 +35,9 @@ struct Block {
   std::string group;
   int index = -1;
 
-  Polyhedron shape;               ///< body frame: centroid at the origin, principal axes
-  double density = 0.0;           ///< (kg/m^3)
-  double mass = 0.0;              ///< (kg)
+  Polyhedron shape;      ///< body frame: centroid at the origin, principal axes
+  double density = 0.0;  ///< (kg/m^3)
+  double mass = 0.0;     ///< (kg)
   Eigen::Vector3d inertia = Eigen::Vector3d::Zero();  ///< principal moments (kg m^2)
 
   Motion motion = Motion::free;
@@ -49,11 +49,12 @@ struct Block {
   Eigen::Matrix<bool, 3, 1> blocked_rotation = Eigen::Matrix<bool, 3, 1>::Constant(false);
 
   // State. Orientation maps body to world coordinates.
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();         ///< centroid (m)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centroid (m)
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();         ///< (m/s), at the half step
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero(); ///< world frame (rad/s), half step
-  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero(); ///< world frame (kg m^2/s), half step
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          ///< (m/s), at the half step
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< world frame (rad/s), half step
+  Eigen::Vector3d angular_momentum =
+      Eigen::Vector3d::Zero();  ///< world frame (kg m^2/s), half step
 
   // Reference state for displacement outputs.
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();

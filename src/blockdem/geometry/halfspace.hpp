@@ -9,7 +9,7 @@ namespace blockdem {
 /// The set {x : normal · x <= offset}. `normal` is a unit vector (dimensionless), `offset` in m.
 struct Halfspace {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit outward normal (-)
-  double offset = 0.0;                                ///< signed distance of the plane from the origin (m)
+  double offset = 0.0;  ///< signed distance of the plane from the origin (m)
 
   /// Signed distance of x outside the plane: negative inside, zero on it, positive outside (m).
   double signed_distance(const Eigen::Vector3d& x) const { return normal.dot(x) - offset; }

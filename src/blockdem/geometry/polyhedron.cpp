@@ -5,8 +5,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include "blockdem/geometry/geometry_error.hpp"
@@ -38,8 +38,8 @@ std::vector<Eigen::Vector3d> enumerate_vertices(const std::vector<Halfspace>& pl
         a.row(0) = planes[i].normal.transpose();
         a.row(1) = planes[j].normal.transpose();
         a.row(2) = planes[k].normal.transpose();
-        const Eigen::Vector3d x =
-            a.partialPivLu().solve(Eigen::Vector3d(planes[i].offset, planes[j].offset, planes[k].offset));
+        const Eigen::Vector3d x = a.partialPivLu().solve(
+            Eigen::Vector3d(planes[i].offset, planes[j].offset, planes[k].offset));
         bool inside = true;
         for (const auto& p : planes) {
           if (p.signed_distance(x) > tol) {
@@ -143,8 +143,9 @@ Polyhedron Polyhedron::from_vertices(std::span<const Eigen::Vector3d> points) {
     double worst = -std::numeric_limits<double>::infinity();
     for (const auto& h : planes) worst = std::max(worst, h.signed_distance(q));
     if (worst < -tol) {
-      throw GeometryError("vertex " + fmt_vec(q) +
-                          " lies inside the convex hull of the others: the vertex list is not convex");
+      throw GeometryError(
+          "vertex " + fmt_vec(q) +
+          " lies inside the convex hull of the others: the vertex list is not convex");
     }
   }
   return from_planes(planes);
@@ -167,17 +168,20 @@ void Polyhedron::build(std::vector<Halfspace> planes) {
     }
     scale = std::max(scale, std::abs(h.offset));
   }
-  if (scale == 0.0) throw GeometryError("all planes pass through the origin: the shape is unbounded or empty");
+  if (scale == 0.0)
+    throw GeometryError("all planes pass through the origin: the shape is unbounded or empty");
 
   // Unbounded sets: close them with a box far outside and see whether the box is touched.
   const double far = 1e6 * scale;
   std::vector<Halfspace> closed = planes;
   for (int axis = 0; axis < 3; ++axis) {
-    for (double sign : {1.0, -1.0}) closed.push_back(Halfspace{sign * Eigen::Vector3d::Unit(axis), far});
+    for (double sign : {1.0, -1.0})
+      closed.push_back(Halfspace{sign * Eigen::Vector3d::Unit(axis), far});
   }
   const double tol = kRelTol * scale;
   const auto closed_vertices = enumerate_vertices(closed, kRelTol * far);
-  if (closed_vertices.empty()) throw GeometryError("the planes enclose no point: the shape is empty");
+  if (closed_vertices.empty())
+    throw GeometryError("the planes enclose no point: the shape is empty");
   for (const auto& v : closed_vertices) {
     if (v.cwiseAbs().maxCoeff() > 0.5 * far) {
       throw GeometryError("the planes do not enclose a bounded region: the shape is unbounded");
@@ -235,7 +239,8 @@ void Polyhedron::build(std::vector<Halfspace> planes) {
       const Eigen::Vector3d s = a + b + d;
       vol += v;
       first += v * s / 4.0;
-      second += v / 20.0 * (a * a.transpose() + b * b.transpose() + d * d.transpose() + s * s.transpose());
+      second += v / 20.0 *
+                (a * a.transpose() + b * b.transpose() + d * d.transpose() + s * s.transpose());
     }
   }
   if (!(vol > std::pow(1e-6 * scale, 3))) throw GeometryError("the shape has zero volume");
@@ -245,7 +250,8 @@ void Polyhedron::build(std::vector<Halfspace> planes) {
   const Eigen::Matrix3d cov = second - vol * g * g.transpose();
   unit_inertia_ = cov.trace() * Eigen::Matrix3d::Identity() - cov;
   bounding_radius_ = 0.0;
-  for (const auto& v : vertices_) bounding_radius_ = std::max(bounding_radius_, (v - centroid_).norm());
+  for (const auto& v : vertices_)
+    bounding_radius_ = std::max(bounding_radius_, (v - centroid_).norm());
 }
 
 double Polyhedron::face_area(int f) const {

@@ -34,7 +34,7 @@ class Polyhedron {
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
   const std::vector<Face>& faces() const { return faces_; }
 
-  double volume() const { return volume_; }                     ///< (m^3)
+  double volume() const { return volume_; }                      ///< (m^3)
   const Eigen::Vector3d& centroid() const { return centroid_; }  ///< (m)
   /// Inertia tensor about the centroid for unit density (m^5; multiply by density for kg m^2).
   const Eigen::Matrix3d& unit_inertia() const { return unit_inertia_; }

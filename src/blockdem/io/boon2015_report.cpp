@@ -54,7 +54,8 @@ bool complete(const Boon2015CaseRun& r) {
 
 }  // namespace
 
-void write_boon2015_report(const std::filesystem::path& dir, const std::vector<Boon2015CaseRun>& all_runs,
+void write_boon2015_report(const std::filesystem::path& dir,
+                           const std::vector<Boon2015CaseRun>& all_runs,
                            const std::vector<std::string>& figures, const std::string& figure_note,
                            double wall_time) {
   // The paper's method first; face-integrated runs are compared with it further down.
@@ -63,44 +64,57 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
   std::sort(runs.begin(), runs.end(), [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
     return case_order(x.base_id) < case_order(y.base_id);
   });
-  std::sort(integrated.begin(), integrated.end(), [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
-    return case_order(x.base_id) < case_order(y.base_id);
-  });
+  std::sort(integrated.begin(), integrated.end(),
+            [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
+              return case_order(x.base_id) < case_order(y.base_id);
+            });
   if (runs.empty()) runs = integrated;
   std::ostringstream o;
   o << "# Reproduction of Boon, Houlsby & Utili (2015)\n\n"
     << "*DEM modelling of a jointed rock beam with emphasis on interface properties*, Géotechnique "
-       "Letters 5:49-55: the voussoir-beam centrifuge tests of Talesnick et al. (2007), every case of the "
+       "Letters 5:49-55: the voussoir-beam centrifuge tests of Talesnick et al. (2007), every case "
+       "of the "
        "paper's Tables 2 and 3, written by `blockdem reproduce boon2015`.\n\n";
 
   // Set-up.
   const VoussoirSpec& any = runs.front().scenario.voussoir.value();
   o << "## Model\n\n"
-    << "- Six gypsum blocks (" << any.density << " kg/m³) between two abutments; x along the span, z up, "
-       "beam top at z = 0. Full-block beam 46 × 46 × 46 mm blocks (span 276 mm, depth 46 mm); half-block beam "
+    << "- Six gypsum blocks (" << any.density
+    << " kg/m³) between two abutments; x along the span, z up, "
+       "beam top at z = 0. Full-block beam 46 × 46 × 46 mm blocks (span 276 mm, depth 46 mm); "
+       "half-block beam "
        "46 mm along the span, 46 mm wide, 23 mm deep.\n"
     << "- Abutments: fixed blocks " << 1e3 * any.abutment_length << " mm along the span, "
     << 1e3 * any.block_width << " mm wide, " << 1e3 * any.abutment_height
-    << " mm tall, tops flush with the beam top (they cover the beam's end faces and reach below it).\n"
-    << "- Loading: at 1 g the " << any.servo_side << " abutment is moved under servo control until its "
-       "horizontal reaction is " << any.preload_force << " N, then held; gravity is then raised in steps to "
-       "40 g (full) or 90 g (half), with static equilibrium at every step (unbalanced-force ratio below "
+    << " mm tall, tops flush with the beam top (they cover the beam's end faces and reach below "
+       "it).\n"
+    << "- Loading: at 1 g the " << any.servo_side
+    << " abutment is moved under servo control until its "
+       "horizontal reaction is "
+    << any.preload_force
+    << " N, then held; gravity is then raised in steps to "
+       "40 g (full) or 90 g (half), with static equilibrium at every step (unbalanced-force ratio "
+       "below "
     << any.unbalanced_tolerance << ", kinetic-energy ratio below " << any.kinetic_tolerance
     << "). 1 g = " << kOneG << " m/s².\n"
-    << "- Contact mode `boon2012` (the paper's method): LP overlap test, analytic centre contact point, "
+    << "- Contact mode `boon2012` (the paper's method): LP overlap test, analytic centre contact "
+       "point, "
        "rounded normal (r_round = "
     << 1e3 * runs.front().scenario.settings.boon2012.rounding_distance
     << " mm), chord overlap, exact slice area. Local damping "
     << runs.front().scenario.settings.damping << ".\n"
-    << "- Beam blocks move in the x-z plane (no out-of-plane translation, no rotation about x or z). The "
-       "point contact transmits no twisting moment; without this constraint an out-of-plane mode grows "
+    << "- Beam blocks move in the x-z plane (no out-of-plane translation, no rotation about x or "
+       "z). The "
+       "point contact transmits no twisting moment; without this constraint an out-of-plane mode "
+       "grows "
        "and the T2-1 beam buckles sideways at about 21 g. The centrifuge test is a plane problem.\n"
     << "- Deflections are measured from the state after the 1 g preload, at the beam's bottom "
        "(midspan: x = S/2; profile: bottom-face centre of each block), downward positive.\n\n";
 
   // Main table.
   o << "## Midspan deflection and thrust at the last level\n\n"
-    << "| case | beam | normal law | shear law | g | thrust (N) | midspan deflection (mm) | abutment slip (mm) | "
+    << "| case | beam | normal law | shear law | g | thrust (N) | midspan deflection (mm) | "
+       "abutment slip (mm) | "
        "max σ_n (MPa) | statics residual (max) | steps | status | the paper reports |\n"
     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
@@ -109,37 +123,45 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
     for (const auto& l : lv) {
       if (std::isfinite(l.equilibrium_residual)) worst = std::max(worst, l.equilibrium_residual);
     }
-    o << "| " << r.spec.id << " | " << r.spec.beam << " | " << r.spec.normal_law << " | " << r.spec.shear_law << " | ";
+    o << "| " << r.spec.id << " | " << r.spec.beam << " | " << r.spec.normal_law << " | "
+      << r.spec.shear_law << " | ";
     if (lv.empty()) {
-      o << "- | - | - | - | - | - | " << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports
-        << " |\n";
+      o << "- | - | - | - | - | - | " << r.result.steps << " | " << r.result.status << " | "
+        << r.spec.paper_reports << " |\n";
       continue;
     }
     const auto& last = lv.back();
-    o << f("%g", last.g_level) << " | " << f("%.1f", last.thrust) << " | " << f("%.4f", 1e3 * last.midspan_deflection)
-      << " | " << f("%.4f", 1e3 * last.abutment_slip) << " | " << f("%.3f", 1e-6 * last.max_normal_stress) << " | "
-      << f("%.2e", worst) << " | " << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports
-      << " |\n";
+    o << f("%g", last.g_level) << " | " << f("%.1f", last.thrust) << " | "
+      << f("%.4f", 1e3 * last.midspan_deflection) << " | " << f("%.4f", 1e3 * last.abutment_slip)
+      << " | " << f("%.3f", 1e-6 * last.max_normal_stress) << " | " << f("%.2e", worst) << " | "
+      << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports << " |\n";
   }
-  o << "\nThe statics residual is |H z − W S/8| / (W S/8) for the half span (H: midspan joint force, z: height of "
-       "the midspan thrust point above the abutments' thrust points); it must stay below 1% at every level.\n\n";
+  o << "\nThe statics residual is |H z − W S/8| / (W S/8) for the half span (H: midspan joint "
+       "force, z: height of "
+       "the midspan thrust point above the abutments' thrust points); it must stay below 1% at "
+       "every level.\n\n";
   for (const auto& r : runs) {
     if (!complete(r)) {
-      o << "**" << r.spec.id << " did not reach " << r.spec.g_max << " g:** " << r.result.message << "\n\n";
+      o << "**" << r.spec.id << " did not reach " << r.spec.g_max << " g:** " << r.result.message
+        << "\n\n";
     }
   }
 
   // Ratios implied by Table 3.
   o << "## Effect of the new contact laws (Table 3)\n\n"
-    << "Table 3 gives, against the same experiments, the discrepancy of the new laws (eq. 4 with continuously "
-       "yielding shear) and of the old ones (eqs 2 and 3). Their ratio (1 + new)/(1 + old) is the ratio of the "
-       "two predicted midspan deflections, which this reproduction can test without the experimental data.\n\n"
+    << "Table 3 gives, against the same experiments, the discrepancy of the new laws (eq. 4 with "
+       "continuously "
+       "yielding shear) and of the old ones (eqs 2 and 3). Their ratio (1 + new)/(1 + old) is the "
+       "ratio of the "
+       "two predicted midspan deflections, which this reproduction can test without the "
+       "experimental data.\n\n"
     << "| ratio | blockdem | paper (implied by Table 3) | difference |\n|---|---|---|---|\n";
   auto ratio_row = [&](const char* label, const char* a, const char* b, double paper) {
     const auto* ra = find(runs, a);
     const auto* rb = find(runs, b);
     if (ra == nullptr || rb == nullptr || !complete(*ra) || !complete(*rb)) {
-      o << "| " << label << " | not available (a case did not complete) | " << f("%.3f", paper) << " | - |\n";
+      o << "| " << label << " | not available (a case did not complete) | " << f("%.3f", paper)
+        << " | - |\n";
       return;
     }
     const double ours = final_deflection(*ra) / final_deflection(*rb);
@@ -148,11 +170,14 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
   };
   ratio_row("T3-full / T2-2 (40 g)", "T3-full", "T2-2", boon2015_ratio_full());
   ratio_row("T3-half / T3-half-old (90 g)", "T3-half", "T3-half-old", boon2015_ratio_half());
-  o << "\nThe full-beam value of the paper is the mean over tests 180-C0, 180-D and 180-E (2.135, 2.134, 2.131).\n\n";
+  o << "\nThe full-beam value of the paper is the mean over tests 180-C0, 180-D and 180-E (2.135, "
+       "2.134, 2.131).\n\n";
 
   // Thrust spread.
-  o << "## Thrust\n\nThe paper (Fig. 5) finds negligible differences of horizontal thrust between the contact "
-       "models of the full-block beam, and thrusts about 30% below the measured ones (the paper reads about "
+  o << "## Thrust\n\nThe paper (Fig. 5) finds negligible differences of horizontal thrust between "
+       "the contact "
+       "models of the full-block beam, and thrusts about 30% below the measured ones (the paper "
+       "reads about "
        "349 N from the strain gauges of test 180-E at 40 g).\n\n"
     << "| g | ";
   std::vector<const Boon2015CaseRun*> full;
@@ -184,49 +209,62 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
   if (const auto* r = find(runs, "T2-1"); r != nullptr && complete(*r)) {
     const double t = r->result.levels.back().thrust;
     o << "\nT2-1 at 40 g: " << f("%.0f", t) << " N, " << f("%.0f%%", 100 * (t - 349) / 349)
-      << " against the 349 N the paper reads from the strain gauges of test 180-E (the paper's DEM: about 30% below "
+      << " against the 349 N the paper reads from the strain gauges of test 180-E (the paper's "
+         "DEM: about 30% below "
          "the measurements).\n";
   }
 
   // Line of thrust.
   o << "\n## Line of thrust: catenary and parabola (Fig. 7)\n\n"
-    << "Thrust points are the contact points of the seven joints (abutments included). Both curves are fitted by "
-       "least squares; the implied thrust uses the beam's weight per unit span (parabola: H = w/(2|c2|); "
+    << "Thrust points are the contact points of the seven joints (abutments included). Both curves "
+       "are fitted by "
+       "least squares; the implied thrust uses the beam's weight per unit span (parabola: H = "
+       "w/(2|c2|); "
        "catenary: H = w a).\n\n"
-    << "| case | g | parabola RMS (mm) | catenary RMS (mm) | thrust: parabola / catenary / abutment (N) |\n"
+    << "| case | g | parabola RMS (mm) | catenary RMS (mm) | thrust: parabola / catenary / "
+       "abutment (N) |\n"
     << "|---|---|---|---|---|\n";
   for (const auto& r : runs) {
     for (double g : {10.0, 40.0, 90.0}) {
       const auto* lv = level_at(r.result, g);
       if (lv == nullptr || !lv->fit) continue;
-      o << "| " << r.spec.id << " | " << g << " | " << f("%.4f", 1e3 * lv->fit->parabola.rms_residual) << " | "
-        << f("%.4f", 1e3 * lv->fit->catenary.rms_residual) << " | " << f("%.1f", lv->fit->parabola_thrust) << " / "
-        << f("%.1f", lv->fit->catenary_thrust) << " / " << f("%.1f", lv->thrust) << " |\n";
+      o << "| " << r.spec.id << " | " << g << " | "
+        << f("%.4f", 1e3 * lv->fit->parabola.rms_residual) << " | "
+        << f("%.4f", 1e3 * lv->fit->catenary.rms_residual) << " | "
+        << f("%.1f", lv->fit->parabola_thrust) << " / " << f("%.1f", lv->fit->catenary_thrust)
+        << " / " << f("%.1f", lv->thrust) << " |\n";
     }
   }
   o << "\nThe paper finds that both curves fit the contact points equally well at 10 g and 40 g.\n";
 
   // Rotations.
   o << "\n## Block rotations: abutment blocks against midspan blocks\n\n"
-    << "The paper notes that the DEM gives larger rotations at the abutment blocks than at midspan, as measured "
+    << "The paper notes that the DEM gives larger rotations at the abutment blocks than at "
+       "midspan, as measured "
        "(FLAC and DDA gave uniform rotations).\n\n"
-    << "| case | g | end blocks (deg) | blocks next to them (deg) | midspan blocks (deg) |\n|---|---|---|---|---|\n";
+    << "| case | g | end blocks (deg) | blocks next to them (deg) | midspan blocks (deg) "
+       "|\n|---|---|---|---|---|\n";
   for (const auto& r : runs) {
     if (r.result.levels.empty()) continue;
     const auto& lv = r.result.levels.back();
     const auto& b = lv.blocks;
     if (b.size() != 6) continue;
-    auto mean_abs = [&](std::size_t i, std::size_t j) { return 0.5 * kDeg * (std::abs(b[i].rotation) + std::abs(b[j].rotation)); };
-    o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.4f", mean_abs(0, 5)) << " | " << f("%.4f", mean_abs(1, 4))
-      << " | " << f("%.4f", mean_abs(2, 3)) << " |\n";
+    auto mean_abs = [&](std::size_t i, std::size_t j) {
+      return 0.5 * kDeg * (std::abs(b[i].rotation) + std::abs(b[j].rotation));
+    };
+    o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.4f", mean_abs(0, 5)) << " | "
+      << f("%.4f", mean_abs(1, 4)) << " | " << f("%.4f", mean_abs(2, 3)) << " |\n";
   }
 
   // Analytical solution.
   o << "\n## Analytical voussoir beam (Diederichs & Kaiser 1999) beside the DEM\n\n"
-    << "For the linear joints the rock-mass modulus of rigid blocks is E_rm = k_n s (s = 46 mm joint spacing). "
-       "The analytical beam has no preload and no abutment compliance, so its deflection is from zero load; the "
+    << "For the linear joints the rock-mass modulus of rigid blocks is E_rm = k_n s (s = 46 mm "
+       "joint spacing). "
+       "The analytical beam has no preload and no abutment compliance, so its deflection is from "
+       "zero load; the "
        "DEM's is from the 1 g preload.\n\n"
-    << "| case | g | E_rm (MPa) | analytic deflection (mm) | DEM deflection (mm) | analytic thrust (N) | DEM thrust (N) | "
+    << "| case | g | E_rm (MPa) | analytic deflection (mm) | DEM deflection (mm) | analytic thrust "
+       "(N) | DEM thrust (N) | "
        "analytic f_m (MPa) | DEM max σ_n (MPa) |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
     const auto* lin = std::get_if<LinearNormal>(&r.scenario.voussoir->law.normal);
@@ -240,24 +278,31 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
     def.rock_mass_modulus = rock_mass_modulus_rigid_blocks(lin->stiffness, v.block_length);
     def.width = v.block_width;
     const VoussoirResult a = solve_voussoir_beam(def);
-    o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.0f", 1e-6 * def.rock_mass_modulus) << " | ";
+    o << "| " << r.spec.id << " | " << lv.g_level << " | "
+      << f("%.0f", 1e-6 * def.rock_mass_modulus) << " | ";
     if (a.equilibrium) {
-      o << f("%.4f", 1e3 * a.equilibrium->midspan_deflection) << " | " << f("%.4f", 1e3 * lv.midspan_deflection)
-        << " | " << f("%.1f", a.equilibrium->thrust.value_or(0.0)) << " | " << f("%.1f", lv.thrust) << " | "
-        << f("%.3f", 1e-6 * a.equilibrium->max_stress) << " | " << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
+      o << f("%.4f", 1e3 * a.equilibrium->midspan_deflection) << " | "
+        << f("%.4f", 1e3 * lv.midspan_deflection) << " | "
+        << f("%.1f", a.equilibrium->thrust.value_or(0.0)) << " | " << f("%.1f", lv.thrust) << " | "
+        << f("%.3f", 1e-6 * a.equilibrium->max_stress) << " | "
+        << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
     } else {
-      o << "snap-through | " << f("%.4f", 1e3 * lv.midspan_deflection) << " | - | " << f("%.1f", lv.thrust)
-        << " | - | " << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
+      o << "snap-through | " << f("%.4f", 1e3 * lv.midspan_deflection) << " | - | "
+        << f("%.1f", lv.thrust) << " | - | " << f("%.3f", 1e-6 * lv.max_normal_stress) << " |\n";
     }
   }
 
   // The two contact modes side by side.
   if (!integrated.empty()) {
     o << "\n## Contact modes: point contact (boon2012) against face integration (-fi)\n\n"
-      << "Mode `face_integrated` integrates the joint law over the contact (closure linear over each cell of "
-         "the overlap's projection) and applies the resultant at the centre of pressure; mode `boon2012` "
-         "applies σ_n(δ) times the slice area at the analytic centre. Same beams, laws and loading.\n\n"
-      << "| case | g | thrust (N) point / fi | midspan deflection (mm) point / fi | lever arm z (mm) point / fi | "
+      << "Mode `face_integrated` integrates the joint law over the contact (closure linear over "
+         "each cell of "
+         "the overlap's projection) and applies the resultant at the centre of pressure; mode "
+         "`boon2012` "
+         "applies σ_n(δ) times the slice area at the analytic centre. Same beams, laws and "
+         "loading.\n\n"
+      << "| case | g | thrust (N) point / fi | midspan deflection (mm) point / fi | lever arm z "
+         "(mm) point / fi | "
          "midspan thrust point below top (mm) point / fi | end-block rotation (deg) point / fi | "
          "max σ_n (MPa) point (mean) / fi (peak) | fi hinge depth, midspan / abutment (mm) |\n"
       << "|---|---|---|---|---|---|---|---|---|\n";
@@ -274,39 +319,56 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
       };
       const std::size_t mid = b.joints.size() / 2;
       const double top_a = a != nullptr ? a->joints[mid].z : 0.0;
-      o << "| " << fi.base_id << " | " << b.g_level << " | " << pair(a ? a->thrust : 0, b.thrust, "%.1f") << " | "
+      o << "| " << fi.base_id << " | " << b.g_level << " | "
+        << pair(a ? a->thrust : 0, b.thrust, "%.1f") << " | "
         << pair(a ? 1e3 * a->midspan_deflection : 0, 1e3 * b.midspan_deflection, "%.4f") << " | "
         << pair(a ? 1e3 * a->lever_arm : 0, 1e3 * b.lever_arm, "%.2f") << " | "
         << pair(a ? -1e3 * top_a : 0, -1e3 * b.joints[mid].z, "%.2f") << " | "
-        << pair(a ? kDeg * std::abs(a->blocks.front().rotation) : 0, kDeg * std::abs(b.blocks.front().rotation), "%.4f")
-        << " | " << pair(a ? 1e-6 * a->max_normal_stress : 0, 1e-6 * b.max_normal_stress, "%.3f") << " | "
-        << f("%.1f", 1e3 * b.joints[mid].compressed_depth) << " / " << f("%.1f", 1e3 * b.joints.front().compressed_depth)
-        << " |\n";
+        << pair(a ? kDeg * std::abs(a->blocks.front().rotation) : 0,
+                kDeg * std::abs(b.blocks.front().rotation), "%.4f")
+        << " | " << pair(a ? 1e-6 * a->max_normal_stress : 0, 1e-6 * b.max_normal_stress, "%.3f")
+        << " | " << f("%.1f", 1e3 * b.joints[mid].compressed_depth) << " / "
+        << f("%.1f", 1e3 * b.joints.front().compressed_depth) << " |\n";
     }
     o << "\nThe midspan thrust point is measured from z = 0 (the undeformed top).\n\n"
-      << "**Which mode for face contacts.** Face integration is the consistent model of a compliant joint: the "
-         "stress at each point of the face follows the joint law, the resultant and its moment are exact for "
-         "the linear law, and the hinge depth and peak stress come out directly (a voussoir beam's crushing "
-         "check needs the peak, which the point contact's mean σ_n underestimates about twofold). The point "
-         "contact transmits moment only through the analytic centre's shift, which depends on the blocks' far "
-         "planes. `face_integrated` is therefore blockdem's default contact mode; the paper's case files set "
-         "`contact_mode = \"boon2012\"` to reproduce its method. Contacts where neither block presents a face to "
+      << "**Which mode for face contacts.** Face integration is the consistent model of a "
+         "compliant joint: the "
+         "stress at each point of the face follows the joint law, the resultant and its moment are "
+         "exact for "
+         "the linear law, and the hinge depth and peak stress come out directly (a voussoir beam's "
+         "crushing "
+         "check needs the peak, which the point contact's mean σ_n underestimates about twofold). "
+         "The point "
+         "contact transmits moment only through the analytic centre's shift, which depends on the "
+         "blocks' far "
+         "planes. `face_integrated` is therefore blockdem's default contact mode; the paper's case "
+         "files set "
+         "`contact_mode = \"boon2012\"` to reproduce its method. Contacts where neither block "
+         "presents a face to "
          "the contact plane (edge-to-edge, vertex-to-edge) use the point contact in both modes.\n";
   }
 
   // Differences and reasons.
   o << "\n## Where the numbers differ from the paper, and why we think they do\n\n"
-    << "- **No FLAC or experimental curves are available here**, so the Table 2 and 3 discrepancies cannot be "
+    << "- **No FLAC or experimental curves are available here**, so the Table 2 and 3 "
+       "discrepancies cannot be "
        "recomputed; the ratios above test the part of Table 3 that does not need them.\n"
-    << "- **Contact area of a partly open joint.** blockdem computes the slice area of the overlap exactly. The "
-       "paper's implementation ignored faces nearly parallel to the contact plane while tracing the polygon, so "
-       "a partly opened joint kept its full face area until the relative rotation passed about 2 mrad, which "
-       "makes its beam stiffer: expect blockdem's deflections to be larger than the paper's, most for the "
+    << "- **Contact area of a partly open joint.** blockdem computes the slice area of the overlap "
+       "exactly. The "
+       "paper's implementation ignored faces nearly parallel to the contact plane while tracing "
+       "the polygon, so "
+       "a partly opened joint kept its full face area until the relative rotation passed about 2 "
+       "mrad, which "
+       "makes its beam stiffer: expect blockdem's deflections to be larger than the paper's, most "
+       "for the "
        "half-block beam at 90 g, whose joints open furthest.\n"
-    << "- **Contact point depends on the blocks' whole shape.** The analytic centre counts every plane of both "
-       "blocks, so the abutment joints' thrust points (and with them the lever arm, thrust and deflection) "
+    << "- **Contact point depends on the blocks' whole shape.** The analytic centre counts every "
+       "plane of both "
+       "blocks, so the abutment joints' thrust points (and with them the lever arm, thrust and "
+       "deflection) "
        "depend on the abutments' size, which the paper does not give; ours are stated above.\n"
-    << "- **Plane motion.** See the model section: the point contact has no twisting stiffness, and the beam "
+    << "- **Plane motion.** See the model section: the point contact has no twisting stiffness, "
+       "and the beam "
        "is constrained to its plane.\n\n";
 
   o << "## Figures\n\n";
@@ -319,9 +381,11 @@ void write_boon2015_report(const std::filesystem::path& dir, const std::vector<B
   for (const auto& r : all_runs) {
     std::string per;
     for (auto s : r.result.steps_per_stage) per += (per.empty() ? "" : ", ") + std::to_string(s);
-    o << "| " << r.spec.id << " | " << r.result.steps << " | " << per << " | " << f("%.2f", r.result.wall_time) << " |\n";
+    o << "| " << r.spec.id << " | " << r.result.steps << " | " << per << " | "
+      << f("%.2f", r.result.wall_time) << " |\n";
   }
-  o << "\nTotal wall time " << f("%.2f", wall_time) << " s. Each case's outputs are in `<case>/` (history.csv, "
+  o << "\nTotal wall time " << f("%.2f", wall_time)
+    << " s. Each case's outputs are in `<case>/` (history.csv, "
        "joints.csv, blocks.csv, contacts.csv, summary.json, vtk/).\n";
 
   std::ofstream out(dir / "report.md");

@@ -48,8 +48,8 @@ CsvWriter& CsvWriter::cell(const std::string& value) {
 
 void CsvWriter::end_row() {
   if (in_row_ != columns_) {
-    throw std::logic_error(path_.string() + ": row has " + std::to_string(in_row_) + " cells, header has " +
-                           std::to_string(columns_));
+    throw std::logic_error(path_.string() + ": row has " + std::to_string(in_row_) +
+                           " cells, header has " + std::to_string(columns_));
   }
   out_ << "\n";
   in_row_ = 0;

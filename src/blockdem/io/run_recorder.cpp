@@ -155,8 +155,13 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(c->shear.force.y())
         .cell(c->shear.force.z())
         .cell(1e3 * c->shear.plastic_slip)
-        .cell(c->sliding ? 1 : 0).cell(c->integrated ? 1 : 0).cell(c->force_point.x()).cell(c->force_point.y())
-        .cell(c->force_point.z()).cell(1e6 * c->compressed_area).cell(1e-6 * c->peak_stress)
+        .cell(c->sliding ? 1 : 0)
+        .cell(c->integrated ? 1 : 0)
+        .cell(c->force_point.x())
+        .cell(c->force_point.y())
+        .cell(c->force_point.z())
+        .cell(1e6 * c->compressed_area)
+        .cell(1e-6 * c->peak_stress)
         .cell(1e3 * c->peak_closure);
     contacts_->end_row();
   }

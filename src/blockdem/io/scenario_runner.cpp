@@ -19,7 +19,8 @@ std::string fmt(const char* f, double v) {
 
 }  // namespace
 
-RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, const RunCallbacks& cb) {
+RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
+                       const RunCallbacks& cb) {
   const auto wall0 = std::chrono::steady_clock::now();
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
   RunResult res;
@@ -36,9 +37,12 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["blocks"] = world.blocks().size();
   summary["contact_mode"] = to_string(sc.settings.contact_mode);
   summary["citations"] = {
-      "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between convex "
-      "polygonal and polyhedral particles in the discrete element method. Computers and Geotechnics 44:73-82.",
-      "Boon C.W., Houlsby G.T., Utili S. (2015) DEM modelling of a jointed rock beam with emphasis on "
+      "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between "
+      "convex "
+      "polygonal and polyhedral particles in the discrete element method. Computers and "
+      "Geotechnics 44:73-82.",
+      "Boon C.W., Houlsby G.T., Utili S. (2015) DEM modelling of a jointed rock beam with emphasis "
+      "on "
       "interface properties. Geotechnique Letters 5:49-55.",
       "Cundall P.A. (1987) Distinct element models of rock and soil structure. In: Analytical and "
       "Computational Methods in Engineering Rock Mechanics, ch. 4 (local non-viscous damping)."};
@@ -49,13 +53,15 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     StageResult result;
     bool diverged = false;
     try {
-      result = run_stage(world, stage, [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
-        if (cb.progress) {
-          cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name + ": step " +
-                      std::to_string(k) + ", unbalanced " + fmt("%.2e", m.unbalanced_force_ratio) +
-                      ", KE ratio " + fmt("%.2e", m.kinetic_energy_ratio));
-        }
-      });
+      result = run_stage(world, stage,
+                         [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
+                           if (cb.progress) {
+                             cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) +
+                                         "] " + s.name + ": step " + std::to_string(k) +
+                                         ", unbalanced " + fmt("%.2e", m.unbalanced_force_ratio) +
+                                         ", KE ratio " + fmt("%.2e", m.kinetic_energy_ratio));
+                           }
+                         });
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
@@ -78,15 +84,17 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     if (beam && !diverged) {
       const double g_level = world.settings().gravity.norm() / kOneG;
       if (level == 0) reference = capture_reference(world);
-      const VoussoirLevel lv = measure_voussoir(world, *sc.voussoir, sc.voussoir_layout, reference, g_level);
+      const VoussoirLevel lv =
+          measure_voussoir(world, *sc.voussoir, sc.voussoir_layout, reference, g_level);
       beam_recorder->record(world, lv, stage.name, result.converged, result.steps, level);
       if (result.converged) res.levels.push_back(lv);
     }
     if (cb.stage_done) {
-      cb.stage_done("stage " + std::to_string(level + 1) + "/" + std::to_string(n) + " '" + stage.name +
-                    "': " + (result.converged ? "done" : (diverged ? "DIVERGED" : "NOT CONVERGED")) + " after " +
-                    std::to_string(result.steps) + " steps (unbalanced " +
-                    fmt("%.2e", result.measures.unbalanced_force_ratio) + ")");
+      cb.stage_done(
+          "stage " + std::to_string(level + 1) + "/" + std::to_string(n) + " '" + stage.name +
+          "': " + (result.converged ? "done" : (diverged ? "DIVERGED" : "NOT CONVERGED")) +
+          " after " + std::to_string(result.steps) + " steps (unbalanced " +
+          fmt("%.2e", result.measures.unbalanced_force_ratio) + ")");
     }
     if (diverged) {
       res.status = "diverged";
@@ -97,8 +105,11 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       res.status = "not_converged";
       res.message = "stage '" + stage.name + "': " + result.message;
       if (beam) {
-        res.message += res.levels.empty() ? "" : "; the beam lost equilibrium (snap-through or collapse); last stable level " +
-                                                     fmt("%g g", res.levels.back().g_level);
+        res.message +=
+            res.levels.empty()
+                ? ""
+                : "; the beam lost equilibrium (snap-through or collapse); last stable level " +
+                      fmt("%g g", res.levels.back().g_level);
       }
       break;
     }
@@ -116,7 +127,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   if (beam) {
     summary["voussoir"] = voussoir_summary(*sc.voussoir, res.levels);
     // The headline numbers at the top level too, as the contract asks.
-    for (const char* key : {"g_max", "thrust_N", "midspan_deflection_mm", "equilibrium_residual", "fits"}) {
+    for (const char* key :
+         {"g_max", "thrust_N", "midspan_deflection_mm", "equilibrium_residual", "fits"}) {
       if (summary["voussoir"].contains(key)) summary[key] = summary["voussoir"][key];
     }
     summary["lost_equilibrium"] = res.status != "completed";

@@ -18,12 +18,12 @@ struct RunResult {
   /// equilibrium / snap-through) or "diverged".
   std::string status = "completed";
   std::string message;
-  int exit_code = 0;               ///< 0 completed, 3 otherwise
-  nlohmann::json summary;          ///< what summary.json holds
+  int exit_code = 0;                  ///< 0 completed, 3 otherwise
+  nlohmann::json summary;             ///< what summary.json holds
   std::vector<VoussoirLevel> levels;  ///< voussoir runs: the converged levels, preload first
   std::vector<std::int64_t> steps_per_stage;
   std::int64_t steps = 0;
-  double wall_time = 0.0;          ///< (s)
+  double wall_time = 0.0;  ///< (s)
 };
 
 struct RunCallbacks {
@@ -38,6 +38,7 @@ struct RunCallbacks {
 /// converge or diverges ends the run: the outputs up to the last good state are kept and
 /// summary.json says what happened. Throws ScenarioError for input errors found while building
 /// (before anything is written).
-RunResult run_scenario(const Scenario& scenario, const std::filesystem::path& out, const RunCallbacks& callbacks = {});
+RunResult run_scenario(const Scenario& scenario, const std::filesystem::path& out,
+                       const RunCallbacks& callbacks = {});
 
 }  // namespace blockdem

@@ -12,47 +12,81 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, const World&) {
   history_ = std::make_unique<CsvWriter>(
       dir / "history.csv",
-      std::vector<std::string>{"level", "stage", "converged", "steps", "g_level", "thrust_N", "thrust_other_abutment_N",
-                               "midspan_deflection_mm", "abutment_slip_mm", "max_normal_stress_MPa",
-                               "equilibrium_residual", "lever_arm_mm", "beam_weight_N", "parabola_rms_mm",
-                               "parabola_thrust_N", "catenary_rms_mm", "catenary_thrust_N", "time_s"});
+      std::vector<std::string>{
+          "level", "stage", "converged", "steps", "g_level", "thrust_N", "thrust_other_abutment_N",
+          "midspan_deflection_mm", "abutment_slip_mm", "max_normal_stress_MPa",
+          "equilibrium_residual", "lever_arm_mm", "beam_weight_N", "parabola_rms_mm",
+          "parabola_thrust_N", "catenary_rms_mm", "catenary_thrust_N", "time_s"});
   blocks_ = std::make_unique<CsvWriter>(
-      dir / "blocks.csv", std::vector<std::string>{"level", "g_level", "block", "x_m", "z_m", "ux_mm", "uz_mm",
-                                                   "deflection_mm", "rotation_deg"});
+      dir / "blocks.csv",
+      std::vector<std::string>{"level", "g_level", "block", "x_m", "z_m", "ux_mm", "uz_mm",
+                               "deflection_mm", "rotation_deg"});
   joints_ = std::make_unique<CsvWriter>(
-      dir / "joints.csv",
-      std::vector<std::string>{"level", "g_level", "joint", "left_block", "right_block", "in_contact", "x_mm",
-                               "z_mm", "normal_force_N", "horizontal_force_N", "shear_force_N",
-                               "normal_stress_MPa", "peak_stress_MPa", "closure_mm", "area_mm2", "compressed_depth_mm",
-                               "plastic_slip_mm", "sliding"});
+      dir / "joints.csv", std::vector<std::string>{
+                              "level", "g_level", "joint", "left_block", "right_block",
+                              "in_contact", "x_mm", "z_mm", "normal_force_N", "horizontal_force_N",
+                              "shear_force_N", "normal_stress_MPa", "peak_stress_MPa", "closure_mm",
+                              "area_mm2", "compressed_depth_mm", "plastic_slip_mm", "sliding"});
 }
 
-void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const std::string& stage, bool converged,
-                              std::int64_t steps, int index) {
+void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const std::string& stage,
+                              bool converged, std::int64_t steps, int index) {
   const auto& blocks = world.blocks();
   const double nan = std::nan("");
   const bool fit = lv.fit.has_value();
-  history_->cell(index).cell(stage).cell(converged ? 1 : 0).cell(static_cast<long long>(steps)).cell(lv.g_level)
-      .cell(lv.thrust).cell(lv.thrust_left).cell(1e3 * lv.midspan_deflection).cell(1e3 * lv.abutment_slip)
-      .cell(1e-6 * lv.max_normal_stress).cell(lv.equilibrium_residual).cell(1e3 * lv.lever_arm).cell(lv.beam_weight)
-      .cell(fit ? 1e3 * lv.fit->parabola.rms_residual : nan).cell(fit ? lv.fit->parabola_thrust : nan)
-      .cell(fit ? 1e3 * lv.fit->catenary.rms_residual : nan).cell(fit ? lv.fit->catenary_thrust : nan)
+  history_->cell(index)
+      .cell(stage)
+      .cell(converged ? 1 : 0)
+      .cell(static_cast<long long>(steps))
+      .cell(lv.g_level)
+      .cell(lv.thrust)
+      .cell(lv.thrust_left)
+      .cell(1e3 * lv.midspan_deflection)
+      .cell(1e3 * lv.abutment_slip)
+      .cell(1e-6 * lv.max_normal_stress)
+      .cell(lv.equilibrium_residual)
+      .cell(1e3 * lv.lever_arm)
+      .cell(lv.beam_weight)
+      .cell(fit ? 1e3 * lv.fit->parabola.rms_residual : nan)
+      .cell(fit ? lv.fit->parabola_thrust : nan)
+      .cell(fit ? 1e3 * lv.fit->catenary.rms_residual : nan)
+      .cell(fit ? lv.fit->catenary_thrust : nan)
       .cell(world.time());
   history_->end_row();
   history_->flush();
   for (const auto& b : lv.blocks) {
     const Block& bl = blocks[b.index];
-    blocks_->cell(index).cell(lv.g_level).cell(bl.name).cell(bl.position.x()).cell(bl.position.z())
-        .cell(1e3 * b.ux).cell(1e3 * b.uz).cell(1e3 * b.deflection).cell(kRadToDeg * b.rotation);
+    blocks_->cell(index)
+        .cell(lv.g_level)
+        .cell(bl.name)
+        .cell(bl.position.x())
+        .cell(bl.position.z())
+        .cell(1e3 * b.ux)
+        .cell(1e3 * b.uz)
+        .cell(1e3 * b.deflection)
+        .cell(kRadToDeg * b.rotation);
     blocks_->end_row();
   }
   blocks_->flush();
   for (std::size_t k = 0; k < lv.joints.size(); ++k) {
     const auto& j = lv.joints[k];
-    joints_->cell(index).cell(lv.g_level).cell(static_cast<int>(k)).cell(blocks[j.left].name)
-        .cell(blocks[j.right].name).cell(j.in_contact ? 1 : 0).cell(1e3 * j.x).cell(1e3 * j.z).cell(j.normal_force)
-        .cell(j.horizontal_force).cell(j.shear_force).cell(1e-6 * j.normal_stress).cell(1e-6 * j.peak_stress)
-        .cell(1e3 * j.closure).cell(1e6 * j.area).cell(1e3 * j.compressed_depth).cell(1e3 * j.plastic_slip)
+    joints_->cell(index)
+        .cell(lv.g_level)
+        .cell(static_cast<int>(k))
+        .cell(blocks[j.left].name)
+        .cell(blocks[j.right].name)
+        .cell(j.in_contact ? 1 : 0)
+        .cell(1e3 * j.x)
+        .cell(1e3 * j.z)
+        .cell(j.normal_force)
+        .cell(j.horizontal_force)
+        .cell(j.shear_force)
+        .cell(1e-6 * j.normal_stress)
+        .cell(1e-6 * j.peak_stress)
+        .cell(1e3 * j.closure)
+        .cell(1e6 * j.area)
+        .cell(1e3 * j.compressed_depth)
+        .cell(1e3 * j.plastic_slip)
         .cell(j.sliding ? 1 : 0);
     joints_->end_row();
   }
@@ -78,19 +112,21 @@ nlohmann::json fit_json(const VoussoirLevel& lv) {
           {"load_per_unit_span_N_per_m", f.load_per_unit_span}};
 }
 
-nlohmann::json voussoir_summary(const VoussoirSpec& spec, const std::vector<VoussoirLevel>& levels) {
+nlohmann::json voussoir_summary(const VoussoirSpec& spec,
+                                const std::vector<VoussoirLevel>& levels) {
   nlohmann::json j;
-  j["beam"] = {{"blocks", spec.blocks},
-               {"block_length_m", spec.block_length},
-               {"block_width_m", spec.block_width},
-               {"block_depth_m", spec.block_depth},
-               {"span_m", spec.span()},
-               {"abutment_length_m", spec.abutment_length},
-               {"abutment_height_m", spec.abutment_height},
-               {"abutment_note", "fixed blocks, tops flush with the beam top, covering the end faces"},
-               {"density_kg_m3", spec.density},
-               {"preload_force_N", spec.preload_force},
-               {"servo_side", spec.servo_side}};
+  j["beam"] = {
+      {"blocks", spec.blocks},
+      {"block_length_m", spec.block_length},
+      {"block_width_m", spec.block_width},
+      {"block_depth_m", spec.block_depth},
+      {"span_m", spec.span()},
+      {"abutment_length_m", spec.abutment_length},
+      {"abutment_height_m", spec.abutment_height},
+      {"abutment_note", "fixed blocks, tops flush with the beam top, covering the end faces"},
+      {"density_kg_m3", spec.density},
+      {"preload_force_N", spec.preload_force},
+      {"servo_side", spec.servo_side}};
   if (levels.empty()) return j;
   const VoussoirLevel& last = levels.back();
   double worst = 0.0;

@@ -16,8 +16,8 @@ class VoussoirRecorder {
  public:
   VoussoirRecorder(const std::filesystem::path& dir, const World& world);
   /// Records one level; `converged` and `steps` come from the stage.
-  void record(const World& world, const VoussoirLevel& level, const std::string& stage, bool converged,
-              std::int64_t steps, int index);
+  void record(const World& world, const VoussoirLevel& level, const std::string& stage,
+              bool converged, std::int64_t steps, int index);
   const std::vector<VoussoirLevel>& levels() const { return levels_; }
 
  private:
@@ -29,6 +29,7 @@ class VoussoirRecorder {
 nlohmann::json fit_json(const VoussoirLevel& level);
 /// The voussoir part of summary.json: g_max (last stable level), thrust_N and
 /// midspan_deflection_mm at it, equilibrium_residual (largest over levels), fits, per-level arrays.
-nlohmann::json voussoir_summary(const VoussoirSpec& spec, const std::vector<VoussoirLevel>& stable_levels);
+nlohmann::json voussoir_summary(const VoussoirSpec& spec,
+                                const std::vector<VoussoirLevel>& stable_levels);
 
 }  // namespace blockdem

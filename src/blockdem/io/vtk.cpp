@@ -49,7 +49,8 @@ void write_vtk_blocks(const std::filesystem::path& path, const World& world) {
   out << "VECTORS displacement_m double\n";
   for (const auto& b : world.blocks()) {
     const Eigen::Vector3d d = b.position - b.initial_position;
-    for (std::size_t f = 0; f < b.shape.faces().size(); ++f) out << d.x() << " " << d.y() << " " << d.z() << "\n";
+    for (std::size_t f = 0; f < b.shape.faces().size(); ++f)
+      out << d.x() << " " << d.y() << " " << d.z() << "\n";
   }
 }
 

@@ -10,13 +10,20 @@ namespace {
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
   }
 }
 
@@ -31,7 +38,9 @@ std::optional<double> as_number(const toml::node& n) {
 CheckedTable::CheckedTable(const toml::table& table, std::string file, std::string path)
     : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
 
-bool CheckedTable::has(const std::string& key) const { return table_->contains(key); }
+bool CheckedTable::has(const std::string& key) const {
+  return table_->contains(key);
+}
 
 bool CheckedTable::is_string(const std::string& key) const {
   const toml::node* n = table_->get(key);
@@ -120,7 +129,8 @@ Eigen::Vector3d CheckedTable::vec3(const std::string& key, const Eigen::Vector3d
   return has(key) ? vec3(key) : (used_.insert(key), fallback);
 }
 
-std::vector<std::vector<double>> CheckedTable::rows(const std::string& key, std::size_t width) const {
+std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
+                                                    std::size_t width) const {
   const toml::node* n = get(key);
   if (n == nullptr) fail(key, "is required");
   const toml::array* a = n->as_array();
@@ -128,13 +138,17 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key, std:
   // width 0: the value itself is one row of three numbers (vec3).
   auto read_row = [&](const toml::array& row, std::size_t want, const std::string& where) {
     if (row.size() != want) {
-      fail(key, where + "must have " + std::to_string(want) + " numbers, got " + std::to_string(row.size()));
+      fail(key, where + "must have " + std::to_string(want) + " numbers, got " +
+                    std::to_string(row.size()));
     }
     std::vector<double> out;
     for (std::size_t i = 0; i < row.size(); ++i) {
       const auto v = as_number(*row.get(i));
-      if (!v) fail(key, where + "entry " + std::to_string(i + 1) + " must be a number, got " + type_name(*row.get(i)));
-      if (!std::isfinite(*v)) fail(key, where + "entry " + std::to_string(i + 1) + " must be finite");
+      if (!v)
+        fail(key, where + "entry " + std::to_string(i + 1) + " must be a number, got " +
+                      type_name(*row.get(i)));
+      if (!std::isfinite(*v))
+        fail(key, where + "entry " + std::to_string(i + 1) + " must be finite");
       out.push_back(*v);
     }
     return out;
@@ -147,7 +161,8 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key, std:
   for (std::size_t r = 0; r < a->size(); ++r) {
     const toml::array* row = a->get(r)->as_array();
     const std::string where = "row " + std::to_string(r + 1) + " ";
-    if (row == nullptr) fail(key, where + "must be an array of " + std::to_string(width) + " numbers");
+    if (row == nullptr)
+      fail(key, where + "must be an array of " + std::to_string(width) + " numbers");
     out.push_back(read_row(*row, width, where));
   }
   return out;
@@ -161,7 +176,9 @@ std::vector<double> CheckedTable::numbers(const std::string& key) const {
   std::vector<double> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto v = as_number(*a->get(i));
-    if (!v) fail(key, "entry " + std::to_string(i + 1) + " must be a number, got " + type_name(*a->get(i)));
+    if (!v)
+      fail(key,
+           "entry " + std::to_string(i + 1) + " must be a number, got " + type_name(*a->get(i)));
     if (!std::isfinite(*v)) fail(key, "entry " + std::to_string(i + 1) + " must be finite");
     out.push_back(*v);
   }
@@ -204,7 +221,8 @@ std::vector<CheckedTable> CheckedTable::tables(const std::string& key) const {
   return out;
 }
 
-std::map<std::string, double> CheckedTable::numbers_except(const std::set<std::string>& except) const {
+std::map<std::string, double> CheckedTable::numbers_except(
+    const std::set<std::string>& except) const {
   std::map<std::string, double> out;
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());

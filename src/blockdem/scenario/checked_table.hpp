@@ -2,12 +2,12 @@
 // impossible values become errors naming the file, the key and the reason.
 #pragma once
 
+#include <toml++/toml.h>
 #include <Eigen/Core>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <toml++/toml.h>
 #include <vector>
 
 namespace blockdem {
@@ -17,7 +17,9 @@ class ScenarioError : public std::runtime_error {
  public:
   ScenarioError(const std::string& file, const std::string& key, const std::string& reason)
       : std::runtime_error(file + ": " + (key.empty() ? std::string() : key + ": ") + reason),
-        file_(file), key_(key), reason_(reason) {}
+        file_(file),
+        key_(key),
+        reason_(reason) {}
   const std::string& file() const { return file_; }
   const std::string& key() const { return key_; }
   const std::string& reason() const { return reason_; }
@@ -32,7 +34,9 @@ class CheckedTable {
   CheckedTable(const toml::table& table, std::string file, std::string path);
 
   const std::string& file() const { return file_; }
-  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string key_path(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
   bool has(const std::string& key) const;
   bool is_string(const std::string& key) const;
 

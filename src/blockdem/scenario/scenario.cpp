@@ -23,19 +23,23 @@ void read_settings(const CheckedTable& t, WorldSettings& s) {
   if (!(s.damping >= 0.0 && s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
   // "auto" (the default) or a positive number of seconds.
   if (t.is_string("time_step")) {
-    if (t.string("time_step") != "auto") t.fail("time_step", "must be \"auto\" or a positive number of seconds");
+    if (t.string("time_step") != "auto")
+      t.fail("time_step", "must be \"auto\" or a positive number of seconds");
   } else if (t.has("time_step")) {
     s.time_step = t.positive("time_step", 0.0);
   }
   s.safety_factor = t.positive("safety_factor", s.safety_factor);
   if (s.safety_factor > 1.0) t.fail("safety_factor", "must be at most 1");
-  const std::string mode = t.choice("contact_mode", to_string(s.contact_mode), {"boon2012", "face_integrated"});
+  const std::string mode =
+      t.choice("contact_mode", to_string(s.contact_mode), {"boon2012", "face_integrated"});
   s.contact_mode = mode == "face_integrated" ? ContactMode::face_integrated : ContactMode::boon2012;
-  const double face_angle_deg = t.positive("face_angle_deg", s.face_contact.face_angle * 180.0 / kPi);
+  const double face_angle_deg =
+      t.positive("face_angle_deg", s.face_contact.face_angle * 180.0 / kPi);
   if (face_angle_deg >= 45.0) t.fail("face_angle_deg", "must be below 45 degrees");
   s.face_contact.face_angle = face_angle_deg * kPi / 180.0;
   s.boon2012.rounding_distance = t.positive("rounding_distance", s.boon2012.rounding_distance);
-  s.boon2012.overlap_tolerance = t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
+  s.boon2012.overlap_tolerance =
+      t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
   s.max_speed = t.positive("max_speed", s.max_speed);
   s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
   t.finish();
@@ -56,7 +60,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   if (t.has("material")) {
     const std::string m = t.string("material");
     auto it = materials.find(m);
-    if (it == materials.end()) t.fail("material", "no material named \"" + m + "\" in [[materials]]");
+    if (it == materials.end())
+      t.fail("material", "no material named \"" + m + "\" in [[materials]]");
     density = it->second;
     if (t.has("density")) t.fail("density", "give either material or density, not both");
   } else {
@@ -125,7 +130,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   for (const auto& dof : t.strings("blocked_dofs")) {
     static const std::vector<std::string> names = {"x", "y", "z", "rx", "ry", "rz"};
     const auto it = std::find(names.begin(), names.end(), dof);
-    if (it == names.end()) t.fail("blocked_dofs", "unknown degree of freedom \"" + dof + "\" (use x, y, z, rx, ry, rz)");
+    if (it == names.end())
+      t.fail("blocked_dofs", "unknown degree of freedom \"" + dof + "\" (use x, y, z, rx, ry, rz)");
     const int k = static_cast<int>(it - names.begin());
     if (k < 3) {
       b.blocked_translation[k] = true;
@@ -133,7 +139,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
       b.blocked_rotation[k - 3] = true;
     }
   }
-  if (motion != "servo" && t.has("servo")) t.fail("servo", "only a block with motion = \"servo\" takes a servo table");
+  if (motion != "servo" && t.has("servo"))
+    t.fail("servo", "only a block with motion = \"servo\" takes a servo table");
   t.finish();
   return b;
 }
@@ -225,7 +232,9 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   Stage s;
   s.name = t.string("name");
   const std::string kind = t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration"});
-  s.kind = kind == "steps" ? Stage::Kind::steps : kind == "duration" ? Stage::Kind::duration : Stage::Kind::equilibrium;
+  s.kind = kind == "steps"      ? Stage::Kind::steps
+           : kind == "duration" ? Stage::Kind::duration
+                                : Stage::Kind::equilibrium;
   if (t.has("gravity")) s.gravity = t.vec3("gravity");
   if (t.has("damping")) {
     s.damping = t.number("damping");
@@ -235,7 +244,8 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.kinetic_tolerance = t.positive("kinetic_tolerance", s.kinetic_tolerance);
   s.ramp_steps = t.integer("ramp_steps", s.ramp_steps);
   if (s.ramp_steps < 0) t.fail("ramp_steps", "must be zero or positive");
-  if (s.ramp_steps > 0 && !s.gravity) t.fail("ramp_steps", "a ramp needs a new gravity in this stage");
+  if (s.ramp_steps > 0 && !s.gravity)
+    t.fail("ramp_steps", "a ramp needs a new gravity in this stage");
   s.max_steps = t.integer("max_steps", s.max_steps);
   if (s.max_steps <= 0) t.fail("max_steps", "must be positive");
   s.min_steps = t.integer("min_steps", s.min_steps);
@@ -279,7 +289,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   } catch (const toml::parse_error& e) {
     std::ostringstream where;
     where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
-    throw ScenarioError(file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+    throw ScenarioError(
+        file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
   }
   const CheckedTable t(root, file, "");
   Scenario sc;
@@ -289,7 +300,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
 
   if (t.has("voussoir")) {
     for (const char* key : {"blocks", "stages", "joint_laws", "joints", "materials"}) {
-      if (t.has(key)) t.fail(key, "a [voussoir] scenario builds its own blocks, laws and stages; remove this");
+      if (t.has(key))
+        t.fail(key, "a [voussoir] scenario builds its own blocks, laws and stages; remove this");
     }
     sc.voussoir = read_voussoir(t.table("voussoir"));
     VoussoirModel m = build_voussoir(*sc.voussoir);
@@ -298,13 +310,15 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
       // run accepts (below max_overlap_fraction of a block's radius).
       const VoussoirSpec& v = *sc.voussoir;
       const double needed = v.preload_force / (v.block_width * v.block_depth);
-      const double max_closure = sc.settings.max_overlap_fraction * m.blocks[m.layout.beam.front()].shape.bounding_radius();
+      const double max_closure = sc.settings.max_overlap_fraction *
+                                 m.blocks[m.layout.beam.front()].shape.bounding_radius();
       const double available = normal_stress(v.law.normal, max_closure);
       if (!(needed < available)) {
         std::ostringstream msg;
         msg << "a preload of " << v.preload_force << " N needs a joint stress of " << needed
-            << " Pa, which the normal law reaches only beyond the largest closure a run accepts (" << max_closure
-            << " m, where it gives " << available << " Pa): the preload cannot be reached";
+            << " Pa, which the normal law reaches only beyond the largest closure a run accepts ("
+            << max_closure << " m, where it gives " << available
+            << " Pa): the preload cannot be reached";
         throw ScenarioError(file, "voussoir.preload_force", msg.str());
       }
     }
@@ -333,7 +347,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   std::map<std::string, int> law_index;
   for (const auto& l : t.tables("joint_laws")) {
     JointLaw law = read_joint_law(l);
-    if (law_index.count(law.name)) l.fail("name", "joint law \"" + law.name + "\" is defined twice");
+    if (law_index.count(law.name))
+      l.fail("name", "joint law \"" + law.name + "\" is defined twice");
     law_index[law.name] = static_cast<int>(sc.joint_laws.size());
     sc.joint_laws.push_back(std::move(law));
   }
@@ -351,15 +366,18 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   for (const auto& jt : t.tables("joints")) {
     JointRule r;
     const auto g = jt.strings("groups");
-    if (g.size() != 2) jt.fail("groups", "must name two block groups, e.g. [\"beam\", \"abutment\"]");
+    if (g.size() != 2)
+      jt.fail("groups", "must name two block groups, e.g. [\"beam\", \"abutment\"]");
     for (const auto& name : g) {
-      if (!name.empty() && !groups.count(name)) jt.fail("groups", "no block is in group \"" + name + "\"");
+      if (!name.empty() && !groups.count(name))
+        jt.fail("groups", "no block is in group \"" + name + "\"");
     }
     r.group_a = g[0];
     r.group_b = g[1];
     const std::string law = jt.string("law");
     auto it = law_index.find(law);
-    if (it == law_index.end()) jt.fail("law", "no joint law named \"" + law + "\" in [[joint_laws]]");
+    if (it == law_index.end())
+      jt.fail("law", "no joint law named \"" + law + "\" in [[joint_laws]]");
     r.law = it->second;
     jt.finish();
     sc.joint_rules.push_back(r);
@@ -369,7 +387,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
     sc.joint_rules.push_back(JointRule{"", "", 0});
   }
   if (sc.joint_rules.empty() && sc.blocks.size() > 1) {
-    t.fail("joints", "several joint laws and no [[joints]] rule saying which acts between which groups");
+    t.fail("joints",
+           "several joint laws and no [[joints]] rule saying which acts between which groups");
   }
 
   for (const auto& st : t.tables("stages")) sc.stages.push_back(read_stage(st, names));
@@ -403,9 +422,12 @@ World build_world(const Scenario& sc) {
     for (std::size_t j = i + 1; j < blocks.size(); ++j) {
       const Block& a = blocks[i];
       const Block& b = blocks[j];
-      if ((a.aabb_min.array() > b.aabb_max.array()).any() || (b.aabb_min.array() > a.aabb_max.array()).any()) continue;
+      if ((a.aabb_min.array() > b.aabb_max.array()).any() ||
+          (b.aabb_min.array() > a.aabb_max.array()).any())
+        continue;
       const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-      const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
+      const ContactGeometry g =
+          boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
       const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
       if (g.touching && g.overlap > sc.settings.max_overlap_fraction * size) {
         std::ostringstream s;

@@ -18,7 +18,7 @@ struct OutputSpec {
 };
 
 struct Scenario {
-  std::string file;   ///< where it was read from
+  std::string file;  ///< where it was read from
   std::string title;
   WorldSettings settings;
   std::vector<Block> blocks;

@@ -11,7 +11,8 @@ void VoussoirSpec::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
   if (blocks < 1) fail("blocks: a beam needs at least one block, got " + std::to_string(blocks));
   auto positive = [&](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v)) fail(std::string(name) + ": must be positive, got " + std::to_string(v));
+    if (!(v > 0.0) || !std::isfinite(v))
+      fail(std::string(name) + ": must be positive, got " + std::to_string(v));
   };
   positive(block_length, "block_length");
   positive(block_width, "block_width");
@@ -30,7 +31,8 @@ void VoussoirSpec::validate() const {
   if (g_levels.empty()) fail("g_levels: at least one gravity level after the preload is needed");
   double previous = 1.0;
   for (double g : g_levels) {
-    if (!(g >= 1.0) || !std::isfinite(g)) fail("g_levels: every level must be at least 1 g, got " + std::to_string(g));
+    if (!(g >= 1.0) || !std::isfinite(g))
+      fail("g_levels: every level must be at least 1 g, got " + std::to_string(g));
     if (g < previous) fail("g_levels: levels must not decrease");
     previous = g;
   }
@@ -55,8 +57,8 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
   const double ha = spec.abutment_height;
   Block left = make_block(box({-spec.abutment_length, -w / 2, -ha}, {0, w / 2, 0}), spec.density,
                           "abutment_left", "abutment");
-  Block right = make_block(box({s, -w / 2, -ha}, {s + spec.abutment_length, w / 2, 0}), spec.density,
-                           "abutment_right", "abutment");
+  Block right = make_block(box({s, -w / 2, -ha}, {s + spec.abutment_length, w / 2, 0}),
+                           spec.density, "abutment_right", "abutment");
   left.motion = Motion::fixed;
   right.motion = Motion::fixed;
   auto make_servo = [&](Block& b, double direction) {
@@ -75,7 +77,8 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
     const double x0 = i * spec.block_length;
     char name[32];
     std::snprintf(name, sizeof name, "block_%d", i + 1);
-    Block b = make_block(box({x0, -w / 2, -t}, {x0 + spec.block_length, w / 2, 0}), spec.density, name, "beam");
+    Block b = make_block(box({x0, -w / 2, -t}, {x0 + spec.block_length, w / 2, 0}), spec.density,
+                         name, "beam");
     if (spec.plane_motion) {
       b.blocked_translation = {false, true, false};
       b.blocked_rotation = {true, false, true};

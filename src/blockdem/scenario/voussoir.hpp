@@ -16,22 +16,22 @@ inline constexpr double kOneG = 9.81;
 /// A jointed beam: x along the span, y across, z up; the beam's top at z = 0, its left end at
 /// x = 0. Defaults: the paper's full-block beam (Talesnick et al. 2007 centrifuge model).
 struct VoussoirSpec {
-  int blocks = 6;                  ///< number of beam blocks (-)
-  double block_length = 0.046;     ///< along the span (m)
-  double block_width = 0.046;      ///< across the span (m)
-  double block_depth = 0.046;      ///< beam depth T (m)
-  double abutment_length = 0.060;  ///< abutment size along the span (m)
-  double abutment_height = 0.100;  ///< abutment height; tops flush with the beam top (m)
-  double density = 1207.0;         ///< (kg/m^3), the paper's Table 1
-  double preload_force = 60.0;     ///< horizontal thrust applied by the servo at 1 g (N)
-  double preload_tolerance = 0.01; ///< servo settles within this fraction of preload_force (-)
+  int blocks = 6;                   ///< number of beam blocks (-)
+  double block_length = 0.046;      ///< along the span (m)
+  double block_width = 0.046;       ///< across the span (m)
+  double block_depth = 0.046;       ///< beam depth T (m)
+  double abutment_length = 0.060;   ///< abutment size along the span (m)
+  double abutment_height = 0.100;   ///< abutment height; tops flush with the beam top (m)
+  double density = 1207.0;          ///< (kg/m^3), the paper's Table 1
+  double preload_force = 60.0;      ///< horizontal thrust applied by the servo at 1 g (N)
+  double preload_tolerance = 0.01;  ///< servo settles within this fraction of preload_force (-)
   std::vector<double> g_levels = {2, 5, 10, 15, 20, 25, 30, 35, 40};  ///< after the 1 g preload
   /// Which abutment moves under servo control during the preload: "both" (default: the two move
   /// symmetrically, so the beam is loaded symmetrically), "left" or "right" (one moves, as in
   /// the centrifuge test; its push leaves a small path-dependent asymmetry in how the beam's
   /// weight is shared between the abutments).
   std::string servo_side = "both";
-  JointLaw law;                      ///< joint law of every joint (beam and abutments)
+  JointLaw law;  ///< joint law of every joint (beam and abutments)
   /// Beam blocks move in the x-z plane only (no y translation, no rotation about x or z): the
   /// centrifuge model is a plane problem. The point contact of mode boon2012 transmits no
   /// twisting moment, so without this constraint out-of-plane modes are unresisted.

@@ -22,7 +22,8 @@ void Stage::validate() const {
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
   for (const auto& s : servos) {
-    if (!(s.target_force >= 0.0) || !std::isfinite(s.target_force)) fail("servo target_force must be >= 0");
+    if (!(s.target_force >= 0.0) || !std::isfinite(s.target_force))
+      fail("servo target_force must be >= 0");
     if (s.axis && std::abs(s.axis->norm() - 1.0) > 1e-9) fail("servo axis must be a unit vector");
   }
 }
@@ -31,7 +32,8 @@ bool servos_settled(const World& world) {
   for (const auto& b : world.blocks()) {
     if (b.motion != Motion::servo || b.servo.hold) continue;
     const double reaction = -b.contact_force.dot(b.servo.axis);
-    if (std::abs(reaction - b.servo.target_force) > b.servo.tolerance * b.servo.target_force) return false;
+    if (std::abs(reaction - b.servo.target_force) > b.servo.tolerance * b.servo.target_force)
+      return false;
   }
   return true;
 }
@@ -43,7 +45,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   if (stage.damping) world.settings().damping = *stage.damping;
   for (const auto& cmd : stage.servos) {
     const int i = world.find_block(cmd.block);
-    if (i < 0) throw std::invalid_argument("stage '" + stage.name + "': no block named '" + cmd.block + "'");
+    if (i < 0)
+      throw std::invalid_argument("stage '" + stage.name + "': no block named '" + cmd.block + "'");
     Block& b = world.blocks()[i];
     b.motion = Motion::servo;
     b.servo.hold = false;
@@ -52,7 +55,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   }
   for (const auto& name : stage.hold) {
     const int i = world.find_block(name);
-    if (i < 0) throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
+    if (i < 0)
+      throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
     world.blocks()[i].servo.hold = true;
   }
   world.save_checkpoint();

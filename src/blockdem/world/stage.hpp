@@ -15,7 +15,7 @@ namespace blockdem {
 /// A change of a servo block's target at the start of a stage.
 struct ServoCommand {
   std::string block;
-  double target_force = 0.0;  ///< (N)
+  double target_force = 0.0;            ///< (N)
   std::optional<Eigen::Vector3d> axis;  ///< unit direction of travel; unchanged when absent
 };
 
@@ -29,10 +29,10 @@ struct Stage {
   /// start of the stage (0: at once). A ramp keeps a loading step quasi-static: a sudden jump
   /// sends a transient through the joints that can make them slip.
   std::int64_t ramp_steps = 0;
-  std::optional<double> damping;           ///< new local damping from this stage on (-)
-  std::vector<ServoCommand> servos;        ///< servo targets set at the stage start
-  std::vector<std::string> hold;           ///< servo blocks stopped (held in place) at the start
-  bool hold_servos_after = false;          ///< stop every servo block when the stage ends
+  std::optional<double> damping;     ///< new local damping from this stage on (-)
+  std::vector<ServoCommand> servos;  ///< servo targets set at the stage start
+  std::vector<std::string> hold;     ///< servo blocks stopped (held in place) at the start
+  bool hold_servos_after = false;    ///< stop every servo block when the stage ends
 
   // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
   // every active servo is within its force tolerance.
@@ -40,10 +40,10 @@ struct Stage {
   double kinetic_tolerance = 1e-8;     ///< on EquilibriumMeasures::kinetic_energy_ratio (-)
   std::int64_t max_steps = 500000;     ///< a stage that needs more has not converged
   std::int64_t min_steps = 10;
-  std::int64_t check_interval = 10;    ///< steps between convergence checks
+  std::int64_t check_interval = 10;  ///< steps between convergence checks
 
-  std::int64_t steps = 0;   ///< Kind::steps
-  double duration = 0.0;    ///< Kind::duration (s)
+  std::int64_t steps = 0;  ///< Kind::steps
+  double duration = 0.0;   ///< Kind::duration (s)
 
   /// Throws std::invalid_argument naming the field if a value is unusable.
   void validate() const;
@@ -51,11 +51,11 @@ struct Stage {
 
 struct StageResult {
   std::string name;
-  bool converged = false;       ///< equilibrium reached (always true for steps/duration stages)
-  std::int64_t steps = 0;       ///< steps taken in the stage
-  double time = 0.0;            ///< world time at the end (s)
+  bool converged = false;  ///< equilibrium reached (always true for steps/duration stages)
+  std::int64_t steps = 0;  ///< steps taken in the stage
+  double time = 0.0;       ///< world time at the end (s)
   EquilibriumMeasures measures;
-  std::string message;          ///< why the stage did not converge, empty otherwise
+  std::string message;  ///< why the stage did not converge, empty otherwise
 };
 
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).

@@ -26,19 +26,24 @@ const char* to_string(ContactMode mode) {
 void WorldSettings::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
   if (!gravity.allFinite()) fail("gravity must be finite");
-  if (!(damping >= 0.0 && damping < 1.0)) fail("damping must be in [0, 1), got " + std::to_string(damping));
-  if (!(time_step >= 0.0) || !std::isfinite(time_step)) fail("time_step must be >= 0 (0: automatic)");
+  if (!(damping >= 0.0 && damping < 1.0))
+    fail("damping must be in [0, 1), got " + std::to_string(damping));
+  if (!(time_step >= 0.0) || !std::isfinite(time_step))
+    fail("time_step must be >= 0 (0: automatic)");
   if (!(safety_factor > 0.0 && safety_factor <= 1.0)) fail("safety_factor must be in (0, 1]");
   if (!(boon2012.rounding_distance > 0.0)) fail("rounding_distance must be positive");
   if (!(max_speed > 0.0)) fail("max_speed must be positive");
   if (!(max_overlap_fraction > 0.0)) fail("max_overlap_fraction must be positive");
 }
 
-World::World(WorldSettings settings) : settings_(std::move(settings)) { settings_.validate(); }
+World::World(WorldSettings settings) : settings_(std::move(settings)) {
+  settings_.validate();
+}
 
 int World::add_block(Block block) {
   block.index = static_cast<int>(blocks_.size());
-  if (block.motion == Motion::free) block.angular_momentum = block.world_inertia() * block.angular_velocity;
+  if (block.motion == Motion::free)
+    block.angular_momentum = block.world_inertia() * block.angular_velocity;
   block.update_world_geometry();
   blocks_.push_back(std::move(block));
   return blocks_.back().index;
@@ -115,7 +120,8 @@ double World::a_priori_time_step() const {
   for (const auto& b : blocks_) {
     if (!b.is_dynamic()) continue;
     double area = 0.0;
-    for (int f = 0; f < static_cast<int>(b.shape.faces().size()); ++f) area = std::max(area, b.shape.face_area(f));
+    for (int f = 0; f < static_cast<int>(b.shape.faces().size()); ++f)
+      area = std::max(area, b.shape.face_area(f));
     const double k = k_law * area;
     const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
     dt = std::min(dt, std::sqrt(b.mass / k));
@@ -137,13 +143,13 @@ double World::next_time_step() const {
 
 void World::compute_contacts(double dt) {
   // Broad phase: pairs where at least one block can move and a joint law applies.
-  broad_phase_.find_pairs(box_min_, box_max_,
-                          [&](int a, int b) {
-                            return (blocks_[a].motion != Motion::fixed ||
-                                    blocks_[b].motion != Motion::fixed) &&
-                                   (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
-                          },
-                          pairs_);
+  broad_phase_.find_pairs(
+      box_min_, box_max_,
+      [&](int a, int b) {
+        return (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
+               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
+      },
+      pairs_);
 
   stiffness_.assign(blocks_.size(), 0.0);
   rotational_stiffness_.assign(blocks_.size(), 0.0);
@@ -159,8 +165,8 @@ void World::compute_contacts(double dt) {
     Contact fresh;
     Contact& c = it != contacts_.end() ? it->second : fresh;
     const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-    ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent,
-                                         settings_.boon2012, &c.narrow_cache);
+    ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012,
+                                         &c.narrow_cache);
     if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) continue;
     if (it == contacts_.end()) {
       fresh.a = ia;
@@ -177,13 +183,14 @@ void World::compute_contacts(double dt) {
     // the contact, acting at the centre of pressure (section 3).
     ct.integrated = false;
     if (settings_.contact_mode == ContactMode::face_integrated) {
-      const FaceContactGeometry fc = face_contact_geometry(a.world_planes, b.world_planes, ct.geometry.point, n,
-                                                           extent, settings_.face_contact);
+      const FaceContactGeometry fc = face_contact_geometry(
+          a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
       if (fc.face_type) {
         double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
         Eigen::Vector3d moment = Eigen::Vector3d::Zero();
         for (const auto& cell : fc.cells) {
-          const PolygonStressResultant r = integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
+          const PolygonStressResultant r =
+              integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
           force += r.force;
           compressed += r.compressed_area;
           peak = std::max(peak, r.peak_stress);
@@ -219,8 +226,8 @@ void World::compute_contacts(double dt) {
     if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
     const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
     ShearIncrement inc;
-    inc.displacement = ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt)
-                                      : Eigen::Vector3d::Zero();
+    inc.displacement =
+        ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt) : Eigen::Vector3d::Zero();
     inc.normal_force = ct.normal_force;
     inc.normal_stress = ct.normal_stress;
     inc.contact_area = ct.compressed_area;
@@ -300,7 +307,8 @@ void World::check_divergence() {
   }
   if (why.str().empty()) {
     for (const auto& [key, c] : contacts_) {
-      const double size = std::min(blocks_[c.a].shape.bounding_radius(), blocks_[c.b].shape.bounding_radius());
+      const double size =
+          std::min(blocks_[c.a].shape.bounding_radius(), blocks_[c.b].shape.bounding_radius());
       if (c.geometry.overlap > settings_.max_overlap_fraction * size) {
         why << "blocks '" << blocks_[c.a].name << "' and '" << blocks_[c.b].name << "' overlap by "
             << c.geometry.overlap << " m, more than " << settings_.max_overlap_fraction
@@ -314,9 +322,11 @@ void World::check_divergence() {
     const double failed_time = time_;
     restore_checkpoint();
     std::ostringstream msg;
-    msg << "the run diverged at step " << failed_step << " (t = " << failed_time << " s): " << why.str()
-        << ". The world was reset to its last good state (step " << step_count_
-        << "). Try a smaller safety_factor or time_step, more damping, or check the joint stiffness.";
+    msg << "the run diverged at step " << failed_step << " (t = " << failed_time
+        << " s): " << why.str() << ". The world was reset to its last good state (step "
+        << step_count_
+        << "). Try a smaller safety_factor or time_step, more damping, or check the joint "
+           "stiffness.";
     throw DivergenceError(msg.str());
   }
 }
@@ -326,7 +336,8 @@ void World::step() {
   const double dt = next_time_step();
   update_geometry();
   for (auto& b : blocks_) {
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force) : Eigen::Vector3d::Zero();
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
+                             : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   }
@@ -347,7 +358,8 @@ EquilibriumMeasures World::equilibrium() const {
     contact_sum += c.force_on_b().norm();
     energy += 0.5 * c.normal_force * c.geometry.overlap;
   }
-  m.mean_contact_force = contacts_.empty() ? 0.0 : contact_sum / static_cast<double>(contacts_.size());
+  m.mean_contact_force =
+      contacts_.empty() ? 0.0 : contact_sum / static_cast<double>(contacts_.size());
   double unbalanced = 0.0;
   int free_blocks = 0;
   for (const auto& b : blocks_) {
@@ -363,8 +375,9 @@ EquilibriumMeasures World::equilibrium() const {
   } else {
     m.unbalanced_force_ratio = unbalanced > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
   }
-  m.kinetic_energy_ratio = energy > 0.0 ? m.kinetic_energy / energy
-                                        : (m.kinetic_energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  m.kinetic_energy_ratio =
+      energy > 0.0 ? m.kinetic_energy / energy
+                   : (m.kinetic_energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   return m;
 }
 
@@ -372,8 +385,9 @@ void World::save_checkpoint() {
   checkpoint_.blocks.resize(blocks_.size());
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& b = blocks_[i];
-    checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
-                             b.orientation, b.motion, b.servo};
+    checkpoint_.blocks[i] = {
+        b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation,
+        b.motion,   b.servo};
   }
   checkpoint_.contacts = contacts_;
   checkpoint_.time = time_;

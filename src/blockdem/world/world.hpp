@@ -22,7 +22,7 @@ namespace blockdem {
 
 /// How contacts are detected and turned into forces.
 enum class ContactMode {
-  boon2012,         ///< point contact of Boon et al. (2012): analytic centre, slice area (the paper)
+  boon2012,  ///< point contact of Boon et al. (2012): analytic centre, slice area (the paper)
   face_integrated,  ///< the joint law integrated over the contact (DESIGN section 3)
 };
 
@@ -46,9 +46,9 @@ struct JointRule {
 
 struct WorldSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< (m/s^2)
-  double damping = 0.0;              ///< Cundall local damping coefficient α in [0, 1) (-)
-  double time_step = 0.0;            ///< fixed time step (s); 0 = automatic
-  double safety_factor = 0.3;        ///< automatic step = factor · sqrt(m / K) (-)
+  double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
+  double time_step = 0.0;      ///< fixed time step (s); 0 = automatic
+  double safety_factor = 0.3;  ///< automatic step = factor · sqrt(m / K) (-)
   ContactMode contact_mode = ContactMode::face_integrated;
   Boon2012Settings boon2012;
   FaceContactSettings face_contact;
@@ -106,9 +106,9 @@ class World {
   /// Advances one time step. Throws DivergenceError (after restoring the last good state).
   void step();
 
-  double time() const { return time_; }                   ///< (s)
+  double time() const { return time_; }  ///< (s)
   std::int64_t step_count() const { return step_count_; }
-  double last_time_step() const { return last_dt_; }      ///< (s)
+  double last_time_step() const { return last_dt_; }  ///< (s)
   /// The step the next call of step() will take (s).
   double next_time_step() const;
 

@@ -32,7 +32,8 @@ TEST(Polyhedron, FacesAreCounterClockwiseAboutOutwardNormal) {
   const Polyhedron p = Polyhedron::box({1, 2, 3});
   for (const auto& f : p.faces()) {
     const auto& v = p.vertices();
-    const Eigen::Vector3d n = (v[f.vertices[1]] - v[f.vertices[0]]).cross(v[f.vertices[2]] - v[f.vertices[1]]);
+    const Eigen::Vector3d n =
+        (v[f.vertices[1]] - v[f.vertices[0]]).cross(v[f.vertices[2]] - v[f.vertices[1]]);
     EXPECT_GT(n.dot(p.planes()[f.plane].normal), 0.0);
   }
   double area = 0;
@@ -62,7 +63,8 @@ TEST(Polyhedron, TetrahedronFromVerticesMatchesClosedForm) {
 
 TEST(Polyhedron, RotatedTranslatedBoxKeepsMassProperties) {
   const Polyhedron p = Polyhedron::box({0.2, 0.4, 0.6});
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(1.5, -2.0, 0.25);
   const Polyhedron q = p.transformed(r, t);
   EXPECT_NEAR(q.volume(), p.volume(), 1e-14);
@@ -80,7 +82,8 @@ TEST(Polyhedron, RedundantPlanesAreDropped) {
 }
 
 TEST(Polyhedron, CutCornerPrismHasExactVolume) {
-  // Unit cube with the corner x + y > 1.5 cut off: removes a prism of volume 0.5·0.5·0.5/2·... = 0.125.
+  // Unit cube with the corner x + y > 1.5 cut off: removes a prism of volume 0.5·0.5·0.5/2·... =
+  // 0.125.
   std::vector<Halfspace> planes = Polyhedron::box({1, 1, 1}).planes();
   for (auto& h : planes) h.offset += h.normal.dot(Eigen::Vector3d(0.5, 0.5, 0.5));  // cube [0,1]^3
   planes.push_back(Halfspace{Eigen::Vector3d(1, 1, 0).normalized(), 1.5 / std::sqrt(2.0)});
@@ -99,46 +102,60 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
     }
   };
   // Unbounded: a box without its top.
-  expect_error([] {
-    auto planes = Polyhedron::box({1, 1, 1}).planes();
-    planes.erase(planes.begin() + 4);
-    return Polyhedron::from_planes(planes);
-  }, "unbounded");
+  expect_error(
+      [] {
+        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        planes.erase(planes.begin() + 4);
+        return Polyhedron::from_planes(planes);
+      },
+      "unbounded");
   // Empty: x <= -1 and x >= 1.
-  expect_error([] {
-    auto planes = Polyhedron::box({1, 1, 1}).planes();
-    planes.push_back(Halfspace{Eigen::Vector3d::UnitX(), -1.0});
-    return Polyhedron::from_planes(planes);
-  }, "empty");
+  expect_error(
+      [] {
+        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        planes.push_back(Halfspace{Eigen::Vector3d::UnitX(), -1.0});
+        return Polyhedron::from_planes(planes);
+      },
+      "empty");
   // Zero volume: a box of zero height.
   expect_error([] { return Polyhedron::box({1, 1, 0}); }, "positive");
-  expect_error([] {
-    auto planes = Polyhedron::box({1, 1, 1}).planes();
-    planes[4].offset = -0.5;  // top plane at z = -0.5 meets the bottom
-    return Polyhedron::from_planes(planes);
-  }, "volume");
+  expect_error(
+      [] {
+        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        planes[4].offset = -0.5;  // top plane at z = -0.5 meets the bottom
+        return Polyhedron::from_planes(planes);
+      },
+      "volume");
   // Non-unit and NaN normals.
-  expect_error([] {
-    auto planes = Polyhedron::box({1, 1, 1}).planes();
-    planes[0].normal *= 2.0;
-    return Polyhedron::from_planes(planes);
-  }, "unit");
-  expect_error([] {
-    auto planes = Polyhedron::box({1, 1, 1}).planes();
-    planes[0].offset = std::nan("");
-    return Polyhedron::from_planes(planes);
-  }, "NaN");
+  expect_error(
+      [] {
+        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        planes[0].normal *= 2.0;
+        return Polyhedron::from_planes(planes);
+      },
+      "unit");
+  expect_error(
+      [] {
+        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        planes[0].offset = std::nan("");
+        return Polyhedron::from_planes(planes);
+      },
+      "NaN");
   // Non-convex vertex list: a cube's corners plus its centre.
-  expect_error([] {
-    std::vector<Eigen::Vector3d> pts;
-    for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    pts.emplace_back(0.5, 0.5, 0.5);
-    return Polyhedron::from_vertices(pts);
-  }, "not convex");
-  expect_error([] {
-    std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
-    return Polyhedron::from_vertices(pts);
-  }, "flat");
+  expect_error(
+      [] {
+        std::vector<Eigen::Vector3d> pts;
+        for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        pts.emplace_back(0.5, 0.5, 0.5);
+        return Polyhedron::from_vertices(pts);
+      },
+      "not convex");
+  expect_error(
+      [] {
+        std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+        return Polyhedron::from_vertices(pts);
+      },
+      "flat");
 }
 
 }  // namespace

@@ -81,41 +81,52 @@ TEST_P(ScenarioErrorCases, NamesFileKeyAndReason) {
 INSTANTIATE_TEST_SUITE_P(
     Bad, ScenarioErrorCases,
     ::testing::Values(
-        BadCase{"unknown_key", replace(kGood, "density = 2600", "density = 2600\ndensty = 1"), "materials[1].densty",
-                "unknown key"},
-        BadCase{"wrong_type", replace(kGood, "density = 2600", "density = \"heavy\""), "materials[1].density",
-                "must be a number"},
-        BadCase{"negative_density", replace(kGood, "density = 2600", "density = -5"), "materials[1].density",
-                "positive"},
+        BadCase{"unknown_key", replace(kGood, "density = 2600", "density = 2600\ndensty = 1"),
+                "materials[1].densty", "unknown key"},
+        BadCase{"wrong_type", replace(kGood, "density = 2600", "density = \"heavy\""),
+                "materials[1].density", "must be a number"},
+        BadCase{"negative_density", replace(kGood, "density = 2600", "density = -5"),
+                "materials[1].density", "positive"},
         BadCase{"non_convex_vertices",
                 replace(kGood, "size = [0.2, 0.2, 0.2]\nposition = [0, 0, 0.1]",
-                        "shape = \"vertices\"\nvertices = [[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],"
+                        "shape = \"vertices\"\nvertices = "
+                        "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],"
                         "[1,1,1],[0.5,0.5,0.5]]\nposition = [-0.5, -0.5, 0.0]"),
                 "blocks[2].vertices", "not convex"},
         BadCase{"unbounded_planes",
                 replace(kGood, "size = [0.2, 0.2, 0.2]\nposition = [0, 0, 0.1]",
-                        "shape = \"planes\"\nplanes = [[1,0,0,0.1],[-1,0,0,0.1],[0,1,0,0.1],[0,-1,0,0.1],[0,0,-1,0]]"),
+                        "shape = \"planes\"\nplanes = "
+                        "[[1,0,0,0.1],[-1,0,0,0.1],[0,1,0,0.1],[0,-1,0,0.1],[0,0,-1,0]]"),
                 "blocks[2].planes", "unbounded"},
-        BadCase{"deep_overlap", replace(kGood, "position = [0, 0, 0.1]", "position = [0, 0, 0.0]"), "blocks[2]",
-                "overlap"},
-        BadCase{"unknown_motion", replace(kGood, "motion = \"fixed\"", "motion = \"frozen\""), "blocks[1].motion",
-                "must be one of"},
-        BadCase{"bad_friction", replace(kGood, "friction_deg = 30", "friction_deg = 95"), "joint_laws[1].shear.law",
-                "friction"},
+        BadCase{"deep_overlap", replace(kGood, "position = [0, 0, 0.1]", "position = [0, 0, 0.0]"),
+                "blocks[2]", "overlap"},
+        BadCase{"unknown_motion", replace(kGood, "motion = \"fixed\"", "motion = \"frozen\""),
+                "blocks[1].motion", "must be one of"},
+        BadCase{"bad_friction", replace(kGood, "friction_deg = 30", "friction_deg = 95"),
+                "joint_laws[1].shear.law", "friction"},
         BadCase{"negative_stiffness", replace(kGood, "stiffness = 1e10", "stiffness = -1e10"),
                 "joint_laws[1].normal.law", "stiffness"},
-        BadCase{"unknown_material", replace(kGood, "material = \"rock\"\nsize = [0.2", "material = \"granite\"\nsize = [0.2"),
+        BadCase{"unknown_material",
+                replace(kGood, "material = \"rock\"\nsize = [0.2",
+                        "material = \"granite\"\nsize = [0.2"),
                 "blocks[2].material", "no material"},
         BadCase{"syntax", replace(kGood, "[[stages]]", "[[stages]"), "", "syntax"},
-        BadCase{"no_stages", std::string(kGood).substr(0, std::string(kGood).find("[[stages]]")), "stages", "at least one"},
-        BadCase{"voussoir_zero_blocks", "[voussoir]\nblocks = 0\nnormal = {law=\"linear\"}\nshear = {law=\"linear\"}\n",
+        BadCase{"no_stages", std::string(kGood).substr(0, std::string(kGood).find("[[stages]]")),
+                "stages", "at least one"},
+        BadCase{"voussoir_zero_blocks",
+                "[voussoir]\nblocks = 0\nnormal = {law=\"linear\"}\nshear = {law=\"linear\"}\n",
                 "voussoir.blocks", "at least one"},
-        BadCase{"voussoir_negative_size", "[voussoir]\nblock_depth = -0.02\nnormal = {law=\"linear\"}\nshear = {law=\"linear\"}\n",
+        BadCase{"voussoir_negative_size",
+                "[voussoir]\nblock_depth = -0.02\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
                 "voussoir.block_depth", "positive"},
-        BadCase{"voussoir_g_below_1", "[voussoir]\ng_levels = [0.5, 2]\nnormal = {law=\"linear\"}\nshear = {law=\"linear\"}\n",
+        BadCase{"voussoir_g_below_1",
+                "[voussoir]\ng_levels = [0.5, 2]\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
                 "voussoir.g_levels", "at least 1"},
         BadCase{"voussoir_unreachable_preload",
-                "[voussoir]\npreload_force = 1e12\nnormal = {law=\"linear\"}\nshear = {law=\"linear\"}\n",
+                "[voussoir]\npreload_force = 1e12\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
                 "voussoir.preload_force", "cannot be reached"}),
     [](const ::testing::TestParamInfo<BadCase>& p) { return std::string(p.param.name); });
 
@@ -127,8 +138,8 @@ TEST(ScenarioErrors, CliExitsNonZeroAndWritesNothing) {
   const auto file = dir / "bad.toml";
   std::ofstream(file) << replace(kGood, "density = 2600", "density = -5");
   const auto out = dir / "out";
-  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " + out.string() +
-                          " 2> " + (dir / "err.txt").string();
+  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
+                          out.string() + " 2> " + (dir / "err.txt").string();
   const int status = std::system(cmd.c_str());
   EXPECT_NE(status, 0);
   std::ifstream err(dir / "err.txt");
@@ -141,7 +152,8 @@ TEST(ScenarioErrors, CliExitsNonZeroAndWritesNothing) {
 TEST(ScenarioErrors, ReproduceRejectsUnknownCase) {
   const auto out = std::filesystem::temp_directory_path() / "blockdem_reproduce_bad_case";
   std::filesystem::remove_all(out);
-  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " reproduce boon2015 --case T9-9 --quiet --no-figures --out " +
+  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) +
+                          " reproduce boon2015 --case T9-9 --quiet --no-figures --out " +
                           out.string() + " 2>/dev/null";
   EXPECT_NE(std::system(cmd.c_str()), 0);
   EXPECT_FALSE(std::filesystem::exists(out));
