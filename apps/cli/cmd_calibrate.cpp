@@ -16,6 +16,7 @@
 
 #include "blockdem/calibration/calibration_report.hpp"
 #include "commands.hpp"
+#include "figures.hpp"
 
 namespace blockdem::cli {
 namespace {

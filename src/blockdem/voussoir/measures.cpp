@@ -1,5 +1,5 @@
 // Voussoir-beam measurements (DESIGN section 6).
-#include "blockdem/analysis/voussoir_measures.hpp"
+#include "blockdem/voussoir/measures.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,5 +1,5 @@
 // report.md for `blockdem reproduce boon2015`.
-#include "blockdem/io/boon2015_report.hpp"
+#include "blockdem/studies/boon2015/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "blockdem/analysis/voussoir_analytic.hpp"
+#include "blockdem/numerics/units.hpp"
+#include "blockdem/voussoir/scene.hpp"
 
 namespace blockdem {
 namespace {
@@ -36,8 +38,6 @@ const Boon2015CaseRun* find(const std::vector<Boon2015CaseRun>& runs, const std:
 double final_deflection(const Boon2015CaseRun& r) {
   return r.result.levels.empty() ? std::nan("") : r.result.levels.back().midspan_deflection;
 }
-
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 int case_order(const std::string& id) {
   const auto& cases = boon2015_cases();
@@ -77,7 +77,7 @@ void write_boon2015_report(const std::filesystem::path& dir,
        "paper's Tables 2 and 3, written by `blockdem reproduce boon2015`.\n\n";
 
   // Set-up.
-  const VoussoirSpec& any = runs.front().scenario.voussoir.value();
+  const VoussoirSpec& any = voussoir_scene(runs.front().scenario)->spec;
   o << "## Model\n\n"
     << "- Six gypsum blocks (" << any.density
     << " kg/m³) between two abutments; x along the span, z up, "
@@ -250,7 +250,7 @@ void write_boon2015_report(const std::filesystem::path& dir,
     const auto& b = lv.blocks;
     if (b.size() != 6) continue;
     auto mean_abs = [&](std::size_t i, std::size_t j) {
-      return 0.5 * kDeg * (std::abs(b[i].rotation) + std::abs(b[j].rotation));
+      return 0.5 * rad_to_deg(std::abs(b[i].rotation) + std::abs(b[j].rotation));
     };
     o << "| " << r.spec.id << " | " << lv.g_level << " | " << f("%.4f", mean_abs(0, 5)) << " | "
       << f("%.4f", mean_abs(1, 4)) << " | " << f("%.4f", mean_abs(2, 3)) << " |\n";
@@ -267,10 +267,10 @@ void write_boon2015_report(const std::filesystem::path& dir,
        "(N) | DEM thrust (N) | "
        "analytic f_m (MPa) | DEM max σ_n (MPa) |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
-    const auto* lin = std::get_if<LinearNormal>(&r.scenario.voussoir->law.normal);
+    const auto* lin = std::get_if<LinearNormal>(&voussoir_scene(r.scenario)->spec.law.normal);
     if (lin == nullptr || r.result.levels.empty()) continue;
     const auto& lv = r.result.levels.back();
-    const VoussoirSpec& v = *r.scenario.voussoir;
+    const VoussoirSpec& v = voussoir_scene(r.scenario)->spec;
     VoussoirBeamDef def;
     def.span = v.span();
     def.depth = v.block_depth;
@@ -324,8 +324,8 @@ void write_boon2015_report(const std::filesystem::path& dir,
         << pair(a ? 1e3 * a->midspan_deflection : 0, 1e3 * b.midspan_deflection, "%.4f") << " | "
         << pair(a ? 1e3 * a->lever_arm : 0, 1e3 * b.lever_arm, "%.2f") << " | "
         << pair(a ? -1e3 * top_a : 0, -1e3 * b.joints[mid].z, "%.2f") << " | "
-        << pair(a ? kDeg * std::abs(a->blocks.front().rotation) : 0,
-                kDeg * std::abs(b.blocks.front().rotation), "%.4f")
+        << pair(a ? rad_to_deg(std::abs(a->blocks.front().rotation)) : 0,
+                rad_to_deg(std::abs(b.blocks.front().rotation)), "%.4f")
         << " | " << pair(a ? 1e-6 * a->max_normal_stress : 0, 1e-6 * b.max_normal_stress, "%.3f")
         << " | " << f("%.1f", 1e3 * b.joints[mid].compressed_depth) << " / "
         << f("%.1f", 1e3 * b.joints.front().compressed_depth) << " |\n";

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "blockdem/analysis/thrust_line_fit.hpp"
-#include "blockdem/scenario/voussoir.hpp"
+#include "blockdem/voussoir/beam.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "blockdem/analysis/voussoir_measures.hpp"
 #include "blockdem/io/csv.hpp"
+#include "blockdem/voussoir/measures.hpp"
 
 namespace blockdem {
 
