@@ -69,7 +69,7 @@ TEST(CliCalibrate, NormalWritesReportCsvsAndAPastableExponentialLaw) {
   const fs::path out = test::scratch_directory() / "cli_normal_out";
   const CommandOutput run = run_cli(
       "calibrate normal --data '" + data.string() +
-      "' --modulus 5.6e9 --height 0.138 --joints 3 --no-plots --out '" + out.string() + "'");
+      "' --modulus 5.6e9 --height 0.138 --joints 3 --no-figures --out '" + out.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json report = read_json(out / "calibration.json");
   EXPECT_EQ(report["command"], "calibrate normal");
@@ -80,7 +80,7 @@ TEST(CliCalibrate, NormalWritesReportCsvsAndAPastableExponentialLaw) {
       report["exponential"]["k0_Pa_per_m"].get<double>(),
       report["exponential"]["a_Pa"].get<double>() * report["exponential"]["b_per_m"].get<double>());
   EXPECT_EQ(report["exponential"]["fit"]["residuals_m"].size(), 25u);
-  EXPECT_EQ(report["plots"], "not requested (--no-plots)");
+  EXPECT_EQ(report["plots"], "not requested (--no-figures)");
   for (const auto& f : report["files"]) EXPECT_TRUE(fs::exists(out / f.get<std::string>()));
 
   // The TOML line on stdout builds the law a scenario would build, to the 7 digits printed.

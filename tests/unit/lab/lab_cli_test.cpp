@@ -106,7 +106,7 @@ TEST(CliLab, CompressionPrintsTheKernelCurveAndTheDemComparison) {
       std::filesystem::temp_directory_path() / ("blockdem_lab_cli_" + std::to_string(::getpid()));
   const CommandOutput run = run_cli(
       "lab compression --normal law=linear,stiffness=1e10 --max-stress 1e6 --steps 4 "
-      "--dem --no-plot --out " +
+      "--dem --no-figures --out " +
       out.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary = nlohmann::json::parse(run.out);
