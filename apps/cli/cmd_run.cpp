@@ -32,6 +32,8 @@ int run(const RunOptions& opt) {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
     beam = voussoir_scene(sc) != nullptr;
+    for (const auto& w : sc.warnings)
+      std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";

@@ -74,6 +74,8 @@ class CheckedTable {
 
  private:
   const toml::node* get(const std::string& key) const;
+  /// Fails for an array longer than the limit.
+  void check_length(const std::string& key, std::size_t entries) const;
   const toml::table* table_;
   std::string file_, path_;
   mutable std::set<std::string> used_;
