@@ -15,6 +15,7 @@ struct RunOptions {
   std::string out;
   bool quiet = false;
   bool figures = true;
+  int threads = 0;  // 0: OMP_NUM_THREADS, else every core
 };
 
 int run(const RunOptions& opt) {
@@ -28,7 +29,8 @@ int run(const RunOptions& opt) {
   bool beam = false;
   try {
     // Read and check everything before anything is written.
-    const Scenario sc = load_scenario(opt.scenario);
+    Scenario sc = load_scenario(opt.scenario);
+    if (opt.threads > 0) sc.settings.threads = opt.threads;
     beam = sc.voussoir.has_value();
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
@@ -65,6 +67,10 @@ void register_run(CLI::App& app) {
   cmd->add_option("scenario", opt->scenario, "Scenario file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", opt->out, "Output folder (created if missing)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
+  cmd->add_option("--threads", opt->threads,
+                  "Threads for the step (default: OMP_NUM_THREADS, else every core); results are "
+                  "bit-identical for any number")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("!--no-figures", opt->figures,
                 "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });
