@@ -90,8 +90,13 @@ int reproduce(const ReproduceOptions& opt) {
   // Run the cases on a few threads; each writes its own folder.
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
+  // Cores (OMP_NUM_THREADS, else every core) are shared: cases run side by side, and each case
+  // gets the cores left over (one thread each when there are at least as many cases as cores).
+  // Results do not depend on the split: the step is bit-identical for any thread count.
+  const int cores = World().thread_count();
   const int jobs =
-      opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+      std::min(opt.jobs > 0 ? opt.jobs : cores, std::max(1, static_cast<int>(runs.size())));
+  for (auto& r : runs) r.scenario.settings.threads = std::max(1, cores / jobs);
   std::atomic<std::size_t> next{0};
   std::mutex io;
   Progress progress(!opt.quiet);
@@ -174,7 +179,9 @@ void register_reproduce(CLI::App& app) {
          "--mode", opt->modes,
          "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
       ->check(CLI::IsMember({"both", "boon2012", "face_integrated"}));
-  cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")
+  cmd->add_option(
+         "--jobs", opt->jobs,
+         "Cases run in parallel (default: number of cores); each case gets cores / jobs threads")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--scenarios", opt->scenarios,
                   "Folder of the case files (default: the source tree's scenarios/boon2015)");

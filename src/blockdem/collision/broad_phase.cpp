@@ -45,7 +45,7 @@ void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min,
   }
 }
 
-void SweepAndPrune::sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
+void PairSorter::sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
   // Counting sort on the first body: starts_[i] is where body i's pairs begin.
   starts_.assign(bodies + 1, 0);
   for (const auto& p : pairs) ++starts_[static_cast<std::size_t>(p.first) + 1];

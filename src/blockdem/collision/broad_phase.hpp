@@ -12,6 +12,17 @@
 
 namespace blockdem {
 
+/// Sorts candidate pairs (i < j) by (i, j) in O(pairs + bodies): a counting sort on i, then each
+/// i's few j (a body with many pairs, such as a base plate, by std::sort). Keeps its buffers.
+class PairSorter {
+ public:
+  void sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
+
+ private:
+  std::vector<std::pair<int, int>> scratch_;
+  std::vector<std::size_t> starts_;
+};
+
 /// Sweep and prune (Baraff 1992) along the world axis on which the box centres spread most, so
 /// that a tall column or a long wall is swept along its length (sweeping across it would test
 /// every pair); a candidate must overlap on the other two axes as well. The order of box starts
@@ -35,13 +46,10 @@ class SweepAndPrune {
  private:
   void update_order(const std::vector<Eigen::Vector3d>& box_min,
                     const std::vector<Eigen::Vector3d>& box_max);
-  /// Sorts pairs by (i, j) in O(pairs + bodies): counting sort on i, then each i's few j.
-  void sort_pairs(std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
   std::vector<int> order_;
   int axis_ = 0;
   std::vector<std::vector<std::pair<int, int>>> chunks_;  // per-thread output of the sweep
-  std::vector<std::pair<int, int>> scratch_;
-  std::vector<std::size_t> starts_;
+  PairSorter sorter_;
 };
 
 template <class Want>
@@ -79,7 +87,7 @@ void SweepAndPrune::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
     }
   }
   for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
-  sort_pairs(pairs, order_.size());
+  sorter_.sort(pairs, order_.size());
 }
 
 }  // namespace blockdem

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "blockdem/collision/boon2012.hpp"
-#include "blockdem/collision/broad_phase.hpp"
 #include "blockdem/collision/face_contact.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
@@ -156,7 +156,7 @@ class World {
   std::vector<PairSlot> slots_;  ///< candidate pairs, sorted by (a, b)
   std::size_t active_count_ = 0;
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
-  SweepAndPrune broad_phase_;
+  UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Eigen::Vector3d> box_min_, box_max_;
 
