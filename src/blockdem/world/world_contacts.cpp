@@ -62,6 +62,9 @@ void World::merge_pairs() {
         ++kept;
       }
     }
+    // Grow with an eighth of slack: the store is the largest array of a big scene, and a
+    // doubling reallocation would briefly need three times its size.
+    if (pairs_.size() > slots_.capacity()) slots_.reserve(pairs_.size() + pairs_.size() / 8);
     slots_.resize(std::max(kept, pairs_.size()));
     std::size_t old = kept;  // slots [0, kept) hold a subset of pairs_, in order
     for (std::size_t w = pairs_.size(); w-- > 0;) {
