@@ -2,7 +2,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/scene.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -31,7 +33,7 @@ int run(const RunOptions& opt) {
     // Read and check everything before anything is written.
     Scenario sc = load_scenario(opt.scenario);
     if (opt.threads > 0) sc.settings.threads = opt.threads;
-    beam = sc.voussoir.has_value();
+    beam = voussoir_scene(sc) != nullptr;
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
