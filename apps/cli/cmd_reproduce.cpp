@@ -119,7 +119,9 @@ void register_reproduce(CLI::App& app) {
          "--mode", opt->modes,
          "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
       ->check(CLI::IsMember({"both", "boon2012", "face_integrated"}));
-  cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")
+  cmd->add_option(
+         "--jobs", opt->jobs,
+         "Cases run in parallel (default: number of cores); each case gets cores / jobs threads")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--scenarios", opt->scenarios,
                   "Folder of the case files (default: the installed scenarios/boon2015)");

@@ -19,6 +19,7 @@ struct RunOptions {
   bool quiet = false;
   bool figures = true;
   std::int64_t max_steps = 0;  ///< > 0: every stage stops after at most this many steps
+  int threads = 0;  // 0: OMP_NUM_THREADS, else every core
 };
 
 int run(const RunOptions& opt) {
@@ -39,6 +40,7 @@ int run(const RunOptions& opt) {
         stage.min_steps = std::min(stage.min_steps, opt.max_steps);
       }
     }
+    if (opt.threads > 0) sc.settings.threads = opt.threads;
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : sc.warnings)
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
@@ -80,6 +82,10 @@ void register_run(CLI::App& app) {
   cmd->add_option("--max-steps", opt->max_steps,
                   "Stop every stage after at most N steps (a quick look at a scenario; a stage "
                   "cut short is reported as not converged)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", opt->threads,
+                  "Threads for the step (default: OMP_NUM_THREADS, else every core); results are "
+                  "bit-identical for any number")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("!--no-figures", opt->figures,
                 "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");

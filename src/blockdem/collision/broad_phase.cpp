@@ -45,4 +45,36 @@ void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min,
   }
 }
 
+void PairSorter::sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
+  // Counting sort on the first body: starts_[i] is where body i's pairs begin.
+  starts_.assign(bodies + 1, 0);
+  for (const auto& p : pairs) ++starts_[static_cast<std::size_t>(p.first) + 1];
+  for (std::size_t i = 0; i < bodies; ++i) starts_[i + 1] += starts_[i];
+  scratch_.resize(pairs.size());
+  for (const auto& p : pairs) scratch_[starts_[static_cast<std::size_t>(p.first)]++] = p;
+  // starts_[i] now holds the end of body i's pairs; most bodies have a few (insertion sort),
+  // a large one (a base plate) many.
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < bodies; ++i) {
+    const std::size_t end = starts_[i];
+    if (end - begin > 32) {
+      std::sort(scratch_.begin() + static_cast<std::ptrdiff_t>(begin),
+                scratch_.begin() + static_cast<std::ptrdiff_t>(end));
+      begin = end;
+      continue;
+    }
+    for (std::size_t k = begin + 1; k < end; ++k) {
+      const auto v = scratch_[k];
+      std::size_t m = k;
+      while (m > begin && scratch_[m - 1].second > v.second) {
+        scratch_[m] = scratch_[m - 1];
+        --m;
+      }
+      scratch_[m] = v;
+    }
+    begin = end;
+  }
+  pairs.swap(scratch_);
+}
+
 }  // namespace blockdem

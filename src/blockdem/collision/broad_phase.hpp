@@ -6,21 +6,39 @@
 #include <utility>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace blockdem {
+
+/// Sorts candidate pairs (i < j) by (i, j) in O(pairs + bodies): a counting sort on i, then each
+/// i's few j (a body with many pairs, such as a base plate, by std::sort). Keeps its buffers.
+class PairSorter {
+ public:
+  void sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
+
+ private:
+  std::vector<std::pair<int, int>> scratch_;
+  std::vector<std::size_t> starts_;
+};
 
 /// Sweep and prune (Baraff 1992) along the world axis on which the box centres spread most, so
 /// that a tall column or a long wall is swept along its length (sweeping across it would test
-/// every pair). The order of box starts is kept between calls and repaired by insertion sort,
-/// which costs O(n) when blocks move little per step; it is rebuilt when the axis changes, which
-/// needs the spread on the new axis to exceed the current one's by a quarter (no flip-flopping).
+/// every pair); a candidate must overlap on the other two axes as well. The order of box starts
+/// is kept between calls and repaired by insertion sort, which costs O(n) when blocks move little
+/// per step; it is rebuilt when the axis changes, which needs the spread on the new axis to exceed
+/// the current one's by a quarter (no flip-flopping). The sweep runs on `threads` threads; the
+/// pairs come out sorted by (i, j) whatever the number of threads or the sweep's internal order.
 class SweepAndPrune {
  public:
-  /// Pairs (i < j) whose boxes overlap on all three axes, for which `want(i, j)` is true, in a
-  /// deterministic order. Boxes are given as min/max corners, one per body (m).
+  /// Pairs (i < j) whose boxes overlap on all three axes, for which `want(i, j)` is true, sorted
+  /// by (i, j). Boxes are given as min/max corners, one per body (m). `want` must be safe to call
+  /// from several threads at once.
   template <class Want>
   void find_pairs(const std::vector<Eigen::Vector3d>& box_min,
                   const std::vector<Eigen::Vector3d>& box_max, Want&& want,
-                  std::vector<std::pair<int, int>>& pairs);
+                  std::vector<std::pair<int, int>>& pairs, int threads = 1);
 
   /// The axis of the last sweep (0, 1, 2 for x, y, z).
   int axis() const { return axis_; }
@@ -30,28 +48,46 @@ class SweepAndPrune {
                     const std::vector<Eigen::Vector3d>& box_max);
   std::vector<int> order_;
   int axis_ = 0;
+  std::vector<std::vector<std::pair<int, int>>> chunks_;  // per-thread output of the sweep
+  PairSorter sorter_;
 };
 
 template <class Want>
 void SweepAndPrune::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
                                const std::vector<Eigen::Vector3d>& box_max, Want&& want,
-                               std::vector<std::pair<int, int>>& pairs) {
+                               std::vector<std::pair<int, int>>& pairs, int threads) {
   pairs.clear();
   update_order(box_min, box_max);
   const int s = axis_, t = (axis_ + 1) % 3, u = (axis_ + 2) % 3;  // sweep axis, then the others
-  const std::size_t n = order_.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const int i = order_[k];
-    const double reach = box_max[i][s];
-    for (std::size_t m = k + 1; m < n; ++m) {
-      const int j = order_[m];
-      if (box_min[j][s] > reach) break;
-      if (box_min[j][t] > box_max[i][t] || box_min[i][t] > box_max[j][t]) continue;
-      if (box_min[j][u] > box_max[i][u] || box_min[i][u] > box_max[j][u]) continue;
-      const int a = std::min(i, j), b = std::max(i, j);
-      if (want(a, b)) pairs.emplace_back(a, b);
+  const std::int64_t n = static_cast<std::int64_t>(order_.size());
+  if (threads < 1) threads = 1;
+  chunks_.resize(static_cast<std::size_t>(threads));
+  for (auto& c : chunks_) c.clear();
+    // Each thread sweeps its share of box starts into its own list; the lists are joined and sorted
+    // afterwards, so that the result does not depend on how the work was shared.
+#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
+  {
+#ifdef _OPENMP
+    std::vector<std::pair<int, int>>& out = chunks_[static_cast<std::size_t>(omp_get_thread_num())];
+#else
+    std::vector<std::pair<int, int>>& out = chunks_[0];
+#endif
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t k = 0; k < n; ++k) {
+      const int i = order_[static_cast<std::size_t>(k)];
+      const double reach = box_max[i][s];
+      for (std::int64_t m = k + 1; m < n; ++m) {
+        const int j = order_[static_cast<std::size_t>(m)];
+        if (box_min[j][s] > reach) break;
+        if (box_min[j][t] > box_max[i][t] || box_min[i][t] > box_max[j][t]) continue;
+        if (box_min[j][u] > box_max[i][u] || box_min[i][u] > box_max[j][u]) continue;
+        const int a = std::min(i, j), b = std::max(i, j);
+        if (want(a, b)) out.emplace_back(a, b);
+      }
     }
   }
+  for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
+  sorter_.sort(pairs, order_.size());
 }
 
 }  // namespace blockdem

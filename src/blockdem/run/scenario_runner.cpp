@@ -40,6 +40,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["title"] = sc.title;
   summary["blocks"] = world.blocks().size();
   summary["contact_mode"] = to_string(sc.settings.contact_mode);
+  summary["threads"] = world.thread_count();
   summary["citations"] = {
       "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between "
       "convex "

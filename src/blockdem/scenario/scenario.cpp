@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "blockdem/collision/boon2012.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
 
@@ -440,27 +441,47 @@ World build_world(const Scenario& sc) {
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
   for (const auto& b : sc.blocks) w.add_block(b);
-  // Deep initial overlaps are input errors, not something to blow apart.
+  // Deep initial overlaps are input errors, not something to blow apart. Candidate pairs come
+  // from the broad phase (O(N log N)), sorted by (i, j); the narrow phase runs on every thread
+  // and the error names the first offending pair in that order, whatever the thread count.
   const auto& blocks = w.blocks();
+  std::vector<Eigen::Vector3d> lo(blocks.size()), hi(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) {
-    for (std::size_t j = i + 1; j < blocks.size(); ++j) {
-      const Block& a = blocks[i];
-      const Block& b = blocks[j];
-      if ((a.aabb_min.array() > b.aabb_max.array()).any() ||
-          (b.aabb_min.array() > a.aabb_max.array()).any())
-        continue;
-      const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-      const ContactGeometry g =
-          boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
-      const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-      if (g.touching && g.overlap > sc.settings.max_overlap_fraction * size) {
-        std::ostringstream s;
-        s << "blocks \"" << a.name << "\" and \"" << b.name << "\" overlap by " << g.overlap
-          << " m at the start, more than " << sc.settings.max_overlap_fraction
-          << " of the smaller block's radius: check their positions and sizes";
-        throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
-      }
+    lo[i] = blocks[i].aabb_min;
+    hi[i] = blocks[i].aabb_max;
+  }
+  std::vector<std::pair<int, int>> pairs;
+  UniformGrid broad_phase;
+  const int threads = w.thread_count();
+  broad_phase.find_pairs(
+      lo, hi, [](int, int) { return true; }, pairs, threads);
+  const std::int64_t n = static_cast<std::int64_t>(pairs.size());
+  std::int64_t first = n;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const Block& a = blocks[static_cast<std::size_t>(pairs[static_cast<std::size_t>(k)].first)];
+    const Block& b = blocks[static_cast<std::size_t>(pairs[static_cast<std::size_t>(k)].second)];
+    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+    const ContactGeometry g =
+        boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
+    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+    if (g.touching && g.overlap > sc.settings.max_overlap_fraction * size) {
+#pragma omp critical(blockdem_initial_overlap)
+      first = std::min(first, k);
     }
+  }
+  if (first < n) {
+    const auto [i, j] = pairs[static_cast<std::size_t>(first)];
+    const Block& a = blocks[static_cast<std::size_t>(i)];
+    const Block& b = blocks[static_cast<std::size_t>(j)];
+    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+    const ContactGeometry g =
+        boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
+    std::ostringstream s;
+    s << "blocks \"" << a.name << "\" and \"" << b.name << "\" overlap by " << g.overlap
+      << " m at the start, more than " << sc.settings.max_overlap_fraction
+      << " of the smaller block's radius: check their positions and sizes";
+    throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
   }
   return w;
 }

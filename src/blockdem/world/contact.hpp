@@ -5,19 +5,40 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/contact_geometry.hpp"
-#include "blockdem/collision/inscribed_ball.hpp"
 #include "blockdem/contact/shear_state.hpp"
 
 namespace blockdem {
+
+/// The narrow phase's result as a contact keeps it between steps: ContactGeometry without the
+/// slice polygon, which only the narrow phase itself needs (it is ~400 bytes per contact).
+struct ContactGeometryRecord {
+  bool touching = false;                              ///< the LP found r* > tolerance
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< contact point x_c (m)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit normal, from A to B (-)
+  double overlap = 0.0;           ///< δ: chord of A∩B through x_c along n (m)
+  double area = 0.0;              ///< A_c: area of the slice of A∩B at x_c (m^2)
+  double inscribed_radius = 0.0;  ///< r* of the overlap LP (m)
+  Eigen::Vector3d inscribed_centre = Eigen::Vector3d::Zero();  ///< x* of the overlap LP (m)
+
+  ContactGeometryRecord() = default;
+  explicit ContactGeometryRecord(const ContactGeometry& g)
+      : touching(g.touching),
+        point(g.point),
+        normal(g.normal),
+        overlap(g.overlap),
+        area(g.area),
+        inscribed_radius(g.inscribed_radius),
+        inscribed_centre(g.inscribed_centre) {}
+};
 
 struct Contact {
   int a = -1;    ///< first block (the normal points from a to b)
   int b = -1;    ///< second block
   int law = -1;  ///< index into World::joint_laws()
 
-  ContactGeometry geometry;  ///< this step's geometry
-  ShearState shear;          ///< shear history (force on b, plastic slip)
-  bool has_history = false;  ///< false on the step the contact forms
+  ContactGeometryRecord geometry;  ///< this step's geometry
+  ShearState shear;                ///< shear history (force on b, plastic slip)
+  bool has_history = false;        ///< false on the step the contact forms
   Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
 
   double normal_stress = 0.0;  ///< σ_n (Pa); face-integrated: mean over the compressed area
@@ -31,9 +52,8 @@ struct Contact {
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
   bool sliding = false;          ///< the shear law yielded this step
 
-  // Warm starts between steps.
+  /// Warm start of the narrow phase between steps. Kept for candidate pairs that do not touch too.
   Boon2012Cache narrow_cache;
-  InscribedBall previous_ball;
 
   /// Total force on b (N); the force on a is its negative.
   Eigen::Vector3d force_on_b() const { return normal_force * geometry.normal + shear.force; }

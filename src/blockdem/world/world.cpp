@@ -1,4 +1,5 @@
-// The explicit step pipeline of DESIGN section 5 and the contact force assembly of section 2.
+// The world's set-up, the step pipeline (geometry, contacts, integration, checks) and the
+// checkpoint; the contact passes are in world_contacts.cpp.
 #include "blockdem/world/world.hpp"
 
 #include <algorithm>
@@ -6,15 +7,20 @@
 #include <limits>
 #include <sstream>
 
-#include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/dynamics/integrator.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace blockdem {
 namespace {
 
-std::uint64_t pair_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+double largest_face_area(const Polyhedron& shape) {
+  double area = 0.0;
+  for (int f = 0; f < static_cast<int>(shape.faces().size()); ++f)
+    area = std::max(area, shape.face_area(f));
+  return area;
 }
 
 }  // namespace
@@ -34,6 +40,7 @@ void WorldSettings::validate() const {
   if (!(boon2012.rounding_distance > 0.0)) fail("rounding_distance must be positive");
   if (!(max_speed > 0.0)) fail("max_speed must be positive");
   if (!(max_overlap_fraction > 0.0)) fail("max_overlap_fraction must be positive");
+  if (threads < 0) fail("threads must be >= 0 (0: every core)");
 }
 
 World::World(WorldSettings settings) : settings_(std::move(settings)) {
@@ -45,6 +52,7 @@ int World::add_block(Block block) {
   if (block.motion == Motion::free)
     block.angular_momentum = block.world_inertia() * block.angular_velocity;
   block.update_world_geometry();
+  max_face_area_.push_back(largest_face_area(block.shape));
   blocks_.push_back(std::move(block));
   return blocks_.back().index;
 }
@@ -61,6 +69,7 @@ void World::add_joint_rule(JointRule rule) {
     throw std::invalid_argument("joint rule refers to an unknown joint law");
   }
   rules_.push_back(std::move(rule));
+  ++rules_version_;
 }
 
 int World::find_block(const std::string& name) const {
@@ -87,23 +96,37 @@ int World::law_for(int a, int b) const {
   return found;
 }
 
+int World::thread_count() const {
+#ifdef _OPENMP
+  return settings_.threads > 0 ? settings_.threads : std::max(1, omp_get_max_threads());
+#else
+  return 1;
+#endif
+}
+
 std::vector<const Contact*> World::contacts() const {
   std::vector<const Contact*> out;
-  out.reserve(contacts_.size());
-  for (const auto& [key, c] : contacts_) out.push_back(&c);
-  std::sort(out.begin(), out.end(), [](const Contact* x, const Contact* y) {
-    return std::make_pair(x->a, x->b) < std::make_pair(y->a, y->b);
-  });
+  out.reserve(active_count_);
+  for (const auto& s : slots_) {
+    if (s.active) out.push_back(&s.contact);
+  }
   return out;
 }
 
-void World::update_geometry() {
+void World::update_geometry(int threads) {
+  const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   box_min_.resize(blocks_.size());
   box_max_.resize(blocks_.size());
-  for (auto& b : blocks_) {
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > 256)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Block& b = blocks_[static_cast<std::size_t>(i)];
     b.update_world_geometry();
-    box_min_[b.index] = b.aabb_min;
-    box_max_[b.index] = b.aabb_max;
+    box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
+    box_max_[static_cast<std::size_t>(i)] = b.aabb_max;
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
+                             : Eigen::Vector3d::Zero();
+    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
+    b.contact_force.setZero();
   }
 }
 
@@ -117,11 +140,11 @@ double World::a_priori_time_step() const {
   }
   if (k_law == 0.0) return std::numeric_limits<double>::infinity();
   double dt = std::numeric_limits<double>::infinity();
-  for (const auto& b : blocks_) {
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& b = blocks_[i];
     if (!b.is_dynamic()) continue;
-    double area = 0.0;
-    for (int f = 0; f < static_cast<int>(b.shape.faces().size()); ++f)
-      area = std::max(area, b.shape.face_area(f));
+    // Shapes are rigid: the largest face area is kept per block from add_block.
+    const double area = i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
     const double k = k_law * area;
     const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
     dt = std::min(dt, std::sqrt(b.mass / k));
@@ -139,134 +162,6 @@ double World::next_time_step() const {
         "cannot choose an automatic time step: no joint law has stiffness; set time_step");
   }
   return dt;
-}
-
-void World::compute_contacts(double dt) {
-  // Broad phase: pairs where at least one block can move and a joint law applies.
-  broad_phase_.find_pairs(
-      box_min_, box_max_,
-      [&](int a, int b) {
-        return (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
-               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
-      },
-      pairs_);
-
-  stiffness_.assign(blocks_.size(), 0.0);
-  rotational_stiffness_.assign(blocks_.size(), 0.0);
-  for (auto& [key, c] : contacts_) c.law = -2;  // mark as not seen this step
-
-  for (const auto& [ia, ib] : pairs_) {
-    const int law_index = law_for(ia, ib);
-    if (law_index < 0) continue;
-    Block& a = blocks_[ia];
-    Block& b = blocks_[ib];
-    const std::uint64_t key = pair_key(ia, ib);
-    auto it = contacts_.find(key);
-    Contact fresh;
-    Contact& c = it != contacts_.end() ? it->second : fresh;
-    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-    ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012,
-                                         &c.narrow_cache);
-    if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) continue;
-    if (it == contacts_.end()) {
-      fresh.a = ia;
-      fresh.b = ib;
-      it = contacts_.emplace(key, std::move(fresh)).first;
-    }
-    Contact& ct = it->second;
-    ct.law = law_index;
-    ct.geometry = std::move(g);
-    const JointLaw& law = laws_[law_index];
-    const Eigen::Vector3d& n = ct.geometry.normal;
-
-    // Normal force: σ_n(δ) A_c at x_c (DESIGN section 2 step 6), or the law integrated over
-    // the contact, acting at the centre of pressure (section 3).
-    ct.integrated = false;
-    if (settings_.contact_mode == ContactMode::face_integrated) {
-      const FaceContactGeometry fc = face_contact_geometry(
-          a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
-      if (fc.face_type) {
-        double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
-        Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-        for (const auto& cell : fc.cells) {
-          const PolygonStressResultant r =
-              integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
-          force += r.force;
-          compressed += r.compressed_area;
-          peak = std::max(peak, r.peak_stress);
-          if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
-          for (double gc : cell.closures) closure = std::max(closure, gc);
-        }
-        if (!(force > 0.0)) {
-          // Touching, but no closure anywhere to integrate: no force this step.
-          contacts_.erase(it);
-          continue;
-        }
-        ct.integrated = true;
-        ct.normal_force = force;
-        ct.compressed_area = compressed;
-        ct.normal_stress = force / compressed;
-        ct.peak_stress = peak;
-        ct.peak_closure = closure;
-        ct.force_point = moment / force;
-      }
-    }
-    if (!ct.integrated) {
-      ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
-      ct.normal_force = ct.normal_stress * ct.geometry.area;
-      ct.force_point = ct.geometry.point;
-      ct.compressed_area = ct.geometry.area;
-      ct.peak_stress = ct.normal_stress;
-      ct.peak_closure = ct.geometry.overlap;
-    }
-    const Eigen::Vector3d& xf = ct.force_point;
-
-    // Shear: carry the stored force into the new tangent plane, then add the increment from the
-    // relative velocity of the material points at x_c over the step (DESIGN section 4).
-    if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
-    const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
-    ShearIncrement inc;
-    inc.displacement =
-        ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt) : Eigen::Vector3d::Zero();
-    inc.normal_force = ct.normal_force;
-    inc.normal_stress = ct.normal_stress;
-    inc.contact_area = ct.compressed_area;
-    inc.normal = n;
-    const ShearResult sr = update_shear(law.shear, ct.shear, inc);
-    ct.sliding = sr.sliding;
-    ct.previous_normal = n;
-    ct.has_history = true;
-
-    // Loads on both blocks, applied at the force point.
-    const Eigen::Vector3d f = ct.force_on_b();
-    b.force += f;
-    b.contact_force += f;
-    b.torque += (xf - b.position).cross(f);
-    a.force -= f;
-    a.contact_force -= f;
-    a.torque -= (xf - a.position).cross(f);
-
-    // Stiffness sums for the automatic time step: normal and shear springs k A (N/m), and for
-    // rotation k A (|r|² + A/12), the second term the rocking stiffness of a spread face.
-    const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
-    const double ks = sr.stiffness;
-    const double k = kn + ks;
-    const double spread = ct.compressed_area / 12.0;
-    stiffness_[ia] += k;
-    stiffness_[ib] += k;
-    rotational_stiffness_[ia] += k * ((xf - a.position).squaredNorm() + spread);
-    rotational_stiffness_[ib] += k * ((xf - b.position).squaredNorm() + spread);
-  }
-  std::erase_if(contacts_, [](const auto& kv) { return kv.second.law == -2; });
-
-  contact_dt_ = 0.0;
-  double dt_min = std::numeric_limits<double>::infinity();
-  for (const auto& bl : blocks_) {
-    if (!bl.is_dynamic() || stiffness_[bl.index] <= 0.0) continue;
-    dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[bl.index]));
-    dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[bl.index]));
-  }
-  if (std::isfinite(dt_min)) contact_dt_ = settings_.safety_factor * dt_min;
 }
 
 void World::apply_servos(double dt) {
@@ -305,17 +200,12 @@ void World::check_divergence() {
       break;
     }
   }
-  if (why.str().empty()) {
-    for (const auto& [key, c] : contacts_) {
-      const double size =
-          std::min(blocks_[c.a].shape.bounding_radius(), blocks_[c.b].shape.bounding_radius());
-      if (c.geometry.overlap > settings_.max_overlap_fraction * size) {
-        why << "blocks '" << blocks_[c.a].name << "' and '" << blocks_[c.b].name << "' overlap by "
-            << c.geometry.overlap << " m, more than " << settings_.max_overlap_fraction
-            << " of the smaller block's radius";
-        break;
-      }
-    }
+  if (why.str().empty() && overlap_violation_ >= 0) {
+    // The first too-deep contact in (a, b) order, found by the load scatter.
+    const Contact& c = slots_[static_cast<std::size_t>(overlap_violation_)].contact;
+    why << "blocks '" << blocks_[c.a].name << "' and '" << blocks_[c.b].name << "' overlap by "
+        << c.geometry.overlap << " m, more than " << settings_.max_overlap_fraction
+        << " of the smaller block's radius";
   }
   if (!why.str().empty()) {
     const std::int64_t failed_step = step_count_;
@@ -334,16 +224,19 @@ void World::check_divergence() {
 void World::step() {
   if (!checkpoint_.valid) save_checkpoint();
   const double dt = next_time_step();
-  update_geometry();
-  for (auto& b : blocks_) {
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
-                             : Eigen::Vector3d::Zero();
-    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
-    b.contact_force.setZero();
-  }
-  compute_contacts(dt);
+  const int threads = thread_count();
+  // 1. World planes, boxes and the loads that do not come from contacts (parallel per block).
+  update_geometry(threads);
+  // 2-5. Contacts: broad phase, per-pair work in parallel, loads scattered in a fixed order.
+  compute_contacts(dt, threads);
+  // 6. Servos, then integration (parallel per block).
   apply_servos(dt);
-  for (auto& b : blocks_) integrate_block(b, dt, settings_.damping);
+  const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
+  const double damping = settings_.damping;
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > 256)
+  for (std::int64_t i = 0; i < n; ++i) {
+    integrate_block(blocks_[static_cast<std::size_t>(i)], dt, damping);
+  }
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;
@@ -353,13 +246,16 @@ void World::step() {
 
 EquilibriumMeasures World::equilibrium() const {
   EquilibriumMeasures m;
+  // Every sum runs in (a, b) order or block order, whatever the number of threads.
   double contact_sum = 0.0, energy = 0.0;
-  for (const auto& [key, c] : contacts_) {
+  for (const auto& s : slots_) {
+    if (!s.active) continue;
+    const Contact& c = s.contact;
     contact_sum += c.force_on_b().norm();
     energy += 0.5 * c.normal_force * c.geometry.overlap;
   }
   m.mean_contact_force =
-      contacts_.empty() ? 0.0 : contact_sum / static_cast<double>(contacts_.size());
+      active_count_ == 0 ? 0.0 : contact_sum / static_cast<double>(active_count_);
   double unbalanced = 0.0;
   int free_blocks = 0;
   for (const auto& b : blocks_) {
@@ -389,7 +285,13 @@ void World::save_checkpoint() {
         b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation,
         b.motion,   b.servo};
   }
-  checkpoint_.contacts = contacts_;
+  checkpoint_.contacts.clear();
+  checkpoint_.contacts.reserve(active_count_);
+  for (const auto& s : slots_) {
+    if (!s.active) continue;
+    checkpoint_.contacts.push_back(
+        {s.contact.a, s.contact.b, s.contact.shear, s.contact.previous_normal});
+  }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.valid = true;
@@ -409,7 +311,25 @@ void World::restore_checkpoint() {
     b.servo = s.servo;
     b.update_world_geometry();
   }
-  contacts_ = checkpoint_.contacts;
+  // Contacts come back with their shear history; geometry and normal forces are re-derived at
+  // the restored pose (the narrow-phase warm starts of the other pairs are dropped).
+  slots_.clear();
+  slots_.reserve(checkpoint_.contacts.size());
+  for (const ContactHistory& h : checkpoint_.contacts) {
+    PairSlot s;
+    s.contact.a = h.a;
+    s.contact.b = h.b;
+    s.contact.law = law_for(h.a, h.b);
+    s.contact.shear = h.shear;
+    s.contact.previous_normal = h.previous_normal;
+    s.contact.has_history = true;
+    slots_.push_back(std::move(s));
+  }
+  slots_rules_version_ = rules_version_;
+  evaluate_pairs(0.0, false, thread_count());
+  active_count_ = 0;
+  for (const auto& s : slots_) active_count_ += s.active ? 1 : 0;
+  overlap_violation_ = -1;
   time_ = checkpoint_.time;
   step_count_ = checkpoint_.step_count;
 }

@@ -6,13 +6,12 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "blockdem/collision/boon2012.hpp"
-#include "blockdem/collision/broad_phase.hpp"
 #include "blockdem/collision/face_contact.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
@@ -56,6 +55,9 @@ struct WorldSettings {
   double max_speed = 100.0;
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).
   double max_overlap_fraction = 0.25;
+  /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core).
+  /// Results are bit-identical for every thread count.
+  int threads = 0;
 
   /// Throws std::invalid_argument naming the setting if a value is unusable.
   void validate() const;
@@ -99,9 +101,14 @@ class World {
   /// Joint law index for a pair of blocks, or -1 when no rule covers their groups.
   int law_for(int a, int b) const;
 
-  /// The current contacts (order unspecified).
+  /// The current contacts, sorted by (a, b).
   std::vector<const Contact*> contacts() const;
-  std::size_t contact_count() const { return contacts_.size(); }
+  std::size_t contact_count() const { return active_count_; }
+  /// Candidate pairs of the last step (contacts and near pairs whose narrow-phase warm start is
+  /// kept), sorted by (a, b).
+  std::size_t candidate_pair_count() const { return slots_.size(); }
+  /// The number of threads a step uses (settings().threads, or OpenMP's default when 0).
+  int thread_count() const;
 
   /// Advances one time step. Throws DivergenceError (after restoring the last good state).
   void step();
@@ -114,23 +121,42 @@ class World {
 
   EquilibriumMeasures equilibrium() const;
 
-  /// Saves / restores the block states and contact histories (the "last good state").
+  /// Saves / restores the block states and contact histories (the "last good state"). The
+  /// snapshot is compact: block states and, per contact, its pair and shear history; a restore
+  /// re-derives the contacts' geometry and normal forces at the restored pose.
   void save_checkpoint();
   void restore_checkpoint();
 
  private:
-  void update_geometry();
-  void compute_contacts(double dt);
+  /// One candidate pair: its contact (active when the blocks touch and a force acts) or, for a
+  /// near pair, only the narrow-phase warm start kept in contact.narrow_cache.
+  struct PairSlot {
+    Contact contact;
+    double stiffness = 0.0;  ///< k_n A + k_s A of this step, for the time step (N/m)
+    bool active = false;
+  };
+
+  void update_geometry(int threads);
+  void compute_contacts(double dt, int threads);
+  void merge_pairs();
+  void evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const;
+  void evaluate_pairs(double dt, bool advance_shear, int threads);
+  void scatter_loads();
   void apply_servos(double dt);
   void check_divergence();
   double a_priori_time_step() const;
 
   WorldSettings settings_;
   std::vector<Block> blocks_;
+  std::vector<double> max_face_area_;  ///< per block, for the a-priori time step (m^2)
   std::vector<JointLaw> laws_;
   std::vector<JointRule> rules_;
-  std::unordered_map<std::uint64_t, Contact> contacts_;
-  SweepAndPrune broad_phase_;
+  int rules_version_ = 0;        ///< counts add_joint_rule calls
+  int slots_rules_version_ = 0;  ///< rules_version_ when the slots' laws were looked up
+  std::vector<PairSlot> slots_;  ///< candidate pairs, sorted by (a, b)
+  std::size_t active_count_ = 0;
+  std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
+  UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Eigen::Vector3d> box_min_, box_max_;
 
@@ -148,9 +174,15 @@ class World {
     Motion motion;
     Servo servo;
   };
+  /// What a contact needs to go on after a restore (its geometry is re-derived).
+  struct ContactHistory {
+    int a = -1, b = -1;
+    ShearState shear;
+    Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
+  };
   struct Checkpoint {
     std::vector<BlockState> blocks;
-    std::unordered_map<std::uint64_t, Contact> contacts;
+    std::vector<ContactHistory> contacts;
     double time = 0.0;
     std::int64_t step_count = 0;
     bool valid = false;

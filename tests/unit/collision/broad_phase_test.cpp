@@ -2,8 +2,10 @@
 // a tall column and a long wall, while the boxes move between calls; the sweep follows the
 // longest extent of the set.
 #include "blockdem/collision/broad_phase.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -84,6 +86,50 @@ TEST(SweepAndPrune, SamePairsAsBruteForceAndSweepsAlongTheLongestExtent) {
       }
     }
     EXPECT_FALSE(brute_force(lo, hi).empty());
+  }
+}
+
+// Both broad phases against testing every pair (the oracle), for a random cloud, a tall column,
+// a wide 3D pile of similar boxes and a pile on a large base plate (tested against every box):
+// the same pairs, sorted by (i, j) as they come out (no sort here), for 1, 2 and 3 threads.
+TEST(BroadPhase, GridAndSweepGiveSortedBruteForcePairsForAnyThreadCount) {
+  Rng rng(11);
+  for (const char* layout : {"cloud", "column", "pile", "pile on plate"}) {
+    std::vector<Eigen::Vector3d> centres;
+    for (int i = 0; i < 600; ++i) {
+      if (std::string(layout) == "cloud") {
+        centres.emplace_back(uniform(rng, -4, 4), uniform(rng, -4, 4), uniform(rng, -4, 4));
+      } else if (std::string(layout) == "column") {
+        centres.emplace_back(uniform(rng, -0.1, 0.1), uniform(rng, -0.1, 0.1), 0.95 * i);
+      } else {
+        centres.emplace_back(0.97 * (i % 12), 0.97 * ((i / 12) % 10), 0.97 * (i / 120));
+      }
+    }
+    std::vector<Eigen::Vector3d> lo, hi;
+    UniformGrid grid;
+    SweepAndPrune sap;
+    for (int call = 0; call < 5; ++call) {
+      for (Eigen::Vector3d& c : centres) c += 0.05 * test_shapes::random_unit_vector(rng);
+      boxes(centres, rng, lo, hi);
+      if (std::string(layout) == "pile on plate") {
+        lo[7] = Eigen::Vector3d(-1, -1, -1.5);
+        hi[7] = Eigen::Vector3d(13, 11, -0.45);
+      }
+      const Pairs expected = brute_force(lo, hi);
+      ASSERT_FALSE(expected.empty());
+      for (int threads : {1, 2, 3}) {
+        Pairs from_grid, from_sweep;
+        grid.find_pairs(
+            lo, hi, [](int i, int j) { return (i + j) % 7 != 0; }, from_grid, threads);
+        sap.find_pairs(
+            lo, hi, [](int i, int j) { return (i + j) % 7 != 0; }, from_sweep, threads);
+        EXPECT_EQ(from_grid, expected) << layout << " call " << call << " threads " << threads;
+        EXPECT_EQ(from_sweep, expected) << layout << " call " << call << " threads " << threads;
+      }
+      if (std::string(layout) == "pile on plate") {
+        EXPECT_EQ(grid.large_count(), 1u);
+      }
+    }
   }
 }
 

@@ -58,7 +58,13 @@ void run_boon2015_cases(
     const std::function<void(const Boon2015CaseRun&)>& case_done,
     const std::function<void(const std::string&, const std::string&)>& stage_done) {
   std::filesystem::create_directories(out);
-  if (jobs <= 0) jobs = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // Cores (OMP_NUM_THREADS, else every core) are shared: cases run side by side, and each case
+  // gets the cores left over (one thread each when there are at least as many cases as cores).
+  // Results do not depend on the split: a step is bit-identical for any thread count.
+  const int cores = World().thread_count();
+  if (jobs <= 0) jobs = cores;
+  jobs = std::max(1, std::min(jobs, static_cast<int>(runs.size())));
+  for (auto& r : runs) r.scenario.settings.threads = std::max(1, cores / jobs);
   std::atomic<std::size_t> next{0};
   std::mutex io;
   auto worker = [&] {

@@ -23,7 +23,8 @@ struct Boon2015Selection {
 /// std::invalid_argument for an unknown case id and ScenarioError for a bad case file.
 std::vector<Boon2015CaseRun> select_boon2015_cases(const Boon2015Selection& selection);
 
-/// Runs the cases on `jobs` threads (0: one per core), each writing out/<id>. `case_done` is
+/// Runs the cases on `jobs` threads (0: one per core), each writing out/<id>; each case's step
+/// gets cores / jobs threads. `case_done` is
 /// called once per case as it ends, never from two threads at once; `stage_done(id, line)` as
 /// each stage ends, likewise. A case that throws is marked status "failed" with the message.
 void run_boon2015_cases(

@@ -1,0 +1,126 @@
+// Broad phase for wide 3D scenes: a uniform grid of cells the size of the largest ordinary box.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "blockdem/collision/broad_phase.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace blockdem {
+
+/// Uniform grid broad phase (spatial hashing; e.g. Ericson 2005, Real-Time Collision Detection,
+/// section 7.1). Boxes no larger than twice the median box size are "ordinary": each is filed in
+/// the one cell that holds its min corner, with cells as large as the largest ordinary box, so a
+/// box only needs to look at the 3 x 3 x 3 cells at and below its own. The few larger boxes (a
+/// base plate, a wall) are tested against every box. The cost is O(n) per call for similar-sized
+/// blocks in any arrangement (a 1D sweep costs O(n^1.5) for a wide 2D or 3D pile). The cells are
+/// rebuilt on every call (a counting sort over a dense cell array, or a sort of cell keys when the
+/// boxes are too sparse for one); the pairs come out sorted by (i, j) for any number of threads.
+class UniformGrid {
+ public:
+  /// Pairs (i < j) whose boxes overlap on all three axes (touching counts), for which
+  /// `want(i, j)` is true, sorted by (i, j). `want` must be safe to call from several threads.
+  template <class Want>
+  void find_pairs(const std::vector<Eigen::Vector3d>& box_min,
+                  const std::vector<Eigen::Vector3d>& box_max, Want&& want,
+                  std::vector<std::pair<int, int>>& pairs, int threads = 1);
+
+  double cell_size() const { return cell_; }                 ///< (m)
+  std::size_t large_count() const { return large_.size(); }  ///< boxes tested against all
+  bool dense() const { return dense_; }                      ///< cell array, not keys
+
+ private:
+  /// Files the ordinary boxes in cells; returns false when there are no boxes.
+  void build(const std::vector<Eigen::Vector3d>& box_min,
+             const std::vector<Eigen::Vector3d>& box_max);
+  std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return static_cast<std::uint64_t>(x + dims_[0] * (y + dims_[1] * z));
+  }
+  /// Range [begin, end) in bodies_ of the cell with this key.
+  std::pair<std::size_t, std::size_t> cell_range(std::uint64_t k) const;
+
+  double cell_ = 0.0;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  std::int64_t dims_[3] = {0, 0, 0};
+  bool dense_ = true;
+  std::vector<std::int64_t> coords_;     // 3 per body: cell coordinates of its min corner
+  std::vector<std::uint8_t> ordinary_;   // 1 for an ordinary box
+  std::vector<int> large_;               // the other boxes
+  std::vector<std::size_t> cell_start_;  // dense: start of each cell in bodies_ (+ end)
+  std::vector<std::uint64_t> keys_;      // sparse: sorted cell key of each bodies_ entry
+  std::vector<int> bodies_;              // ordinary boxes grouped by cell
+  std::vector<std::vector<std::pair<int, int>>> chunks_;
+  PairSorter sorter_;
+};
+
+template <class Want>
+void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
+                             const std::vector<Eigen::Vector3d>& box_max, Want&& want,
+                             std::vector<std::pair<int, int>>& pairs, int threads) {
+  pairs.clear();
+  const std::int64_t n = static_cast<std::int64_t>(box_min.size());
+  if (n == 0) return;
+  build(box_min, box_max);
+  if (threads < 1) threads = 1;
+  chunks_.resize(static_cast<std::size_t>(threads));
+  for (auto& c : chunks_) c.clear();
+  auto overlap = [&](int i, int j) {
+    return !(box_min[j].x() > box_max[i].x() || box_min[i].x() > box_max[j].x() ||
+             box_min[j].y() > box_max[i].y() || box_min[i].y() > box_max[j].y() ||
+             box_min[j].z() > box_max[i].z() || box_min[i].z() > box_max[j].z());
+  };
+#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
+  {
+#ifdef _OPENMP
+    std::vector<std::pair<int, int>>& out = chunks_[static_cast<std::size_t>(omp_get_thread_num())];
+#else
+    std::vector<std::pair<int, int>>& out = chunks_[0];
+#endif
+    // Ordinary against ordinary: box i looks at the cells whose boxes can reach it (their min
+    // corner at most one cell below its own min corner, at most its max corner) and keeps j > i.
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!ordinary_[static_cast<std::size_t>(i)]) continue;
+      const std::int64_t* c = &coords_[3 * static_cast<std::size_t>(i)];
+      std::int64_t hi[3];
+      for (int a = 0; a < 3; ++a) {
+        hi[a] = std::min<std::int64_t>(
+            dims_[a] - 1, static_cast<std::int64_t>(
+                              (box_max[static_cast<std::size_t>(i)][a] - origin_[a]) / cell_));
+      }
+      for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1); z <= hi[2]; ++z) {
+        for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1); y <= hi[1]; ++y) {
+          for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1); x <= hi[0]; ++x) {
+            const auto [begin, end] = cell_range(key(x, y, z));
+            for (std::size_t k = begin; k < end; ++k) {
+              const int j = bodies_[k];
+              if (j <= i) continue;
+              if (overlap(static_cast<int>(i), j) && want(static_cast<int>(i), j))
+                out.emplace_back(static_cast<int>(i), j);
+            }
+          }
+        }
+      }
+    }
+    // Large boxes against every other box (each large-large pair once).
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t l = 0; l < static_cast<std::int64_t>(large_.size()); ++l) {
+      const int i = large_[static_cast<std::size_t>(l)];
+      for (int j = 0; j < static_cast<int>(n); ++j) {
+        if (j == i || (!ordinary_[static_cast<std::size_t>(j)] && j < i)) continue;
+        const int a = std::min(i, j), b = std::max(i, j);
+        if (overlap(a, b) && want(a, b)) out.emplace_back(a, b);
+      }
+    }
+  }
+  for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
+  sorter_.sort(pairs, static_cast<std::size_t>(n));
+}
+
+}  // namespace blockdem

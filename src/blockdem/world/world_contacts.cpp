@@ -1,0 +1,253 @@
+// The contact passes of a step over dense, sorted arrays: candidate pairs from the broad phase,
+// a sorted merge that keeps each pair's history, the per-pair work in parallel (each pair writes
+// only its own slot), and the loads scattered onto blocks in (a, b) order, so that results are
+// bit-identical for any number of threads. Force assembly of DESIGN sections 2-4.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "blockdem/contact/normal_integral.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+namespace {
+
+bool less_pair(int a1, int b1, int a2, int b2) {
+  return a1 < a2 || (a1 == a2 && b1 < b2);
+}
+
+/// Back to a fresh contact (no history), keeping the pair and its narrow-phase warm start.
+void forget_history(Contact& c) {
+  if (!c.has_history) return;
+  Contact fresh;
+  fresh.a = c.a;
+  fresh.b = c.b;
+  fresh.law = c.law;
+  fresh.narrow_cache = c.narrow_cache;
+  c = fresh;
+}
+
+}  // namespace
+
+void World::compute_contacts(double dt, int threads) {
+  // Broad phase: pairs where at least one block can move, sorted by (a, b).
+  broad_phase_.find_pairs(
+      box_min_, box_max_,
+      [&](int a, int b) {
+        return (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
+               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
+      },
+      pairs_, threads);
+  merge_pairs();
+  evaluate_pairs(dt, true, threads);
+  scatter_loads();
+}
+
+void World::merge_pairs() {
+  // The common case: the same pairs as last step.
+  bool same = pairs_.size() == slots_.size();
+  for (std::size_t k = 0; same && k < pairs_.size(); ++k) {
+    same = slots_[k].contact.a == pairs_[k].first && slots_[k].contact.b == pairs_[k].second;
+  }
+  if (!same) {
+    // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
+    // place (forward); then open the slots of new pairs, moving kept ones back (backward).
+    std::size_t kept = 0, p = 0;
+    for (std::size_t k = 0; k < slots_.size(); ++k) {
+      const Contact& c = slots_[k].contact;
+      while (p < pairs_.size() && less_pair(pairs_[p].first, pairs_[p].second, c.a, c.b)) ++p;
+      if (p < pairs_.size() && pairs_[p].first == c.a && pairs_[p].second == c.b) {
+        if (kept != k) slots_[kept] = std::move(slots_[k]);
+        ++kept;
+      }
+    }
+    // Grow with an eighth of slack: the store is the largest array of a big scene, and a
+    // doubling reallocation would briefly need three times its size.
+    if (pairs_.size() > slots_.capacity()) slots_.reserve(pairs_.size() + pairs_.size() / 8);
+    slots_.resize(std::max(kept, pairs_.size()));
+    std::size_t old = kept;  // slots [0, kept) hold a subset of pairs_, in order
+    for (std::size_t w = pairs_.size(); w-- > 0;) {
+      const auto [a, b] = pairs_[w];
+      if (old > 0 && slots_[old - 1].contact.a == a && slots_[old - 1].contact.b == b) {
+        --old;
+        if (old != w) slots_[w] = std::move(slots_[old]);
+      } else {
+        // A new candidate pair: the joint law is looked up once, when the pair appears.
+        PairSlot fresh;
+        fresh.contact.a = a;
+        fresh.contact.b = b;
+        fresh.contact.law = law_for(a, b);
+        slots_[w] = std::move(fresh);
+      }
+    }
+    slots_.resize(pairs_.size());
+  }
+  if (slots_rules_version_ != rules_version_) {
+    for (auto& s : slots_) s.contact.law = law_for(s.contact.a, s.contact.b);
+    slots_rules_version_ = rules_version_;
+  }
+}
+
+void World::evaluate_pairs(double dt, bool advance_shear, int threads) {
+  const std::int64_t n = static_cast<std::int64_t>(slots_.size());
+  // An exception inside the parallel loop is kept (the one of the first pair in order) and
+  // thrown after it, as a serial loop would.
+  std::int64_t failed = n;
+  std::exception_ptr error;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
+  for (std::int64_t i = 0; i < n; ++i) {
+    try {
+      evaluate_pair(slots_[static_cast<std::size_t>(i)], dt, advance_shear);
+    } catch (...) {
+#pragma omp critical(blockdem_pair_error)
+      if (i < failed) {
+        failed = i;
+        error = std::current_exception();
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
+  Contact& ct = slot.contact;
+  slot.active = false;
+  slot.stiffness = 0.0;
+  if (ct.law < 0) {
+    forget_history(ct);
+    return;
+  }
+  const Block& a = blocks_[ct.a];
+  const Block& b = blocks_[ct.b];
+  const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+  const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent,
+                                             settings_.boon2012, &ct.narrow_cache);
+  if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
+    forget_history(ct);
+    return;
+  }
+  ct.geometry = ContactGeometryRecord(g);
+  const JointLaw& law = laws_[ct.law];
+  const Eigen::Vector3d& n = ct.geometry.normal;
+
+  // Normal force: σ_n(δ) A_c at x_c (DESIGN section 2 step 6), or the law integrated over
+  // the contact, acting at the centre of pressure (section 3).
+  ct.integrated = false;
+  if (settings_.contact_mode == ContactMode::face_integrated) {
+    const FaceContactGeometry fc = face_contact_geometry(
+        a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
+    if (fc.face_type) {
+      double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
+      Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+      for (const auto& cell : fc.cells) {
+        const PolygonStressResultant r =
+            integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
+        force += r.force;
+        compressed += r.compressed_area;
+        peak = std::max(peak, r.peak_stress);
+        if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
+        for (double gc : cell.closures) closure = std::max(closure, gc);
+      }
+      if (!(force > 0.0)) {
+        // Touching, but no closure anywhere to integrate: no force this step.
+        forget_history(ct);
+        return;
+      }
+      ct.integrated = true;
+      ct.normal_force = force;
+      ct.compressed_area = compressed;
+      ct.normal_stress = force / compressed;
+      ct.peak_stress = peak;
+      ct.peak_closure = closure;
+      ct.force_point = moment / force;
+    }
+  }
+  if (!ct.integrated) {
+    ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
+    ct.normal_force = ct.normal_stress * ct.geometry.area;
+    ct.force_point = ct.geometry.point;
+    ct.compressed_area = ct.geometry.area;
+    ct.peak_stress = ct.normal_stress;
+    ct.peak_closure = ct.geometry.overlap;
+  }
+  slot.active = true;
+  const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
+  // A restore re-derives geometry and normal force only; the shear history stays as saved.
+  if (!advance_shear) {
+    slot.stiffness = kn;
+    return;
+  }
+  const Eigen::Vector3d& xf = ct.force_point;
+
+  // Shear: carry the stored force into the new tangent plane, then add the increment from the
+  // relative velocity of the material points at x_c over the step (DESIGN section 4).
+  if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
+  const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
+  ShearIncrement inc;
+  inc.displacement =
+      ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt) : Eigen::Vector3d::Zero();
+  inc.normal_force = ct.normal_force;
+  inc.normal_stress = ct.normal_stress;
+  inc.contact_area = ct.compressed_area;
+  inc.normal = n;
+  const ShearResult sr = update_shear(law.shear, ct.shear, inc);
+  ct.sliding = sr.sliding;
+  ct.previous_normal = n;
+  ct.has_history = true;
+  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
+  slot.stiffness = kn + sr.stiffness;
+}
+
+void World::scatter_loads() {
+  // Serial, in (a, b) order: every block's sums are formed in the same order for any number of
+  // threads. The pass also counts contacts and finds the first too-deep overlap.
+  stiffness_.assign(blocks_.size(), 0.0);
+  rotational_stiffness_.assign(blocks_.size(), 0.0);
+  active_count_ = 0;
+  overlap_violation_ = -1;
+  for (std::size_t slot = 0; slot < slots_.size(); ++slot) {
+    const PairSlot& s = slots_[slot];
+    if (!s.active) continue;
+    ++active_count_;
+    const Contact& ct = s.contact;
+    Block& a = blocks_[ct.a];
+    Block& b = blocks_[ct.b];
+    const Eigen::Vector3d& xf = ct.force_point;
+
+    // Loads on both blocks, applied at the force point.
+    const Eigen::Vector3d f = ct.force_on_b();
+    b.force += f;
+    b.contact_force += f;
+    b.torque += (xf - b.position).cross(f);
+    a.force -= f;
+    a.contact_force -= f;
+    a.torque -= (xf - a.position).cross(f);
+
+    // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
+    // the rocking stiffness of a spread face.
+    const double k = s.stiffness;
+    const double spread = ct.compressed_area / 12.0;
+    stiffness_[ct.a] += k;
+    stiffness_[ct.b] += k;
+    rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
+    rotational_stiffness_[ct.b] += k * ((xf - b.position).squaredNorm() + spread);
+
+    if (overlap_violation_ < 0) {
+      const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+      if (ct.geometry.overlap > settings_.max_overlap_fraction * size)
+        overlap_violation_ = static_cast<std::int64_t>(slot);
+    }
+  }
+
+  contact_dt_ = 0.0;
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (const auto& bl : blocks_) {
+    if (!bl.is_dynamic() || stiffness_[bl.index] <= 0.0) continue;
+    dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[bl.index]));
+    dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[bl.index]));
+  }
+  if (std::isfinite(dt_min)) contact_dt_ = settings_.safety_factor * dt_min;
+}
+
+}  // namespace blockdem
