@@ -30,6 +30,8 @@ int run(const RunOptions& opt) {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
     beam = sc.voussoir.has_value();
+    if (sc.stages.empty())
+      throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";

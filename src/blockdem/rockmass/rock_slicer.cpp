@@ -66,7 +66,8 @@ void place_joints(const JointSet& set, const ConvexCell& region, double snap,
   const auto [lo, hi] = region.extent_along(n);
   std::vector<Joint> raw;
   if (!set.extent) {
-    for (double d : joint_plane_offsets(set, lo, hi)) raw.push_back(Joint{d, true, {}});
+    for (double d : joint_plane_offsets(set, lo, hi))
+      raw.push_back(Joint{d, true, Eigen::Vector3d::Zero()});
   } else if (!set.centres.empty()) {
     for (const auto& c : set.centres) raw.push_back(Joint{n.dot(c), false, c});
   } else {

@@ -11,6 +11,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/rockmass/rock_mass_model.hpp"
 
 namespace blockdem {
 namespace {
@@ -228,10 +229,22 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
   return v;
 }
 
-Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names) {
+Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names,
+                 const std::map<std::string, std::vector<std::string>>& excavations) {
   Stage s;
   s.name = t.string("name");
-  const std::string kind = t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration"});
+  const std::string kind =
+      t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration", "excavation"});
+  // An excavation stage removes the blocks inside an excavation, then runs to equilibrium.
+  if (kind == "excavation" && !t.has("excavation"))
+    t.fail("excavation", "a stage of kind \"excavation\" names the excavation to remove");
+  if (t.has("excavation")) {
+    const std::string name = t.string("excavation");
+    const auto it = excavations.find(name);
+    if (it == excavations.end())
+      t.fail("excavation", "no excavation named \"" + name + "\" in [[excavations]]");
+    s.remove = it->second;
+  }
   s.kind = kind == "steps"      ? Stage::Kind::steps
            : kind == "duration" ? Stage::Kind::duration
                                 : Stage::Kind::equilibrium;
@@ -354,6 +367,20 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   }
 
   std::set<std::string> names, groups;
+  if (t.has("rock_mass")) {
+    // The blocks are cut from the rock mass (rockmass/rock_mass_model.hpp).
+    auto model = std::make_shared<RockMassModel>(read_rock_mass(t, materials, law_index));
+    RockMassBlocks made = make_rock_mass_blocks(*model);
+    for (auto& b : made.blocks) {
+      names.insert(b.name);
+      groups.insert(b.group);
+      sc.blocks.push_back(std::move(b));
+    }
+    sc.face_laws = std::move(made.face_laws);
+    sc.excavations = std::move(made.excavated);
+    if (model->default_law >= 0) sc.joint_rules.push_back(JointRule{"", "", model->default_law});
+    sc.rock_mass = std::move(model);
+  }
   for (const auto& bt : t.tables("blocks")) {
     Block b = read_block(bt, materials);
     if (names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
@@ -361,7 +388,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
     groups.insert(b.group);
     sc.blocks.push_back(std::move(b));
   }
-  if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");
+  if (sc.blocks.empty())
+    t.fail("blocks", "a scenario needs at least one [[blocks]] entry or a [rock_mass]");
 
   for (const auto& jt : t.tables("joints")) {
     JointRule r;
@@ -386,13 +414,21 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
     // One law and no rules: it acts between all blocks.
     sc.joint_rules.push_back(JointRule{"", "", 0});
   }
+  if (sc.joint_rules.empty() && sc.blocks.size() > 1 && sc.rock_mass) {
+    t.fail("rock_mass.law",
+           "several joint laws: name the law of faces without one of their own (e.g. the "
+           "excavation outline)");
+  }
   if (sc.joint_rules.empty() && sc.blocks.size() > 1) {
     t.fail("joints",
            "several joint laws and no [[joints]] rule saying which acts between which groups");
   }
 
-  for (const auto& st : t.tables("stages")) sc.stages.push_back(read_stage(st, names));
-  if (sc.stages.empty()) t.fail("stages", "a scenario needs at least one [[stages]] entry");
+  for (const auto& st : t.tables("stages"))
+    sc.stages.push_back(read_stage(st, names, sc.excavations));
+  // A rock mass without stages can be generated (blockdem generate), not run.
+  if (sc.stages.empty() && !sc.rock_mass)
+    t.fail("stages", "a scenario needs at least one [[stages]] entry");
 
   if (t.has("output")) {
     const CheckedTable o = t.table("output");
@@ -416,6 +452,9 @@ World build_world(const Scenario& sc) {
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
   for (const auto& b : sc.blocks) w.add_block(b);
+  for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
+    if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
+  }
   // Deep initial overlaps are input errors, not something to blow apart.
   const auto& blocks = w.blocks();
   for (std::size_t i = 0; i < blocks.size(); ++i) {

@@ -2,6 +2,8 @@
 // and outputs, read with every key checked, and turned into a World.
 #pragma once
 
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +14,8 @@
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
+
+struct RockMassModel;
 
 struct OutputSpec {
   bool vtk = true;  ///< write VTK files of blocks and contacts at every stage end
@@ -29,6 +33,12 @@ struct Scenario {
   /// Set for a [voussoir] scenario: the beam it was built from and where its parts are.
   std::optional<VoussoirSpec> voussoir;
   VoussoirLayout voussoir_layout;
+  /// Set for a [rock_mass] scenario: the sliced rock mass the blocks were made from.
+  std::shared_ptr<const RockMassModel> rock_mass;
+  /// Per block: its planes' own joint laws (empty: none; see World::set_face_laws).
+  std::vector<std::vector<int>> face_laws;
+  /// Names of the blocks inside each excavation, by excavation name.
+  std::map<std::string, std::vector<std::string>> excavations;
 };
 
 /// Reads and checks a scenario file. Throws ScenarioError ("FILE: KEY: REASON").

@@ -8,6 +8,7 @@
 
 #include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/world/face_laws.hpp"
 
 namespace blockdem {
 namespace {
@@ -156,8 +157,8 @@ void World::compute_contacts(double dt) {
   for (auto& [key, c] : contacts_) c.law = -2;  // mark as not seen this step
 
   for (const auto& [ia, ib] : pairs_) {
-    const int law_index = law_for(ia, ib);
-    if (law_index < 0) continue;
+    const int group_law = law_for(ia, ib);
+    if (group_law < 0 && face_laws(ia).empty() && face_laws(ib).empty()) continue;
     Block& a = blocks_[ia];
     Block& b = blocks_[ib];
     const std::uint64_t key = pair_key(ia, ib);
@@ -168,6 +169,8 @@ void World::compute_contacts(double dt) {
     ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012,
                                          &c.narrow_cache);
     if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) continue;
+    const int law_index = face_law_for_contact(a, face_laws(ia), b, face_laws(ib), g, group_law);
+    if (law_index < 0) continue;
     if (it == contacts_.end()) {
       fresh.a = ia;
       fresh.b = ib;

@@ -98,6 +98,13 @@ class World {
   int find_block(const std::string& name) const;
   /// Joint law index for a pair of blocks, or -1 when no rule covers their groups.
   int law_for(int a, int b) const;
+  /// Gives a block's planes their own joint laws (one index per plane of its shape, -1 for a
+  /// plane without one): a contact on such a face takes that law before the group rules.
+  void set_face_laws(int block, std::vector<int> law_per_plane);
+  /// The block's per-plane laws (empty: none).
+  const std::vector<int>& face_laws(int block) const;
+  /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
+  void remove_blocks(const std::vector<int>& indices);
 
   /// The current contacts (order unspecified).
   std::vector<const Contact*> contacts() const;
@@ -129,6 +136,7 @@ class World {
   std::vector<Block> blocks_;
   std::vector<JointLaw> laws_;
   std::vector<JointRule> rules_;
+  std::vector<std::vector<int>> face_laws_;  // per block; empty: no face laws
   std::unordered_map<std::uint64_t, Contact> contacts_;
   SweepAndPrune broad_phase_;
   std::vector<std::pair<int, int>> pairs_;

@@ -198,7 +198,9 @@ TEST(RockSlicer, SameSeedSameBlocksOtherSeedOtherBlocks) {
 
 JointSet disc_joint(const Eigen::Vector3d& centre, double radius) {
   JointSet s = persistent("D", 30, 45, 1.0, centre);
-  s.extent = JointExtent{JointExtent::Shape::disc, radius, {}};
+  JointExtent e;
+  e.radius = radius;
+  s.extent = e;
   s.centres = {centre};
   return s;
 }
