@@ -369,7 +369,13 @@ EquilibriumMeasures World::equilibrium() const {
     m.kinetic_energy += b.kinetic_energy();
     if (!b.is_dynamic()) continue;
     ++free_blocks;
-    unbalanced += b.force.norm() + b.torque.norm() / b.shape.bounding_radius();
+    // A blocked degree of freedom (a roller, plane motion) carries a reaction, not an unbalance.
+    Eigen::Vector3d f = b.force, t = b.torque;
+    for (int k = 0; k < 3; ++k) {
+      if (b.blocked_translation[k]) f[k] = 0.0;
+      if (b.blocked_rotation[k]) t[k] = 0.0;
+    }
+    unbalanced += f.norm() + t.norm() / b.shape.bounding_radius();
   }
   if (free_blocks == 0) {
     m.unbalanced_force_ratio = 0.0;
