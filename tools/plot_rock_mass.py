@@ -5,6 +5,9 @@
 Usage: plot_rock_mass.py DIR [--title TEXT]
 Reads DIR/blocks.csv, DIR/rock_mass.json and DIR/blocks.vtk; writes
 DIR/block_volume_distribution.png and DIR/blocks.png.
+       plot_rock_mass.py --run-vtk FILE --png OUT [--title TEXT]
+Renders a run's blocks_NNNN.vtk (blockdem run) seen from the south, faces coloured by their
+block's displacement: the state after an excavation, key blocks stand out.
 """
 import argparse
 import csv
@@ -42,6 +45,11 @@ def read_vtk(path):
             n = len(polygons)
             cells[line[1]] = np.array([int(tokens[i + 2 + k]) for k in range(n)])
             i += n + 2
+        elif line[0] == "VECTORS":
+            n = len(polygons)
+            cells[line[1]] = np.array(
+                [[float(x) for x in tokens[i + 1 + k].split()] for k in range(n)])
+            i += n + 1
         else:
             i += 1
     return points, polygons, cells
@@ -100,11 +108,44 @@ def render(out, points, polygons, cells, title):
     plt.close(fig)
 
 
+def render_run(vtk, png, title):
+    points, polygons, cells = read_vtk(vtk)
+    disp = np.linalg.norm(cells["displacement_m"], axis=1) * 1e3
+    polys = [points[p] for p in polygons]
+    norm = matplotlib.colors.LogNorm(vmin=max(1e-3, disp.min() + 1e-3), vmax=max(disp.max(), 1e-2))
+    cmap = plt.get_cmap("viridis")
+    colours = [cmap(norm(max(d, 1e-3))) for d in disp]
+    fig = plt.figure(figsize=(7, 6))
+    ax = fig.add_subplot(projection="3d")
+    ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=(0, 0, 0, 0.4),
+                                         linewidths=0.3))
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(hi - lo)
+    ax.set_xlabel("x east (m)")
+    ax.set_ylabel("y north (m)")
+    ax.set_zlabel("z up (m)")
+    ax.view_init(elev=12, azim=-80)
+    sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
+    fig.colorbar(sm, ax=ax, shrink=0.6, label="block displacement (mm)")
+    ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(png, dpi=150)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("dir")
+    parser.add_argument("dir", nargs="?")
     parser.add_argument("--title", default=None)
+    parser.add_argument("--run-vtk", default=None)
+    parser.add_argument("--png", default=None)
     args = parser.parse_args()
+    if args.run_vtk:
+        render_run(args.run_vtk, args.png, args.title or os.path.basename(args.run_vtk))
+        return
     with open(os.path.join(args.dir, "blocks.csv")) as f:
         volumes = [float(r["volume_m3"]) for r in csv.DictReader(f)]
     with open(os.path.join(args.dir, "rock_mass.json")) as f:

@@ -1,5 +1,6 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "blockdem/io/scenario_runner.hpp"
@@ -26,10 +27,12 @@ int run(const RunOptions& opt) {
   };
   RunResult r;
   bool beam = false;
+  bool rock_mass = false;
   try {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
     beam = sc.voussoir.has_value();
+    rock_mass = sc.rock_mass != nullptr;
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     r = run_scenario(sc, opt.out, cb);
@@ -43,6 +46,24 @@ int run(const RunOptions& opt) {
   if (beam && opt.figures && !r.levels.empty()) {
     std::string why;
     if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
+      std::cerr << "blockdem: warning: no figures: " << why << "\n";
+  }
+  if (rock_mass && opt.figures) {
+    // The blocks at the last stage end, coloured by displacement (key blocks stand out).
+    std::filesystem::path last;
+    const std::filesystem::path vtk = std::filesystem::path(opt.out) / "vtk";
+    if (std::filesystem::exists(vtk)) {
+      for (const auto& e : std::filesystem::directory_iterator(vtk)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("blocks_", 0) == 0 && (last.empty() || e.path() > last)) last = e.path();
+      }
+    }
+    std::string why;
+    if (!last.empty() &&
+        !run_plot_script("plot_rock_mass.py",
+                         {"--run-vtk", last.string(), "--png",
+                          (std::filesystem::path(opt.out) / "blocks_final.png").string()},
+                         why))
       std::cerr << "blockdem: warning: no figures: " << why << "\n";
   }
   if (r.exit_code != 0) {
