@@ -1,5 +1,5 @@
-// `blockdem calibrate normal|shear|cy`: joint laws from laboratory data (DESIGN.md section 8,
-// docs/calibration.md). Prints a summary and the joint-law block (JSON and TOML); with --out DIR
+// `blockdem calibrate normal|shear|cy`: joint laws from laboratory data
+// (docs/calibration.md). Prints a summary and the joint-law block (JSON and TOML); with --out DIR
 // writes calibration.json, fit CSVs and PNG plots. Everything is checked before anything is
 // written.
 #include <CLI/CLI.hpp>
@@ -16,6 +16,7 @@
 
 #include "blockdem/calibration/calibration_report.hpp"
 #include "commands.hpp"
+#include "figures.hpp"
 
 namespace blockdem::cli {
 namespace {

@@ -3,7 +3,8 @@
 #include <iostream>
 
 #include "blockdem/rockmass/rock_mass_output.hpp"
-#include "blockdem/scenario/scenario.hpp"
+#include "blockdem/rockmass/scene.hpp"
+#include "blockdem/run/scene_builders.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 
@@ -22,7 +23,7 @@ int generate(const GenerateOptions& opt) {
   try {
     // Read, check and slice everything before anything is written.
     sc = load_scenario(opt.scenario);
-    if (!sc.rock_mass)
+    if (!rock_mass_scene(sc))
       throw ScenarioError(sc.file, "rock_mass", "generate needs a [rock_mass] to cut into blocks");
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
@@ -31,14 +32,15 @@ int generate(const GenerateOptions& opt) {
     std::cerr << "blockdem: error: " << opt.scenario << ": " << e.what() << "\n";
     return 2;
   }
-  write_rock_mass(*sc.rock_mass, opt.out);
+  const RockMassModel& model = rock_mass_scene(sc)->model;
+  write_rock_mass(model, opt.out);
   if (opt.figures) {
     std::string why;
     if (!run_plot_script("plot_rock_mass.py", {opt.out}, why))
       std::cerr << "blockdem: warning: no figures: " << why << "\n";
   }
   if (!opt.quiet) {
-    const RockMass& rm = sc.rock_mass->rock_mass;
+    const RockMass& rm = model.rock_mass;
     std::cerr << "blockdem: " << rm.blocks.size() << " blocks, " << rm.total_volume() << " m3 of a "
               << rm.region_volume << " m3 region (" << rm.removed_blocks << " removed, "
               << rm.removed_volume << " m3; " << rm.merged_cuts << " cuts merged back); outputs in "

@@ -3,7 +3,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/rockmass/scene.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/scene.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -31,8 +34,8 @@ int run(const RunOptions& opt) {
   try {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
-    beam = sc.voussoir.has_value();
-    rock_mass = sc.rock_mass != nullptr;
+    beam = voussoir_scene(sc) != nullptr;
+    rock_mass = rock_mass_scene(sc) != nullptr;
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     r = run_scenario(sc, opt.out, cb);

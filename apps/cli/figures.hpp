@@ -1,6 +1,7 @@
 // Figures are drawn by tools/plot_*.py with matplotlib; this finds a Python that has it.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -13,5 +14,20 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
 
 /// Folder of the project's scripts: $BLOCKDEM_TOOLS_DIR, else the source tree's tools/.
 std::string tools_dir();
+
+struct PlotOutcome {
+  bool written = false;            ///< every PNG was written
+  std::vector<std::string> files;  ///< the PNG file names written
+  std::string message;             ///< why not, when not written (for the user)
+};
+
+/// The Python interpreter for the plots: /usr/bin/python3 if it exists (Debian's, which has
+/// matplotlib), else "python3" from PATH.
+std::string default_python();
+
+/// Runs `python tools/calibration_plot.py DIR` (in tools_dir()) on a directory holding
+/// calibration.json and the fit CSVs. Never throws for a missing interpreter, script or matplotlib:
+/// the outcome says what happened.
+PlotOutcome run_calibration_plots(const std::filesystem::path& dir, const std::string& python);
 
 }  // namespace blockdem::cli

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "blockdem/scenario/scenario.hpp"
+#include "blockdem/run/scene_builders.hpp"
 
 namespace blockdem {
 namespace {

@@ -5,16 +5,18 @@
 #include <cmath>
 #include <numbers>
 
+#include "blockdem/numerics/units.hpp"
+
 namespace blockdem {
 
 Eigen::Vector3d TunnelSpec::axis() const {
-  const double t = trend_deg * std::numbers::pi / 180.0, p = plunge_deg * std::numbers::pi / 180.0;
+  const double t = deg_to_rad(trend_deg), p = deg_to_rad(plunge_deg);
   return {std::cos(p) * std::sin(t), std::cos(p) * std::cos(t), -std::sin(p)};
 }
 
 std::vector<Halfspace> tunnel_planes(const TunnelSpec& t) {
   const double pi = std::numbers::pi;
-  const double tr = t.trend_deg * pi / 180.0;
+  const double tr = deg_to_rad(t.trend_deg);
   const Eigen::Vector3d a = t.axis();
   // Section axes: horizontal eh (right of the axis looking along it) and ev = eh x a (up).
   const Eigen::Vector3d eh(std::cos(tr), -std::sin(tr), 0.0);

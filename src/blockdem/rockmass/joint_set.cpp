@@ -5,10 +5,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "blockdem/numerics/units.hpp"
+
 namespace blockdem {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = deg_to_rad(1.0);
 
 // One spacing drawn from the set's distribution (m). Normal draws that are not positive are
 // drawn again (a truncated normal; with sd <= mean/3 fewer than 0.2 % are redrawn). Lognormal:

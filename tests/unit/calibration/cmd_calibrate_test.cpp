@@ -20,6 +20,7 @@
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "calibration_test_support.hpp"
+#include "support/cli_runner.hpp"
 
 namespace blockdem {
 namespace {
@@ -27,31 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::relative_error;
 
-struct CommandOutput {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs the CLI with `arguments`, capturing stdout through a pipe and stderr through a file.
-CommandOutput run_cli(const std::string& arguments) {
-  const fs::path err_path = test::scratch_directory() / "cli.err";
-  const std::string command =
-      std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>'" + err_path.string() + "'";
-  CommandOutput result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
-  return result;
-}
+using test::CommandOutput;
+using test::run_cli;
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "blockdem/rockmass/rock_mass_model.hpp"
-#include "blockdem/scenario/scenario.hpp"
+#include "blockdem/run/scene_builders.hpp"
 
 namespace blockdem {
 namespace {
