@@ -1,8 +1,10 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
+#include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/voussoir/scene.hpp"
@@ -19,7 +21,7 @@ struct RunOptions {
   bool quiet = false;
   bool figures = true;
   std::int64_t max_steps = 0;  ///< > 0: every stage stops after at most this many steps
-  int threads = 0;  // 0: OMP_NUM_THREADS, else every core
+  int threads = 0;             // 0: OMP_NUM_THREADS, else every core
 };
 
 int run(const RunOptions& opt) {
@@ -31,6 +33,7 @@ int run(const RunOptions& opt) {
   };
   RunResult r;
   bool beam = false;
+  bool rock_mass = false;
   try {
     // Read and check everything before anything is written.
     Scenario sc = load_scenario(opt.scenario);
@@ -44,6 +47,9 @@ int run(const RunOptions& opt) {
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : sc.warnings)
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
+    rock_mass = rock_mass_scene(sc) != nullptr;
+    if (sc.stages.empty())
+      throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
@@ -55,6 +61,24 @@ int run(const RunOptions& opt) {
   if (beam && opt.figures && !r.levels.empty()) {
     std::string why;
     if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
+      std::cerr << "blockdem: warning: no figures: " << why << "\n";
+  }
+  if (rock_mass && opt.figures) {
+    // The blocks at the last stage end, coloured by displacement (key blocks stand out).
+    std::filesystem::path last;
+    const std::filesystem::path vtk = std::filesystem::path(opt.out) / "vtk";
+    if (std::filesystem::exists(vtk)) {
+      for (const auto& e : std::filesystem::directory_iterator(vtk)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("blocks_", 0) == 0 && (last.empty() || e.path() > last)) last = e.path();
+      }
+    }
+    std::string why;
+    if (!last.empty() &&
+        !run_plot_script("plot_rock_mass.py",
+                         {"--run-vtk", last.string(), "--png",
+                          (std::filesystem::path(opt.out) / "blocks_final.png").string()},
+                         why))
       std::cerr << "blockdem: warning: no figures: " << why << "\n";
   }
   if (r.exit_code != 0) {

@@ -17,5 +17,6 @@ void register_reproduce(CLI::App& app);
 void register_analytic(CLI::App& app);
 void register_lab(CLI::App& app);
 void register_calibrate(CLI::App& app);
+void register_generate(CLI::App& app);
 
 }  // namespace blockdem::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   blockdem::cli::register_analytic(app);
   blockdem::cli::register_lab(app);
   blockdem::cli::register_calibrate(app);
+  blockdem::cli::register_generate(app);
 
   try {
     app.parse(argc, argv);

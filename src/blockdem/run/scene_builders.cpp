@@ -1,13 +1,15 @@
 // The list of built-in scene builders.
 #include "blockdem/run/scene_builders.hpp"
 
+#include "blockdem/rockmass/scene.hpp"
 #include "blockdem/voussoir/scene.hpp"
 
 namespace blockdem {
 
 const SceneBuilders& scene_builders() {
   static const VoussoirSceneBuilder voussoir;
-  static const SceneBuilders all = {&voussoir};
+  static const RockMassSceneBuilder rock_mass;
+  static const SceneBuilders all = {&voussoir, &rock_mass};
   return all;
 }
 

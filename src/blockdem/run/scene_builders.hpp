@@ -7,7 +7,7 @@
 
 namespace blockdem {
 
-/// Every built-in scene builder: [voussoir].
+/// Every built-in scene builder: [voussoir], [rock_mass].
 const SceneBuilders& scene_builders();
 
 /// Reads and checks a scenario file with every built-in builder (throws ScenarioError).

@@ -30,6 +30,13 @@ class SceneBuilder {
   /// joint laws, rules and stages to `scenario`, which already holds the file's settings,
   /// materials, joint laws and blocks. May set `scenario.built`.
   virtual void build(const CheckedTable& table, Scenario& scenario) const = 0;
+  /// Top-level keys beside its table that the builder reads too (e.g. [[joint_sets]]).
+  virtual std::vector<std::string> reads() const { return {}; }
+  /// Reads the builder's table, and the top-level keys of reads(), from the file's root table.
+  /// The default hands build() its table alone.
+  virtual void build_from_root(const CheckedTable& root, Scenario& scenario) const {
+    build(root.table(table()), scenario);
+  }
 };
 
 using SceneBuilders = std::vector<const SceneBuilder*>;

@@ -51,6 +51,11 @@ bool CheckedTable::is_string(const std::string& key) const {
   return n != nullptr && n->is_string();
 }
 
+bool CheckedTable::is_table(const std::string& key) const {
+  const toml::node* n = table_->get(key);
+  return n != nullptr && n->is_table();
+}
+
 void CheckedTable::fail(const std::string& key, const std::string& reason) const {
   throw ScenarioError(file_, key_path(key), reason);
 }

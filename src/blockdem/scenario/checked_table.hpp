@@ -39,6 +39,7 @@ class CheckedTable {
   }
   bool has(const std::string& key) const;
   bool is_string(const std::string& key) const;
+  bool is_table(const std::string& key) const;
 
   /// Throws ScenarioError naming this key.
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;

@@ -207,10 +207,22 @@ JointLaw read_joint_law(const CheckedTable& t) {
   return law;
 }
 
-Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names) {
+Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names,
+                 const std::map<std::string, std::vector<std::string>>& excavations) {
   Stage s;
   s.name = t.string("name");
-  const std::string kind = t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration"});
+  const std::string kind =
+      t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration", "excavation"});
+  // An excavation stage removes the blocks inside an excavation, then runs to equilibrium.
+  if (kind == "excavation" && !t.has("excavation"))
+    t.fail("excavation", "a stage of kind \"excavation\" names the excavation to remove");
+  if (t.has("excavation")) {
+    const std::string name = t.string("excavation");
+    const auto it = excavations.find(name);
+    if (it == excavations.end())
+      t.fail("excavation", "no excavation named \"" + name + "\" in [[excavations]]");
+    s.remove = it->second;
+  }
   s.kind = kind == "steps"      ? Stage::Kind::steps
            : kind == "duration" ? Stage::Kind::duration
                                 : Stage::Kind::equilibrium;
@@ -360,7 +372,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
     sc.blocks.push_back(std::move(b));
   }
   if (builder) {
-    builder->build(t.table(builder->table()), sc);
+    builder->build_from_root(t, sc);
     for (std::size_t i = 0; i < sc.blocks.size(); ++i) {
       names.insert(sc.blocks[i].name);
       groups.insert(sc.blocks[i].group);
@@ -397,8 +409,11 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
            "several joint laws and no [[joints]] rule saying which acts between which groups");
   }
 
-  for (const auto& st : t.tables("stages")) sc.stages.push_back(read_stage(st, names));
-  if (sc.stages.empty()) t.fail("stages", "a scenario needs at least one [[stages]] entry");
+  for (const auto& st : t.tables("stages"))
+    sc.stages.push_back(read_stage(st, names, sc.excavations));
+  // A built scene without stages can be generated (blockdem generate), not run.
+  if (sc.stages.empty() && !sc.built)
+    t.fail("stages", "a scenario needs at least one [[stages]] entry");
 
   if (t.has("output")) read_output(t.table("output"), sc.output);
   t.finish();
@@ -441,6 +456,9 @@ World build_world(const Scenario& sc) {
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
   for (const auto& b : sc.blocks) w.add_block(b);
+  for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
+    if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
+  }
   // Deep initial overlaps are input errors, not something to blow apart. Candidate pairs come
   // from the broad phase (O(N log N)), sorted by (i, j); the narrow phase runs on every thread
   // and the error names the first offending pair in that order, whatever the thread count.

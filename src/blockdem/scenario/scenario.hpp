@@ -33,6 +33,11 @@ struct Scenario {
   std::vector<std::string> warnings;
   /// Set by a scene builder (e.g. the voussoir beam: its spec and where its parts are).
   std::shared_ptr<const BuiltScene> built;
+  /// Per block: its planes' own joint laws (empty: none; see World::set_face_laws). Set by a
+  /// builder (a rock mass: one law per joint set).
+  std::vector<std::vector<int>> face_laws;
+  /// Named sets of blocks that a stage can remove (`excavation = "NAME"`). Set by a builder.
+  std::map<std::string, std::vector<std::string>> excavations;
 };
 
 /// Reads and checks a scenario file; `builders` are the scene builders whose tables the file may

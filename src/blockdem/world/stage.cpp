@@ -59,6 +59,16 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
     world.blocks()[i].servo.hold = true;
   }
+  if (!stage.remove.empty()) {
+    std::vector<int> gone;
+    for (const auto& name : stage.remove) {
+      const int i = world.find_block(name);
+      if (i < 0)
+        throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
+      gone.push_back(i);
+    }
+    world.remove_blocks(gone);
+  }
   world.save_checkpoint();
 
   StageResult r;

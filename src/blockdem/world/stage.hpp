@@ -33,6 +33,8 @@ struct Stage {
   std::vector<ServoCommand> servos;  ///< servo targets set at the stage start
   std::vector<std::string> hold;     ///< servo blocks stopped (held in place) at the start
   bool hold_servos_after = false;    ///< stop every servo block when the stage ends
+  /// Blocks removed from the world at the stage start (an excavation stage), by name.
+  std::vector<std::string> remove;
 
   // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
   // every active servo is within its force tolerance.

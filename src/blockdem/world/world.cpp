@@ -262,7 +262,13 @@ EquilibriumMeasures World::equilibrium() const {
     m.kinetic_energy += b.kinetic_energy();
     if (!b.is_dynamic()) continue;
     ++free_blocks;
-    unbalanced += b.force.norm() + b.torque.norm() / b.shape.bounding_radius();
+    // A blocked degree of freedom (a roller, plane motion) carries a reaction, not an unbalance.
+    Eigen::Vector3d f = b.force, t = b.torque;
+    for (int k = 0; k < 3; ++k) {
+      if (b.blocked_translation[k]) f[k] = 0.0;
+      if (b.blocked_rotation[k]) t[k] = 0.0;
+    }
+    unbalanced += f.norm() + t.norm() / b.shape.bounding_radius();
   }
   if (free_blocks == 0) {
     m.unbalanced_force_ratio = 0.0;
@@ -319,7 +325,8 @@ void World::restore_checkpoint() {
     PairSlot s;
     s.contact.a = h.a;
     s.contact.b = h.b;
-    s.contact.law = law_for(h.a, h.b);
+    s.group_law = law_for(h.a, h.b);
+    s.contact.law = s.group_law;
     s.contact.shear = h.shear;
     s.contact.previous_normal = h.previous_normal;
     s.contact.has_history = true;

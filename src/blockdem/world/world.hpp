@@ -100,6 +100,13 @@ class World {
   int find_block(const std::string& name) const;
   /// Joint law index for a pair of blocks, or -1 when no rule covers their groups.
   int law_for(int a, int b) const;
+  /// Gives a block's planes their own joint laws (one index per plane of its shape, -1 for a
+  /// plane without one): a contact on such a face takes that law before the group rules.
+  void set_face_laws(int block, std::vector<int> law_per_plane);
+  /// The block's per-plane laws (empty: none).
+  const std::vector<int>& face_laws(int block) const;
+  /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
+  void remove_blocks(const std::vector<int>& indices);
 
   /// The current contacts, sorted by (a, b).
   std::vector<const Contact*> contacts() const;
@@ -132,6 +139,7 @@ class World {
   /// near pair, only the narrow-phase warm start kept in contact.narrow_cache.
   struct PairSlot {
     Contact contact;
+    int group_law = -1;      ///< the group rules' law for the pair (-1: none)
     double stiffness = 0.0;  ///< k_n A + k_s A of this step, for the time step (N/m)
     bool active = false;
   };
@@ -157,6 +165,7 @@ class World {
   std::size_t active_count_ = 0;
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
+  std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Eigen::Vector3d> box_min_, box_max_;
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "blockdem/contact/normal_integral.hpp"
+#include "blockdem/world/face_laws.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -77,14 +78,15 @@ void World::merge_pairs() {
         PairSlot fresh;
         fresh.contact.a = a;
         fresh.contact.b = b;
-        fresh.contact.law = law_for(a, b);
+        fresh.group_law = law_for(a, b);
+        fresh.contact.law = fresh.group_law;
         slots_[w] = std::move(fresh);
       }
     }
     slots_.resize(pairs_.size());
   }
   if (slots_rules_version_ != rules_version_) {
-    for (auto& s : slots_) s.contact.law = law_for(s.contact.a, s.contact.b);
+    for (auto& s : slots_) s.group_law = law_for(s.contact.a, s.contact.b);
     slots_rules_version_ = rules_version_;
   }
 }
@@ -114,7 +116,9 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   Contact& ct = slot.contact;
   slot.active = false;
   slot.stiffness = 0.0;
-  if (ct.law < 0) {
+  const std::vector<int>& face_laws_a = face_laws(ct.a);
+  const std::vector<int>& face_laws_b = face_laws(ct.b);
+  if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) {
     forget_history(ct);
     return;
   }
@@ -124,6 +128,12 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent,
                                              settings_.boon2012, &ct.narrow_cache);
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
+    forget_history(ct);
+    return;
+  }
+  // The joint law of the faces in contact (a joint set's), else the group rules'.
+  ct.law = face_law_for_contact(a, face_laws_a, b, face_laws_b, g, slot.group_law);
+  if (ct.law < 0) {
     forget_history(ct);
     return;
   }

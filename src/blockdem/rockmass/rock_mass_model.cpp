@@ -1,0 +1,307 @@
+// Reading a scenario's rock mass (every key checked) and making its world blocks.
+#include "blockdem/rockmass/rock_mass_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/rockmass/excavation_shapes.hpp"
+
+namespace blockdem {
+namespace {
+
+// "KEY: REASON" from the slicer or a validate() into (key, reason).
+std::pair<std::string, std::string> split_message(const std::string& what) {
+  const auto colon = what.find(": ");
+  if (colon == std::string::npos) return {"", what};
+  return {what.substr(0, colon), what.substr(colon + 2)};
+}
+
+int law_by_name(const CheckedTable& t, const std::string& key,
+                const std::map<std::string, int>& laws) {
+  if (!t.has(key)) return -1;
+  const std::string name = t.string(key);
+  const auto it = laws.find(name);
+  if (it == laws.end()) t.fail(key, "no joint law named \"" + name + "\" in [[joint_laws]]");
+  return it->second;
+}
+
+Halfspace plane_row(const CheckedTable& t, const std::string& key, const std::vector<double>& r) {
+  const Eigen::Vector3d n(r[0], r[1], r[2]);
+  const double len = n.norm();
+  if (!(len > 0.0)) t.fail(key, "a plane normal is the zero vector");
+  return Halfspace{n / len, r[3] / len};
+}
+
+Region read_region(const CheckedTable& r) {
+  const CheckedTable g = r.table("region");
+  Region region;
+  if (g.has("planes")) {
+    if (g.has("min") || g.has("max")) g.fail("planes", "give either planes or min and max");
+    std::vector<Halfspace> planes;
+    for (const auto& row : g.rows("planes", 4)) planes.push_back(plane_row(g, "planes", row));
+    region = Region::from_planes(planes);
+  } else {
+    const Eigen::Vector3d lo = g.vec3("min"), hi = g.vec3("max");
+    for (int i = 0; i < 3; ++i) {
+      if (!(hi[i] > lo[i]))
+        g.fail("max", "must exceed min along every axis (the region is not closed)");
+    }
+    region = Region::box(lo, hi);
+  }
+  g.finish();
+  return region;
+}
+
+Spacing read_spacing(const CheckedTable& t) {
+  Spacing s;
+  if (!t.is_table("spacing")) {
+    s.mean = t.number("spacing");
+    return s;
+  }
+  const CheckedTable sp = t.table("spacing");
+  s.mean = sp.number("mean");
+  const std::string d =
+      sp.choice("distribution", "constant", {"constant", "exponential", "normal", "lognormal"});
+  s.distribution = d == "exponential" ? Spacing::Distribution::exponential
+                   : d == "normal"    ? Spacing::Distribution::normal
+                   : d == "lognormal" ? Spacing::Distribution::lognormal
+                                      : Spacing::Distribution::constant;
+  s.sd = sp.number("sd", 0.0);
+  if (sp.has("seed")) s.seed = static_cast<std::uint64_t>(sp.integer("seed", 0));
+  sp.finish();
+  return s;
+}
+
+JointSet read_joint_set(const CheckedTable& t, std::size_t i, const Eigen::Vector3d& centre) {
+  JointSet s;
+  std::string fallback = "J";  // appended, not operator+ (GCC 12 -Wrestrict false positive)
+  fallback.append(std::to_string(i + 1));
+  s.name = t.string("name", fallback);
+  s.dip_deg = t.number("dip_deg");
+  s.dip_direction_deg = t.number("dip_direction_deg");
+  s.origin = t.vec3("origin", centre);
+  if (t.has("extent")) {
+    const CheckedTable e = t.table("extent");
+    JointExtent x;
+    if (e.has("radius")) {
+      if (e.has("size")) e.fail("size", "give either radius (a disc) or size (a rectangle)");
+      x.radius = e.number("radius");
+    } else {
+      const auto size = e.numbers("size");
+      if (size.size() != 2) e.fail("size", "must be two lengths [along strike, along dip]");
+      x.shape = JointExtent::Shape::rectangle;
+      x.size = Eigen::Vector2d(size[0], size[1]);
+    }
+    s.extent = x;
+    if (e.has("centres")) {
+      for (const auto& r : e.rows("centres", 3)) s.centres.emplace_back(r[0], r[1], r[2]);
+    }
+    if (e.has("seed")) s.placement_seed = static_cast<std::uint64_t>(e.integer("seed", 0));
+    s.persistence = e.number("persistence", s.persistence);
+    e.finish();
+  }
+  if (!(s.extent && !s.centres.empty()) || t.has("spacing")) s.spacing = read_spacing(t);
+  try {
+    s.validate();
+  } catch (const std::invalid_argument& err) {
+    const auto [key, why] = split_message(err.what());
+    t.fail(key, why);
+  }
+  return s;
+}
+
+Excavation read_excavation(const CheckedTable& t, std::size_t i) {
+  Excavation ex;
+  std::string fallback = "excavation_";
+  fallback.append(std::to_string(i + 1));
+  ex.name = t.string("name", fallback);
+  const std::string shape = t.choice("shape", "tunnel", {"tunnel", "box", "planes"});
+  if (shape == "box") {
+    const Eigen::Vector3d lo = t.vec3("min"), hi = t.vec3("max");
+    for (int k = 0; k < 3; ++k) {
+      if (!(hi[k] > lo[k])) t.fail("max", "must exceed min along every axis");
+    }
+    ex.planes = Region::box(lo, hi).planes;
+  } else if (shape == "planes") {
+    for (const auto& row : t.rows("planes", 4)) ex.planes.push_back(plane_row(t, "planes", row));
+    if (ex.planes.empty()) t.fail("planes", "needs at least one plane");
+  } else {
+    TunnelSpec tu;
+    const std::string profile = t.choice("profile", "horseshoe", {"horseshoe", "circle"});
+    tu.profile = profile == "circle" ? TunnelSpec::Profile::circle : TunnelSpec::Profile::horseshoe;
+    tu.centre = t.vec3("centre");
+    tu.radius = t.positive("radius", 0.0);
+    tu.wall_height = t.positive("wall_height", tu.radius);
+    tu.trend_deg = t.number("trend_deg", 0.0);
+    if (!(tu.trend_deg >= 0.0 && tu.trend_deg < 360.0)) t.fail("trend_deg", "must be in [0, 360)");
+    tu.plunge_deg = t.number("plunge_deg", 0.0);
+    if (!(std::abs(tu.plunge_deg) < 90.0)) t.fail("plunge_deg", "must be in (-90, 90)");
+    tu.sides = static_cast<int>(t.integer("sides", tu.sides));
+    if (tu.sides < 4 || tu.sides > 256) t.fail("sides", "must be in [4, 256]");
+    if (t.has("length")) tu.length = t.positive("length", 0.0);
+    ex.planes = tunnel_planes(tu);
+  }
+  t.finish();
+  return ex;
+}
+
+}  // namespace
+
+std::string RockMassModel::block_name(std::size_t i) {
+  return "rock_" + std::to_string(i + 1);
+}
+
+int RockMassModel::law_of(const FaceTag& tag) const {
+  if (tag.source == FaceSource::region) return -1;
+  if (tag.bonded && bonded_law >= 0) return bonded_law;
+  if (tag.source == FaceSource::joint) return set_laws[tag.index];
+  return -1;
+}
+
+std::string RockMassModel::label(const FaceTag& tag) const {
+  switch (tag.source) {
+    case FaceSource::region:
+      return "region " + rock_mass.region_face_names[tag.index];
+    case FaceSource::joint:
+      return spec.joint_sets[tag.index].name + (tag.bonded ? " bonded" : "");
+    case FaceSource::excavation:
+      return "excavation " + spec.excavations[tag.index].name + (tag.bonded ? " bonded" : "");
+  }
+  return "";
+}
+
+RockMassModel read_rock_mass(const CheckedTable& root,
+                             const std::map<std::string, double>& materials,
+                             const std::map<std::string, int>& laws) {
+  RockMassModel m;
+  const CheckedTable r = root.table("rock_mass");
+  m.spec.region = read_region(r);
+  if (r.has("material")) {
+    const std::string name = r.string("material");
+    const auto it = materials.find(name);
+    if (it == materials.end())
+      r.fail("material", "no material named \"" + name + "\" in [[materials]]");
+    if (r.has("density")) r.fail("density", "give either material or density, not both");
+    m.density = it->second;
+  } else {
+    m.density = r.positive("density", 0.0);
+  }
+  m.group = r.string("group", m.group);
+  SlicingSettings& s = m.spec.settings;
+  s.min_block_volume = r.positive("min_block_volume", 0.0, true);
+  s.max_aspect_ratio = r.positive("max_aspect_ratio", 0.0, true);
+  s.small_blocks = r.choice("small_blocks", "merge", {"merge", "remove"}) == "remove"
+                       ? SlicingSettings::SmallBlocks::remove
+                       : SlicingSettings::SmallBlocks::merge;
+  s.cut_tolerance = r.positive("cut_tolerance", 0.0, true);
+  m.default_law = law_by_name(r, "law", laws);
+  m.bonded_law = law_by_name(r, "bonded_law", laws);
+  r.finish();
+
+  // The region's centre: the default origin of a joint set.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  try {
+    centre = Polyhedron::from_planes(m.spec.region.planes).centroid();
+  } catch (const GeometryError& e) {
+    root.fail("rock_mass.region",
+              std::string("the region is not a closed convex solid: ") + e.what());
+  }
+  const auto sets = root.tables("joint_sets");
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    m.spec.joint_sets.push_back(read_joint_set(sets[i], i, centre));
+    m.set_laws.push_back(law_by_name(sets[i], "law", laws));
+    sets[i].finish();
+  }
+  const auto exs = root.tables("excavations");
+  for (std::size_t i = 0; i < exs.size(); ++i) {
+    m.spec.excavations.push_back(read_excavation(exs[i], i));
+    for (std::size_t k = 0; k < i; ++k) {
+      if (m.spec.excavations[k].name == m.spec.excavations[i].name)
+        exs[i].fail("name", "excavation \"" + m.spec.excavations[i].name + "\" is defined twice");
+    }
+  }
+  for (const auto& b : root.tables("boundaries")) {
+    BoundaryCondition bc;
+    for (const auto& face : b.strings("faces")) {
+      const auto& names = m.spec.region.face_names;
+      const auto it = std::find(names.begin(), names.end(), face);
+      if (it == names.end()) b.fail("faces", "the region has no face \"" + face + "\"");
+      bc.faces.push_back(static_cast<int>(it - names.begin()));
+    }
+    if (bc.faces.empty()) b.fail("faces", "name at least one region face");
+    bc.kind = b.choice("condition", "fixed", {"fixed", "roller"}) == "roller"
+                  ? BoundaryCondition::Kind::roller
+                  : BoundaryCondition::Kind::fixed;
+    if (bc.kind == BoundaryCondition::Kind::roller) {
+      for (int f : bc.faces) {
+        if (m.spec.region.planes[f].normal.cwiseAbs().maxCoeff() < 1.0 - 1e-12)
+          b.fail("condition", "a roller needs a face normal to x, y or z");
+      }
+    }
+    b.finish();
+    m.boundaries.push_back(bc);
+  }
+  try {
+    m.rock_mass = slice_rock_mass(m.spec);
+  } catch (const std::invalid_argument& e) {
+    auto [key, why] = split_message(e.what());
+    if (key == "region" || key == "min_block_volume" || key == "max_aspect_ratio")
+      key = "rock_mass." + key;
+    root.fail(key, why);
+  }
+  if (m.rock_mass.blocks.empty()) root.fail("rock_mass", "no block is left after slicing");
+  return m;
+}
+
+RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
+  RockMassBlocks out;
+  const auto& cells = m.rock_mass.blocks;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const ConvexCell& c = cells[i];
+    std::vector<Halfspace> planes;
+    for (const auto& f : c.faces()) planes.push_back(f.plane);
+    Block b = make_block(Polyhedron::from_planes(planes), m.density, RockMassModel::block_name(i),
+                         m.group);
+    // Each world plane of the block is one of the cell's faces: match by normal and offset.
+    std::vector<int> laws(b.world_planes.size(), -1);
+    const double scale = 1e-9 * (1.0 + b.position.norm() + b.shape.bounding_radius());
+    for (std::size_t j = 0; j < b.world_planes.size(); ++j) {
+      const Halfspace& h = b.world_planes[j];
+      for (const auto& f : c.faces()) {
+        if (h.normal.dot(f.plane.normal) > 1.0 - 1e-9 &&
+            std::abs(h.offset - f.plane.offset) < scale) {
+          laws[j] = m.law_of(f.tag);
+          break;
+        }
+      }
+    }
+    for (const auto& bc : m.boundaries) {
+      for (const auto& f : c.faces()) {
+        if (f.tag.source != FaceSource::region ||
+            std::find(bc.faces.begin(), bc.faces.end(), f.tag.index) == bc.faces.end())
+          continue;
+        if (bc.kind == BoundaryCondition::Kind::fixed) {
+          b.motion = Motion::fixed;
+        } else {
+          Eigen::Index axis = 0;
+          f.plane.normal.cwiseAbs().maxCoeff(&axis);
+          b.blocked_translation[axis] = true;
+          b.blocked_rotation.setConstant(true);
+        }
+      }
+    }
+    const bool any_law = std::any_of(laws.begin(), laws.end(), [](int l) { return l >= 0; });
+    out.face_laws.push_back(any_law ? laws : std::vector<int>{});
+    out.blocks.push_back(std::move(b));
+  }
+  for (std::size_t e = 0; e < m.spec.excavations.size(); ++e) {
+    auto& names = out.excavated[m.spec.excavations[e].name];
+    for (int i : m.rock_mass.blocks_inside(m.spec, static_cast<int>(e)))
+      names.push_back(RockMassModel::block_name(static_cast<std::size_t>(i)));
+  }
+  return out;
+}
+
+}  // namespace blockdem

@@ -1,0 +1,59 @@
+// A scenario's rock mass: the [rock_mass], [[joint_sets]], [[excavations]] and [[boundaries]]
+// keys read and checked, the region sliced, and the blocks made for the world with one joint
+// law per face.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "blockdem/rockmass/rock_slicer.hpp"
+#include "blockdem/scenario/checked_table.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+/// Blocks touching chosen region faces held in place or on rollers.
+struct BoundaryCondition {
+  std::vector<int> faces;  ///< region face indices
+  /// fixed: the block never moves; roller: it cannot move along the face normal (an axis) nor
+  /// rotate, and slides freely along the face.
+  enum class Kind { fixed, roller } kind = Kind::fixed;
+};
+
+struct RockMassModel {
+  RockMassSpec spec;
+  RockMass rock_mass;
+  std::string group = "rock";  ///< block group of every block
+  double density = 0.0;        ///< (kg/m^3)
+  std::vector<int> set_laws;   ///< joint law index per set (-1: the default)
+  int default_law = -1;        ///< [rock_mass] law: faces without a law of their own
+  int bonded_law = -1;         ///< [rock_mass] bonded_law (-1: the face's joint set law)
+  std::vector<BoundaryCondition> boundaries;
+
+  /// Name of block i ("rock_1", ...).
+  static std::string block_name(std::size_t i);
+  /// The joint law of a face from its tag (-1: group rules).
+  int law_of(const FaceTag& tag) const;
+  /// A readable label of a face tag ("J1", "J1 bonded", "region x_min", "excavation tunnel").
+  std::string label(const FaceTag& tag) const;
+};
+
+/// Reads the rock-mass keys of a scenario's root table (the caller has read [[materials]] and
+/// [[joint_laws]] into `materials` (density by name) and `laws` (index by name)) and slices
+/// the region. Throws ScenarioError naming file, key and reason.
+RockMassModel read_rock_mass(const CheckedTable& root,
+                             const std::map<std::string, double>& materials,
+                             const std::map<std::string, int>& laws);
+
+/// The world blocks of a sliced rock mass, each with its per-plane joint laws (indices into the
+/// scenario's joint laws; -1 for a plane without one) and the boundary conditions applied.
+struct RockMassBlocks {
+  std::vector<Block> blocks;
+  std::vector<std::vector<int>> face_laws;
+  /// The names of the blocks inside each excavation, by excavation name.
+  std::map<std::string, std::vector<std::string>> excavated;
+};
+RockMassBlocks make_rock_mass_blocks(const RockMassModel& model);
+
+}  // namespace blockdem

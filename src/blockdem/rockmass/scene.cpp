@@ -1,0 +1,44 @@
+// The [rock_mass] scene builder.
+#include "blockdem/rockmass/scene.hpp"
+
+#include <stdexcept>
+
+namespace blockdem {
+
+const RockMassScene* rock_mass_scene(const Scenario& scenario) {
+  return dynamic_cast<const RockMassScene*>(scenario.built.get());
+}
+
+void RockMassSceneBuilder::build(const CheckedTable&, Scenario&) const {
+  throw std::logic_error("the [rock_mass] builder reads the root table: call build_from_root");
+}
+
+void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& sc) const {
+  std::map<std::string, int> laws;
+  for (std::size_t i = 0; i < sc.joint_laws.size(); ++i)
+    laws[sc.joint_laws[i].name] = static_cast<int>(i);
+  auto scene = std::make_shared<RockMassScene>();
+  scene->model = read_rock_mass(root, sc.materials, laws);
+  if (scene->model.default_law < 0 && sc.joint_laws.size() > 1) {
+    root.fail("rock_mass.law",
+              "several joint laws: name the law of faces without one of their own (e.g. the "
+              "excavation outline)");
+  }
+  RockMassBlocks made = make_rock_mass_blocks(scene->model);
+  // Face laws run parallel to the scenario's blocks; blocks given by hand have none.
+  sc.face_laws.resize(sc.blocks.size());
+  for (std::size_t i = 0; i < made.blocks.size(); ++i) {
+    for (const auto& b : sc.blocks) {
+      if (b.name == made.blocks[i].name)
+        root.fail("blocks", "block \"" + b.name + "\" clashes with a rock-mass block name");
+    }
+    sc.blocks.push_back(std::move(made.blocks[i]));
+    sc.face_laws.push_back(std::move(made.face_laws[i]));
+  }
+  for (auto& [name, blocks] : made.excavated) sc.excavations[name] = std::move(blocks);
+  if (scene->model.default_law >= 0)
+    sc.joint_rules.push_back(JointRule{"", "", scene->model.default_law});
+  sc.built = std::move(scene);
+}
+
+}  // namespace blockdem

@@ -1,0 +1,71 @@
+// World block bookkeeping beyond the step: per-face joint laws and block removal (excavation).
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+void World::set_face_laws(int block, std::vector<int> law_per_plane) {
+  if (block < 0 || block >= static_cast<int>(blocks_.size()))
+    throw std::invalid_argument("set_face_laws: no block " + std::to_string(block));
+  if (law_per_plane.size() != blocks_[block].shape.planes().size())
+    throw std::invalid_argument("set_face_laws: block '" + blocks_[block].name + "' has " +
+                                std::to_string(blocks_[block].shape.planes().size()) +
+                                " planes, got " + std::to_string(law_per_plane.size()) + " laws");
+  for (int law : law_per_plane) {
+    if (law < -1 || law >= static_cast<int>(laws_.size()))
+      throw std::invalid_argument("set_face_laws: unknown joint law " + std::to_string(law));
+  }
+  if (face_laws_.size() < blocks_.size()) face_laws_.resize(blocks_.size());
+  face_laws_[block] = std::move(law_per_plane);
+}
+
+const std::vector<int>& World::face_laws(int block) const {
+  static const std::vector<int> none;
+  return block < static_cast<int>(face_laws_.size()) ? face_laws_[block] : none;
+}
+
+void World::remove_blocks(const std::vector<int>& indices) {
+  std::vector<int> new_index(blocks_.size(), 0);
+  for (int i : indices) {
+    if (i < 0 || i >= static_cast<int>(blocks_.size()))
+      throw std::invalid_argument("remove_blocks: no block " + std::to_string(i));
+    new_index[i] = -1;
+  }
+  std::vector<Block> kept;
+  std::vector<std::vector<int>> kept_laws;
+  std::vector<double> kept_face_area;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (new_index[i] < 0) continue;
+    new_index[i] = static_cast<int>(kept.size());
+    kept.push_back(std::move(blocks_[i]));
+    kept.back().index = new_index[i];
+    kept_laws.push_back(i < face_laws_.size() ? std::move(face_laws_[i]) : std::vector<int>{});
+    kept_face_area.push_back(max_face_area_[i]);
+  }
+  blocks_ = std::move(kept);
+  face_laws_ = std::move(kept_laws);
+  max_face_area_ = std::move(kept_face_area);
+  // Pairs with a removed block go; the others keep their history under the new indices. The
+  // renumbering keeps the order of the blocks, so the slots stay sorted by (a, b).
+  std::size_t kept_slots = 0;
+  for (auto& slot : slots_) {
+    Contact& c = slot.contact;
+    if (new_index[c.a] < 0 || new_index[c.b] < 0) continue;
+    c.a = new_index[c.a];
+    c.b = new_index[c.b];
+    slots_[kept_slots++] = std::move(slot);
+  }
+  slots_.resize(kept_slots);
+  pairs_.clear();
+  for (const auto& slot : slots_) pairs_.emplace_back(slot.contact.a, slot.contact.b);
+  active_count_ = 0;
+  for (const auto& slot : slots_) active_count_ += slot.active ? 1 : 0;
+  overlap_violation_ = -1;
+  update_geometry(thread_count());
+  save_checkpoint();
+}
+
+}  // namespace blockdem
