@@ -14,8 +14,8 @@ namespace {
 
 // A linear function of the plane coordinates y = (a, b): f(y) = c0 + c·y.
 struct Linear {
-  double c0 = 0.0;
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  double c0;
+  Eigen::Vector2d c;
   double operator()(const Eigen::Vector2d& y) const { return c0 + c.dot(y); }
   Linear operator-(const Linear& o) const { return {c0 - o.c0, c - o.c}; }
 };
@@ -30,12 +30,13 @@ struct Polygon {
 // result into `spare` (a buffer as large as poly's, not poly's own) and pointing poly there; a
 // polygon reduced below three vertices is emptied. A half-plane that keeps every vertex leaves
 // poly untouched.
-void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare) {
+void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare, double* values) {
   if (poly.n == 0) return;
   // Which side each vertex is on decides whether anything is cut at all.
   bool any_out = false, any_in = false;
   for (int i = 0; i < poly.n; ++i) {
     const double fp = f(poly.v[i]);
+    values[i] = fp;
     any_out |= fp > 0.0;
     any_in |= fp <= 0.0;
   }
@@ -46,9 +47,10 @@ void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare) {
   }
   int count = 0;
   for (int i = 0; i < poly.n; ++i) {
+    const int j = i + 1 < poly.n ? i + 1 : 0;
     const Eigen::Vector2d& p = poly.v[i];
-    const Eigen::Vector2d& q = poly.v[i + 1 < poly.n ? i + 1 : 0];
-    const double fp = f(p), fq = f(q);
+    const Eigen::Vector2d& q = poly.v[j];
+    const double fp = values[i], fq = values[j];
     if (fp <= 0.0) spare[count++] = p;
     if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0))
       spare[count++] = p + (fp / (fp - fq)) * (q - p);
@@ -61,12 +63,15 @@ void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare) {
 struct Level {
   Eigen::Vector2d* first = nullptr;
   Eigen::Vector2d* spare = nullptr;
+  double* values = nullptr;  // f at each vertex during a clip
   // A copy of `from` in this level's buffers (any earlier polygon of this level is overwritten).
   Polygon copy_of(const Polygon& from) {
     std::copy(from.v, from.v + from.n, first);
     return {first, from.n};
   }
-  void clip_by(Polygon& poly, const Linear& f) { clip(poly, f, poly.v == first ? spare : first); }
+  void clip_by(Polygon& poly, const Linear& f) {
+    clip(poly, f, poly.v == first ? spare : first, values);
+  }
 };
 
 struct Box2 {
@@ -132,17 +137,22 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // A clip adds at most one vertex, and no polygon below sees more clips than this.
   const int capacity = 4 + static_cast<int>(lateral.size()) + nt * nb + nt + nb;
   std::array<Eigen::Vector2d, kBuffers * kStackCapacity> stack_buffer;
+  std::array<double, kStackCapacity> stack_values;
   std::vector<Eigen::Vector2d> heap_buffer;
+  std::vector<double> heap_values;
   Eigen::Vector2d* buffer = stack_buffer.data();
+  double* values = stack_values.data();
   int stride = kStackCapacity;
   if (capacity > kStackCapacity) {
     heap_buffer.resize(static_cast<std::size_t>(kBuffers) * static_cast<std::size_t>(capacity));
+    heap_values.resize(static_cast<std::size_t>(capacity));
     stride = capacity;
     buffer = heap_buffer.data();
+    values = heap_values.data();
   }
-  Level outer{buffer, buffer + stride};
-  Level middle{buffer + 2 * stride, buffer + 3 * stride};
-  Level inner{buffer + 4 * stride, buffer + 5 * stride};
+  Level outer{buffer, buffer + stride, values};
+  Level middle{buffer + 2 * stride, buffer + 3 * stride, values};
+  Level inner{buffer + 4 * stride, buffer + 5 * stride, values};
 
   // The projection P of A∩B: the plane region, where every (upper, lower) pair leaves a
   // non-negative chord, i.e. lower_k - upper_i <= 0.

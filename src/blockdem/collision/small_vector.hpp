@@ -63,7 +63,7 @@ class SmallVector {
   }
 
  private:
-  std::array<T, N> inline_{};
+  std::array<T, N> inline_;  // default-initialised: unused slots cost nothing
   std::vector<T> heap_;
   std::size_t size_ = 0;
   bool on_heap_ = false;
