@@ -1,5 +1,5 @@
 // `blockdem analytic voussoir`: the Diederichs & Kaiser (1999) voussoir beam from the command
-// line, printed as JSON on stdout (DESIGN.md sections 7 and 9).
+// line, printed as JSON on stdout.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "blockdem/analysis/voussoir_analytic.hpp"
+#include "blockdem/numerics/units.hpp"
 #include "commands.hpp"
 
 namespace blockdem::cli {
@@ -76,7 +77,7 @@ void register_analytic(CLI::App& app) {
     beam.rock_mass_modulus = args->modulus;
     if (width->count() > 0) beam.width = args->width;
     if (strength->count() > 0) beam.compressive_strength = args->compressive_strength;
-    if (friction->count() > 0) beam.friction_angle = args->friction_deg * std::numbers::pi / 180.0;
+    if (friction->count() > 0) beam.friction_angle = deg_to_rad(args->friction_deg);
     beam.validate();
 
     const VoussoirResult result = solve_voussoir_beam(beam);

@@ -1,14 +1,12 @@
 // `blockdem reproduce boon2015 --out DIR`: every case of the paper's Tables 2 and 3, the report
 // and its figures.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <mutex>
 #include <thread>
 
-#include "blockdem/io/boon2015_report.hpp"
+#include "blockdem/studies/boon2015/reproduce.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -33,101 +31,48 @@ int reproduce(const ReproduceOptions& opt) {
     return 2;
   }
   const auto wall0 = std::chrono::steady_clock::now();
-  const std::filesystem::path scen_dir =
-      opt.scenarios.empty() ? std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" / "boon2015"
-                            : std::filesystem::path(opt.scenarios);
-  // Select and read every case before running any.
-  // Each case in mode boon2012 (the paper's) and, with the suffix -fi, face_integrated.
-  std::vector<ContactMode> modes;
-  if (opt.modes != "face_integrated") modes.push_back(ContactMode::boon2012);
-  if (opt.modes != "boon2012") modes.push_back(ContactMode::face_integrated);
-  auto wanted = [&](const std::string& id) {
-    return opt.cases.empty() ||
-           std::find(opt.cases.begin(), opt.cases.end(), id) != opt.cases.end();
-  };
-  std::vector<Boon2015CaseRun> runs;
-  for (const ContactMode mode : modes) {
-    for (const auto& c : boon2015_cases()) {
-      const std::string id = c.id + (mode == ContactMode::face_integrated ? "-fi" : "");
-      if (!wanted(id) && !wanted(c.id)) continue;
-      Boon2015CaseRun r;
-      r.spec = c;
-      r.spec.id = id;
-      r.base_id = c.id;
-      r.mode = mode;
-      try {
-        r.scenario = load_scenario((scen_dir / (c.id + ".toml")).string());
-      } catch (const ScenarioError& e) {
-        std::cerr << "blockdem: error: " << e.what() << "\n";
-        return 2;
-      }
-      r.scenario.settings.contact_mode = mode;
-      runs.push_back(std::move(r));
-    }
+  Boon2015Selection selection;
+  selection.scenarios = opt.scenarios.empty() ? data_dir() / "scenarios" / "boon2015"
+                                              : std::filesystem::path(opt.scenarios);
+  if (!std::filesystem::is_directory(selection.scenarios)) {
+    std::cerr << "blockdem: error: the case files' folder " << selection.scenarios.string()
+              << " does not exist (give --scenarios, or set BLOCKDEM_DATA_DIR)\n";
+    return 2;
   }
-  // Longest first, so that two threads finish together.
-  std::stable_sort(runs.begin(), runs.end(),
-                   [](const Boon2015CaseRun& x, const Boon2015CaseRun& y) {
-                     auto cost = [](const Boon2015CaseRun& r) {
-                       return (r.spec.beam == "half" ? 3.0 : 1.0) *
-                              (r.mode == ContactMode::face_integrated ? 3.0 : 1.0);
-                     };
-                     return cost(x) > cost(y);
-                   });
-  for (const auto& id : opt.cases) {
-    const bool known =
-        std::any_of(boon2015_cases().begin(), boon2015_cases().end(),
-                    [&](const Boon2015Case& c) { return c.id == id || c.id + "-fi" == id; });
-    if (!known) {
-      std::string list;
-      for (const auto& c : boon2015_cases()) list += (list.empty() ? "" : ", ") + c.id;
-      std::cerr << "blockdem: error: no case \"" << id << "\" in boon2015 (cases: " << list
-                << ")\n";
-      return 2;
-    }
+  selection.cases = opt.cases;
+  selection.modes.clear();
+  if (opt.modes != "face_integrated") selection.modes.push_back(ContactMode::boon2012);
+  if (opt.modes != "boon2012") selection.modes.push_back(ContactMode::face_integrated);
+  // Select and read every case before running any.
+  std::vector<Boon2015CaseRun> runs;
+  try {
+    runs = select_boon2015_cases(selection);
+  } catch (const std::exception& e) {
+    std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 2;
   }
 
   // Run the cases on a few threads; each writes its own folder.
   const std::filesystem::path out(opt.out);
-  std::filesystem::create_directories(out);
   const int jobs =
       opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  std::atomic<std::size_t> next{0};
-  std::mutex io;
   Progress progress(!opt.quiet);
-  std::vector<std::string> errors(runs.size());
-  auto worker = [&] {
-    for (std::size_t i = next++; i < runs.size(); i = next++) {
-      auto& r = runs[i];
-      RunCallbacks cb;
-      cb.stage_done = [&](const std::string& line) {
-        std::lock_guard<std::mutex> lock(io);
-        if (!opt.quiet) progress.update(r.spec.id + ": " + line);
-      };
-      try {
-        r.result = run_scenario(r.scenario, out / r.spec.id, cb);
-      } catch (const std::exception& e) {
-        errors[i] = e.what();
-        r.result.status = "failed";
-        r.result.message = e.what();
-      }
-      std::lock_guard<std::mutex> lock(io);
-      if (!opt.quiet) {
+  run_boon2015_cases(
+      runs, out, jobs,
+      [&](const Boon2015CaseRun& r) {
+        if (opt.quiet) return;
         char buf[160];
         std::snprintf(buf, sizeof buf, "%-12s %-13s %8lld steps  %6.2f s", r.spec.id.c_str(),
                       r.result.status.c_str(), static_cast<long long>(r.result.steps),
                       r.result.wall_time);
         progress.message(buf);
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < std::min<int>(jobs, static_cast<int>(runs.size())); ++t)
-    pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!errors[i].empty()) {
-      std::cerr << "blockdem: error: case " << runs[i].spec.id << ": " << errors[i] << "\n";
+      },
+      [&](const std::string& id, const std::string& line) {
+        if (!opt.quiet) progress.update(id + ": " + line);
+      });
+  for (const auto& r : runs) {
+    if (r.result.status == "failed") {
+      std::cerr << "blockdem: error: case " << r.spec.id << ": " << r.result.message << "\n";
       return 1;
     }
   }
@@ -177,7 +122,7 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--scenarios", opt->scenarios,
-                  "Folder of the case files (default: the source tree's scenarios/boon2015)");
+                  "Folder of the case files (default: the installed scenarios/boon2015)");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->add_flag("!--no-figures", opt->figures, "Do not draw figures (no Python needed)");
   cmd->callback([opt] { set_exit_code(reproduce(*opt)); });

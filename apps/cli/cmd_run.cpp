@@ -2,7 +2,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/scene.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -29,7 +31,7 @@ int run(const RunOptions& opt) {
   try {
     // Read and check everything before anything is written.
     const Scenario sc = load_scenario(opt.scenario);
-    beam = sc.voussoir.has_value();
+    beam = voussoir_scene(sc) != nullptr;
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";

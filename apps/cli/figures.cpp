@@ -1,8 +1,13 @@
 // Locating Python with matplotlib and running the plotting scripts.
 #include "figures.hpp"
 
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 namespace blockdem::cli {
 namespace {
@@ -22,16 +27,30 @@ std::string quote(const std::string& s) {
 
 }  // namespace
 
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("BLOCKDEM_DATA_DIR")) return env;
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return "share/blockdem";
+  const std::filesystem::path bin = exe.parent_path();
+  for (const auto& candidate :
+       {bin / "share" / "blockdem", bin.parent_path() / "share" / "blockdem"}) {
+    if (std::filesystem::is_directory(candidate, error)) return candidate;
+  }
+  return bin.parent_path() / "share" / "blockdem";
+}
+
 std::string tools_dir() {
   if (const char* env = std::getenv("BLOCKDEM_TOOLS_DIR")) return env;
-  return std::string(BLOCKDEM_SOURCE_DIR) + "/tools";
+  return (data_dir() / "tools").string();
 }
 
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args,
                      std::string& why) {
   const std::string path = tools_dir() + "/" + script;
   if (!std::filesystem::exists(path)) {
-    why = "the plotting script " + path + " is missing (set BLOCKDEM_TOOLS_DIR)";
+    why = "the plotting script " + path +
+          " is missing (reinstall blockdem, or set BLOCKDEM_DATA_DIR)";
     return false;
   }
   std::string python;
@@ -58,6 +77,59 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     return false;
   }
   return true;
+}
+
+std::string default_python() {
+  std::error_code error;
+  return std::filesystem::exists("/usr/bin/python3", error) ? "/usr/bin/python3" : "python3";
+}
+
+PlotOutcome run_calibration_plots(const std::filesystem::path& dir, const std::string& python) {
+  PlotOutcome outcome;
+  const std::filesystem::path script = std::filesystem::path(tools_dir()) / "calibration_plot.py";
+  std::error_code error;
+  if (!std::filesystem::exists(script, error)) {
+    outcome.message = "the plot script " + script.string() + " is missing";
+    return outcome;
+  }
+  const std::string command =
+      quote(python) + " " + quote(script.string()) + " " + quote(dir.string()) + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    outcome.message = "could not start " + python;
+    return outcome;
+  }
+  std::string output;
+  std::array<char, 4096> buffer{};
+  std::size_t count = 0;
+  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    output.append(buffer.data(), count);
+  }
+  const int status = ::pclose(pipe);
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::istringstream lines(output);
+  std::string line;
+  if (code == 0) {
+    // The script prints the PNG file names it wrote, one per line.
+    while (std::getline(lines, line)) {
+      if (line.size() > 4 && line.substr(line.size() - 4) == ".png") outcome.files.push_back(line);
+    }
+    outcome.written = true;
+    return outcome;
+  }
+  std::string last;
+  while (std::getline(lines, line)) {
+    if (!line.empty()) last = line;
+  }
+  if (code == 3) {
+    outcome.message = "matplotlib is unavailable to " + python + " (" + last + ")";
+  } else if (code == 127) {
+    outcome.message = "the Python interpreter " + python + " was not found";
+  } else {
+    outcome.message = python + " " + script.string() + " failed (exit code " +
+                      std::to_string(code) + ")" + (last.empty() ? "" : ": " + last);
+  }
+  return outcome;
 }
 
 }  // namespace blockdem::cli

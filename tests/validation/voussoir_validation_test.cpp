@@ -9,8 +9,9 @@
 #include <filesystem>
 #include <map>
 
-#include "blockdem/analysis/boon2015_cases.hpp"
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/run/scene_builders.hpp"
+#include "blockdem/studies/boon2015/cases.hpp"
 
 namespace blockdem {
 namespace {

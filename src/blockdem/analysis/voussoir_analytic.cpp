@@ -1,6 +1,7 @@
 // Diederichs & Kaiser (1999) voussoir beam: lever-arm iteration per n, scan and golden-section
 // refinement of n, closed-form snap-through limit, safety factors and the JSON report.
 #include "blockdem/analysis/voussoir_analytic.hpp"
+#include "blockdem/numerics/units.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -158,8 +159,8 @@ void VoussoirBeamDef::validate() const {
   if (compressive_strength) require_positive("compressive_strength", *compressive_strength, "Pa");
   if (friction_angle && !(*friction_angle > 0.0 && *friction_angle < std::numbers::pi / 2.0)) {
     std::ostringstream e;
-    e << "friction_angle must lie in (0, 90) degrees, got "
-      << *friction_angle * 180.0 / std::numbers::pi << " degrees";
+    e << "friction_angle must lie in (0, 90) degrees, got " << rad_to_deg(*friction_angle)
+      << " degrees";
     append_error(errors, any, e.str());
   }
   if (any) throw std::invalid_argument("voussoir beam: " + errors.str());
@@ -374,7 +375,7 @@ nlohmann::ordered_json voussoir_report_json(const VoussoirBeamDef& beam,
       {"width_m", optional_value(beam.width)},
       {"compressive_strength_Pa", optional_value(beam.compressive_strength)},
       {"friction_deg", beam.friction_angle
-                           ? nlohmann::ordered_json(*beam.friction_angle * 180.0 / std::numbers::pi)
+                           ? nlohmann::ordered_json(rad_to_deg(*beam.friction_angle))
                            : nlohmann::ordered_json(nullptr)},
   };
   return out;

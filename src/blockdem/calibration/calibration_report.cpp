@@ -2,8 +2,6 @@
 // commands (see the header and docs/calibration.md).
 #include "blockdem/calibration/calibration_report.hpp"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -102,12 +100,6 @@ std::vector<double> grid(double top) {
 
 double largest(const std::vector<double>& values) {
   return *std::max_element(values.begin(), values.end());
-}
-
-std::string shell_quote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 }  // namespace
@@ -383,60 +375,6 @@ std::vector<std::string> write_cy_csv(const std::filesystem::path& dir, const Di
     }
   }
   return {"cy_fit_points.csv", "cy_fit_curves.csv", "cy_curve_fits.csv"};
-}
-
-std::string default_python() {
-  std::error_code error;
-  return std::filesystem::exists("/usr/bin/python3", error) ? "/usr/bin/python3" : "python3";
-}
-
-PlotOutcome run_calibration_plots(const std::filesystem::path& dir, const std::string& python) {
-  PlotOutcome outcome;
-  const std::filesystem::path script =
-      std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "tools" / "calibration_plot.py";
-  std::error_code error;
-  if (!std::filesystem::exists(script, error)) {
-    outcome.message = "the plot script " + script.string() + " is missing";
-    return outcome;
-  }
-  const std::string command = shell_quote(python) + " " + shell_quote(script.string()) + " " +
-                              shell_quote(dir.string()) + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    outcome.message = "could not start " + python;
-    return outcome;
-  }
-  std::string output;
-  std::array<char, 4096> buffer{};
-  std::size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    output.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::istringstream lines(output);
-  std::string line;
-  if (code == 0) {
-    // The script prints the PNG file names it wrote, one per line.
-    while (std::getline(lines, line)) {
-      if (line.size() > 4 && line.substr(line.size() - 4) == ".png") outcome.files.push_back(line);
-    }
-    outcome.written = true;
-    return outcome;
-  }
-  std::string last;
-  while (std::getline(lines, line)) {
-    if (!line.empty()) last = line;
-  }
-  if (code == 3) {
-    outcome.message = "matplotlib is unavailable to " + python + " (" + last + ")";
-  } else if (code == 127) {
-    outcome.message = "the Python interpreter " + python + " was not found";
-  } else {
-    outcome.message = python + " " + script.string() + " failed (exit code " +
-                      std::to_string(code) + ")" + (last.empty() ? "" : ": " + last);
-  }
-  return outcome;
 }
 
 }  // namespace blockdem

@@ -52,19 +52,4 @@ std::vector<std::string> write_cy_csv(const std::filesystem::path& dir, const Di
                                       const CyCalibration& cal);
 
 /// The outcome of running tools/calibration_plot.py.
-struct PlotOutcome {
-  bool written = false;            ///< every PNG was written
-  std::vector<std::string> files;  ///< the PNG file names written
-  std::string message;             ///< why not, when not written (for the user)
-};
-
-/// The Python interpreter for the plots: /usr/bin/python3 if it exists (Debian's, which has
-/// matplotlib), else "python3" from PATH.
-std::string default_python();
-
-/// Runs `python tools/calibration_plot.py DIR` (the script in the source tree,
-/// BLOCKDEM_SOURCE_DIR) on a directory holding calibration.json and the fit CSVs. Never throws
-/// for a missing interpreter, script or matplotlib: the outcome says what happened.
-PlotOutcome run_calibration_plots(const std::filesystem::path& dir, const std::string& python);
-
 }  // namespace blockdem

@@ -9,9 +9,10 @@
 #include <limits>
 #include <numbers>
 
-#include "blockdem/analysis/least_squares.hpp"
 #include "blockdem/calibration/shear_path.hpp"
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/numerics/least_squares.hpp"
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 namespace {
@@ -27,7 +28,7 @@ ContinuouslyYieldingShear make_law(const CyStiffnessDef& stiffness, double mu0,
   law.power_laws.stiffness_exponent = stiffness.stiffness_exponent;
   law.power_laws.peak_coefficient = peak_coefficient;
   law.power_laws.peak_exponent = peak_exponent;
-  law.friction_deg = std::atan(mu0) * 180.0 / std::numbers::pi;
+  law.friction_deg = rad_to_deg(std::atan(mu0));
   return law;
 }
 

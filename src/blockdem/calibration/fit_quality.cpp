@@ -8,9 +8,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "blockdem/analysis/least_squares.hpp"
 #include "blockdem/calibration/calibration_data.hpp"
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/numerics/least_squares.hpp"
 
 namespace blockdem {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "blockdem/analysis/least_squares.hpp"
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/numerics/least_squares.hpp"
 
 namespace blockdem {
 namespace {

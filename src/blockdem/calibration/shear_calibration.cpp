@@ -7,9 +7,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "blockdem/analysis/least_squares.hpp"
 #include "blockdem/calibration/shear_path.hpp"
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/numerics/least_squares.hpp"
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 namespace {
@@ -180,7 +181,7 @@ ShearCalibration calibrate_shear(const DirectShearData& data) {
     ratio = std::max(ratio, 0.5 * laws.initial_stiffness(s) * laws.peak_displacement(s) / s);
   }
   cal.law.power_laws = laws;
-  cal.law.friction_deg = std::atan(ratio) * 180.0 / std::numbers::pi;
+  cal.law.friction_deg = rad_to_deg(std::atan(ratio));
   try {
     cal.law.validate();
   } catch (const std::invalid_argument& e) {

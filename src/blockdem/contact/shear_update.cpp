@@ -6,9 +6,9 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "blockdem/contact/bracketed_root.hpp"
 #include "blockdem/contact/law_params.hpp"
 #include "blockdem/contact/shear_laws.hpp"
+#include "blockdem/numerics/bracketed_root.hpp"
 
 namespace blockdem {
 namespace {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 
@@ -62,7 +63,6 @@ void Block::update_world_geometry() {
 
 Eigen::Vector3d Block::rotation_since_start() const {
   const Eigen::AngleAxisd aa(orientation * initial_orientation.conjugate());
-  constexpr double kPi = 3.14159265358979323846;
   return aa.angle() > kPi ? Eigen::Vector3d(-(2 * kPi - aa.angle()) * aa.axis())
                           : Eigen::Vector3d(aa.angle() * aa.axis());
 }

@@ -6,13 +6,11 @@
 #include <cstdio>
 
 #include "blockdem/io/vtk.hpp"
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 
-namespace {
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-constexpr double kStandardGravity = 9.80665;  // m/s^2, for g levels
-}  // namespace
+namespace {}  // namespace
 
 RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables)
     : dir_(dir), vtk_(vtk) {
@@ -96,7 +94,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(g.x())
         .cell(g.y())
         .cell(g.z())
-        .cell(g.norm() / kStandardGravity)
+        .cell(g.norm() / kOneG)
         .cell(stage.measures.unbalanced_force_ratio)
         .cell(stage.measures.kinetic_energy)
         .cell(stage.measures.kinetic_energy_ratio)
@@ -108,7 +106,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
 
     for (const auto& b : world.blocks()) {
       const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
-      const Eigen::Vector3d r = kRadToDeg * b.rotation_since_start();
+      const Eigen::Vector3d r = rad_to_deg(1.0) * b.rotation_since_start();
       blocks_->cell(level)
           .cell(stage.name)
           .cell(b.name)

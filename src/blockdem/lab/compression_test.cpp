@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "blockdem/contact/bracketed_root.hpp"
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/numerics/bracketed_root.hpp"
 #include "blockdem/world/stage.hpp"
 
 namespace blockdem {

@@ -69,11 +69,6 @@ double CheckedTable::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : (used_.insert(key), fallback);
 }
 
-std::optional<double> CheckedTable::optional_number(const std::string& key) const {
-  if (!has(key)) return std::nullopt;
-  return number(key);
-}
-
 double CheckedTable::positive(const std::string& key, double fallback, bool allow_zero) const {
   const double v = number(key, fallback);
   if (allow_zero ? !(v >= 0.0) : !(v > 0.0)) {

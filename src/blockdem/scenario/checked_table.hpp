@@ -45,7 +45,6 @@ class CheckedTable {
 
   double number(const std::string& key) const;
   double number(const std::string& key, double fallback) const;
-  std::optional<double> optional_number(const std::string& key) const;
   /// A number that must be > 0 (or >= 0 when allow_zero).
   double positive(const std::string& key, double fallback, bool allow_zero = false) const;
   std::int64_t integer(const std::string& key, std::int64_t fallback) const;

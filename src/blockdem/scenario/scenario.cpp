@@ -11,11 +11,10 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void read_settings(const CheckedTable& t, WorldSettings& s) {
   s.gravity = t.vec3("gravity", s.gravity);
@@ -33,10 +32,9 @@ void read_settings(const CheckedTable& t, WorldSettings& s) {
   const std::string mode =
       t.choice("contact_mode", to_string(s.contact_mode), {"boon2012", "face_integrated"});
   s.contact_mode = mode == "face_integrated" ? ContactMode::face_integrated : ContactMode::boon2012;
-  const double face_angle_deg =
-      t.positive("face_angle_deg", s.face_contact.face_angle * 180.0 / kPi);
+  const double face_angle_deg = t.positive("face_angle_deg", rad_to_deg(s.face_contact.face_angle));
   if (face_angle_deg >= 45.0) t.fail("face_angle_deg", "must be below 45 degrees");
-  s.face_contact.face_angle = face_angle_deg * kPi / 180.0;
+  s.face_contact.face_angle = deg_to_rad(face_angle_deg);
   s.boon2012.rounding_distance = t.positive("rounding_distance", s.boon2012.rounding_distance);
   s.boon2012.overlap_tolerance =
       t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
@@ -50,7 +48,7 @@ Eigen::Matrix3d read_rotation(const CheckedTable& t) {
   const double angle = t.number("rotation_deg", 0.0);
   const Eigen::Vector3d axis = t.vec3("rotation_axis", Eigen::Vector3d::UnitZ());
   if (axis.norm() == 0.0) t.fail("rotation_axis", "must not be the zero vector");
-  return Eigen::AngleAxisd(angle * kPi / 180.0, axis.normalized()).toRotationMatrix();
+  return Eigen::AngleAxisd(deg_to_rad(angle), axis.normalized()).toRotationMatrix();
 }
 
 Block read_block(const CheckedTable& t, const std::map<std::string, double>& materials) {
@@ -145,7 +143,9 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   return b;
 }
 
-void read_law_tables(const CheckedTable& t, JointLaw& law) {
+}  // namespace
+
+void read_joint_law_tables(const CheckedTable& t, JointLaw& law) {
   {
     const CheckedTable n = t.table("normal");
     const std::string kind = n.string("law");
@@ -169,63 +169,19 @@ void read_law_tables(const CheckedTable& t, JointLaw& law) {
   }
 }
 
+void read_output(const CheckedTable& o, OutputSpec& output) {
+  output.vtk = o.boolean("vtk", output.vtk);
+  o.finish();
+}
+
+namespace {
+
 JointLaw read_joint_law(const CheckedTable& t) {
   JointLaw law;
   law.name = t.string("name");
-  read_law_tables(t, law);
+  read_joint_law_tables(t, law);
   t.finish();
   return law;
-}
-
-VoussoirSpec read_voussoir(const CheckedTable& t) {
-  VoussoirSpec v;
-  const std::string beam = t.choice("beam", "full", {"full", "half"});
-  if (beam == "half") {
-    v.block_depth = 0.023;
-    v.g_levels = {2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90};
-  }
-  v.blocks = static_cast<int>(t.integer("blocks", v.blocks));
-  if (v.blocks < 1) t.fail("blocks", "a beam needs at least one block");
-  v.block_length = t.positive("block_length", v.block_length);
-  v.block_width = t.positive("block_width", v.block_width);
-  v.block_depth = t.positive("block_depth", v.block_depth);
-  v.abutment_length = t.positive("abutment_length", v.abutment_length);
-  v.abutment_height = t.positive("abutment_height", v.abutment_height);
-  v.density = t.positive("density", v.density);
-  v.preload_force = t.positive("preload_force", v.preload_force);
-  v.preload_tolerance = t.positive("preload_tolerance", v.preload_tolerance);
-  if (t.has("g_levels")) {
-    v.g_levels = t.numbers("g_levels");
-  }
-  if (t.has("g_max")) {
-    // g_max alone: the default levels up to it (and g_max itself).
-    const double g_max = t.number("g_max");
-    if (!(g_max >= 1.0)) t.fail("g_max", "must be at least 1 (the preload is at 1 g)");
-    std::vector<double> kept;
-    for (double g : v.g_levels) {
-      if (g < g_max) kept.push_back(g);
-    }
-    kept.push_back(g_max);
-    v.g_levels = kept;
-  }
-  v.servo_side = t.choice("servo_side", v.servo_side, {"both", "left", "right"});
-  v.plane_motion = t.boolean("plane_motion", v.plane_motion);
-  v.unbalanced_tolerance = t.positive("unbalanced_tolerance", v.unbalanced_tolerance);
-  v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
-  v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
-  v.ramp_steps = t.integer("ramp_steps", v.ramp_steps);
-  v.law.name = "joint";
-  read_law_tables(t, v.law);
-  try {
-    v.validate();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    const auto colon = what.find(':');
-    t.fail(colon == std::string::npos ? "" : what.substr(0, colon),
-           colon == std::string::npos ? what : what.substr(colon + 2));
-  }
-  t.finish();
-  return v;
 }
 
 Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names) {
@@ -282,7 +238,8 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& file) {
+Scenario parse_scenario(const std::string& text, const std::string& file,
+                        const SceneBuilders& builders) {
   toml::table root;
   try {
     root = toml::parse(text, file);
@@ -298,45 +255,24 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   sc.title = t.string("title", "");
   if (t.has("settings")) read_settings(t.table("settings"), sc.settings);
 
-  if (t.has("voussoir")) {
-    for (const char* key : {"blocks", "stages", "joint_laws", "joints", "materials"}) {
+  // At most one scene builder; the keys it builds itself must not stand beside it.
+  const SceneBuilder* builder = nullptr;
+  for (const SceneBuilder* candidate : builders) {
+    if (!t.has(candidate->table())) continue;
+    if (builder)
+      t.fail(candidate->table(),
+             "a scenario takes one builder table; [" + builder->table() + "] is given too");
+    builder = candidate;
+  }
+  if (builder) {
+    for (const auto& key : builder->replaces()) {
       if (t.has(key))
-        t.fail(key, "a [voussoir] scenario builds its own blocks, laws and stages; remove this");
+        t.fail(key, "a [" + builder->table() +
+                        "] scenario builds its own blocks, laws and stages; remove this");
     }
-    sc.voussoir = read_voussoir(t.table("voussoir"));
-    VoussoirModel m = build_voussoir(*sc.voussoir);
-    {
-      // The preload must be reachable: the end-face stress it needs must come at a closure the
-      // run accepts (below max_overlap_fraction of a block's radius).
-      const VoussoirSpec& v = *sc.voussoir;
-      const double needed = v.preload_force / (v.block_width * v.block_depth);
-      const double max_closure = sc.settings.max_overlap_fraction *
-                                 m.blocks[m.layout.beam.front()].shape.bounding_radius();
-      const double available = normal_stress(v.law.normal, max_closure);
-      if (!(needed < available)) {
-        std::ostringstream msg;
-        msg << "a preload of " << v.preload_force << " N needs a joint stress of " << needed
-            << " Pa, which the normal law reaches only beyond the largest closure a run accepts ("
-            << max_closure << " m, where it gives " << available
-            << " Pa): the preload cannot be reached";
-        throw ScenarioError(file, "voussoir.preload_force", msg.str());
-      }
-    }
-    sc.blocks = std::move(m.blocks);
-    sc.joint_laws.push_back(m.law);
-    sc.joint_rules.push_back(JointRule{"", "", 0});
-    sc.stages = std::move(m.stages);
-    sc.voussoir_layout = m.layout;
-    if (t.has("output")) {
-      const CheckedTable o = t.table("output");
-      sc.output.vtk = o.boolean("vtk", sc.output.vtk);
-      o.finish();
-    }
-    t.finish();
-    return sc;
   }
 
-  std::map<std::string, double> materials;
+  std::map<std::string, double>& materials = sc.materials;
   for (const auto& m : t.tables("materials")) {
     const std::string name = m.string("name");
     if (materials.count(name)) m.fail("name", "material \"" + name + "\" is defined twice");
@@ -360,6 +296,13 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
     names.insert(b.name);
     groups.insert(b.group);
     sc.blocks.push_back(std::move(b));
+  }
+  if (builder) {
+    builder->build(t.table(builder->table()), sc);
+    for (std::size_t i = 0; i < sc.blocks.size(); ++i) {
+      names.insert(sc.blocks[i].name);
+      groups.insert(sc.blocks[i].group);
+    }
   }
   if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");
 
@@ -394,21 +337,17 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   for (const auto& st : t.tables("stages")) sc.stages.push_back(read_stage(st, names));
   if (sc.stages.empty()) t.fail("stages", "a scenario needs at least one [[stages]] entry");
 
-  if (t.has("output")) {
-    const CheckedTable o = t.table("output");
-    sc.output.vtk = o.boolean("vtk", sc.output.vtk);
-    o.finish();
-  }
+  if (t.has("output")) read_output(t.table("output"), sc.output);
   t.finish();
   return sc;
 }
 
-Scenario load_scenario(const std::string& path) {
+Scenario load_scenario(const std::string& path, const SceneBuilders& builders) {
   std::ifstream in(path);
   if (!in) throw ScenarioError(path, "", "cannot open the file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_scenario(ss.str(), path);
+  return parse_scenario(ss.str(), path, builders);
 }
 
 World build_world(const Scenario& sc) {

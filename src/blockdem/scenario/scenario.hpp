@@ -2,12 +2,13 @@
 // and outputs, read with every key checked, and turned into a World.
 #pragma once
 
-#include <optional>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "blockdem/scenario/builder.hpp"
 #include "blockdem/scenario/checked_table.hpp"
-#include "blockdem/scenario/voussoir.hpp"
 #include "blockdem/world/stage.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -26,15 +27,24 @@ struct Scenario {
   std::vector<JointRule> joint_rules;
   std::vector<Stage> stages;
   OutputSpec output;
-  /// Set for a [voussoir] scenario: the beam it was built from and where its parts are.
-  std::optional<VoussoirSpec> voussoir;
-  VoussoirLayout voussoir_layout;
+  /// Densities of the [[materials]] by name (kg/m^3).
+  std::map<std::string, double> materials;
+  /// Set by a scene builder (e.g. the voussoir beam: its spec and where its parts are).
+  std::shared_ptr<const BuiltScene> built;
 };
 
-/// Reads and checks a scenario file. Throws ScenarioError ("FILE: KEY: REASON").
-Scenario load_scenario(const std::string& path);
+/// Reads and checks a scenario file; `builders` are the scene builders whose tables the file may
+/// hold. Throws ScenarioError ("FILE: KEY: REASON"). run/scene_builders.hpp has the overload
+/// with every built-in builder.
+Scenario load_scenario(const std::string& path, const SceneBuilders& builders);
 /// The same from TOML text; `file` is used in messages.
-Scenario parse_scenario(const std::string& toml_text, const std::string& file);
+Scenario parse_scenario(const std::string& toml_text, const std::string& file,
+                        const SceneBuilders& builders);
+
+/// Reads the `normal` and `shear` sub-tables of a joint-law table into `law`.
+void read_joint_law_tables(const CheckedTable& table, JointLaw& law);
+/// Reads an [output] table.
+void read_output(const CheckedTable& table, OutputSpec& output);
 
 /// Builds the world. Throws ScenarioError when blocks overlap deeply at the start (more than
 /// the settings' max_overlap_fraction of the smaller block's radius).

@@ -33,6 +33,11 @@ inline std::filesystem::path scratch_directory() {
   return scratch.path;
 }
 
+/// Debian's /usr/bin/python3 when it exists (the script needs only the standard library).
+inline std::string test_python() {
+  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
 /// Runs the synthetic-data script with `arguments` (e.g. "normal --noise 0.02") into
 /// scratch_directory()/name and returns the path; a file already made under that name is reused
 /// (each name stands for one set of arguments). Fails the test if the script fails.
@@ -40,7 +45,7 @@ inline std::filesystem::path synthetic_data(const std::string& arguments, const 
   const std::filesystem::path out = scratch_directory() / name;
   if (std::filesystem::exists(out)) return out;
   const std::string command =
-      default_python() + " '" BLOCKDEM_SOURCE_DIR "/tools/make_synthetic_calibration_data.py' " +
+      test_python() + " '" BLOCKDEM_SOURCE_DIR "/tools/make_synthetic_calibration_data.py' " +
       arguments + " --out '" + out.string() + "'";
   const int status = std::system(command.c_str());
   EXPECT_EQ(status, 0) << command;

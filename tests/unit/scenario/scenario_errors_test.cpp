@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "blockdem/scenario/scenario.hpp"
+#include "blockdem/run/scene_builders.hpp"
 
 namespace blockdem {
 namespace {

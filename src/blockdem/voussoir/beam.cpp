@@ -1,5 +1,5 @@
-// Voussoir beam geometry and loading sequence (DESIGN section 6).
-#include "blockdem/scenario/voussoir.hpp"
+// Voussoir beam geometry and loading sequence.
+#include "blockdem/voussoir/beam.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "blockdem/analysis/boon2015_cases.hpp"
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/studies/boon2015/cases.hpp"
 
 namespace blockdem {
 

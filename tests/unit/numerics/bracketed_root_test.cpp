@@ -1,6 +1,6 @@
 // Brent's bracketing root finder: accuracy, speed on smooth functions, robustness on a jump,
 // and rejection of a bracket without a sign change.
-#include "blockdem/contact/bracketed_root.hpp"
+#include "blockdem/numerics/bracketed_root.hpp"
 
 #include <gtest/gtest.h>
 

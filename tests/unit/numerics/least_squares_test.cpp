@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "blockdem/analysis/least_squares.hpp"
+#include "blockdem/numerics/least_squares.hpp"
 
 namespace blockdem {
 namespace {

@@ -1,17 +1,15 @@
-// The voussoir-beam builder (DESIGN section 6): a row of equal blocks between two abutments,
+// The voussoir beam: a row of equal blocks between two abutments,
 // preloaded by a servo-controlled abutment at 1 g, then loaded by gravity steps.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "blockdem/numerics/units.hpp"
 #include "blockdem/world/stage.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
-
-/// One g: the unit of the gravity levels (m/s^2).
-inline constexpr double kOneG = 9.81;
 
 /// A jointed beam: x along the span, y across, z up; the beam's top at z = 0, its left end at
 /// x = 0. Defaults: the paper's full-block beam (Talesnick et al. 2007 centrifuge model).

@@ -1,12 +1,14 @@
 // Scenario runner: stages, outputs, summary.
-#include "blockdem/io/scenario_runner.hpp"
+#include "blockdem/run/scenario_runner.hpp"
 
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 
 #include "blockdem/io/run_recorder.hpp"
-#include "blockdem/io/voussoir_recorder.hpp"
+#include "blockdem/numerics/units.hpp"
+#include "blockdem/voussoir/recorder.hpp"
+#include "blockdem/voussoir/scene.hpp"
 
 namespace blockdem {
 namespace {
@@ -24,7 +26,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   const auto wall0 = std::chrono::steady_clock::now();
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
   RunResult res;
-  const bool beam = sc.voussoir.has_value();
+  const VoussoirScene* voussoir = voussoir_scene(sc);
+  const bool beam = voussoir != nullptr;
   RunRecorder recorder(out, sc.output.vtk, !beam);
   std::unique_ptr<VoussoirRecorder> beam_recorder;
   VoussoirReference reference;
@@ -85,7 +88,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
       const double g_level = world.settings().gravity.norm() / kOneG;
       if (level == 0) reference = capture_reference(world);
       const VoussoirLevel lv =
-          measure_voussoir(world, *sc.voussoir, sc.voussoir_layout, reference, g_level);
+          measure_voussoir(world, voussoir->spec, voussoir->layout, reference, g_level);
       beam_recorder->record(world, lv, stage.name, result.converged, result.steps, level);
       if (result.converged) res.levels.push_back(lv);
     }
@@ -125,7 +128,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   if (beam) {
-    summary["voussoir"] = voussoir_summary(*sc.voussoir, res.levels);
+    summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.
     for (const char* key :
          {"g_max", "thrust_N", "midspan_deflection_mm", "equilibrium_residual", "fits"}) {

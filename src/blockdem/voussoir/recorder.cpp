@@ -1,13 +1,12 @@
 // Voussoir outputs.
-#include "blockdem/io/voussoir_recorder.hpp"
+#include "blockdem/voussoir/recorder.hpp"
+#include "blockdem/numerics/units.hpp"
 
 #include <cmath>
 
 namespace blockdem {
 
-namespace {
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-}
+namespace {}
 
 VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, const World&) {
   history_ = std::make_unique<CsvWriter>(
@@ -64,7 +63,7 @@ void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const
         .cell(1e3 * b.ux)
         .cell(1e3 * b.uz)
         .cell(1e3 * b.deflection)
-        .cell(kRadToDeg * b.rotation);
+        .cell(rad_to_deg(b.rotation));
     blocks_->end_row();
   }
   blocks_->flush();

@@ -1,5 +1,5 @@
 // The paper's cases and its reported numbers (Tables 2 and 3).
-#include "blockdem/analysis/boon2015_cases.hpp"
+#include "blockdem/studies/boon2015/cases.hpp"
 
 namespace blockdem {
 

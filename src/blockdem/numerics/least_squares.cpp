@@ -1,6 +1,6 @@
 // Linear least squares by column-pivoted QR and a Levenberg-Marquardt solver (see the header for
 // the method and its sources).
-#include "blockdem/analysis/least_squares.hpp"
+#include "blockdem/numerics/least_squares.hpp"
 
 #include <Eigen/QR>
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "blockdem/analysis/voussoir_measures.hpp"
 #include "blockdem/scenario/scenario.hpp"
+#include "blockdem/voussoir/measures.hpp"
 
 namespace blockdem {
 

@@ -1,4 +1,4 @@
-// What is measured on a voussoir beam at each load level (DESIGN section 6): thrust, deflections,
+// What is measured on a voussoir beam at each load level: thrust, deflections,
 // rotations, abutment slip, per-joint forces and thrust points, statics check, line of thrust.
 #pragma once
 
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "blockdem/analysis/thrust_line_fit.hpp"
-#include "blockdem/scenario/voussoir.hpp"
+#include "blockdem/voussoir/beam.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {

@@ -1,0 +1,96 @@
+// The [voussoir] scene builder: reads and checks the table, builds the beam, and checks that the
+// preload can be reached with the joint law.
+#include "blockdem/voussoir/scene.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace blockdem {
+namespace {
+
+VoussoirSpec read_voussoir(const CheckedTable& t) {
+  VoussoirSpec v;
+  const std::string beam = t.choice("beam", "full", {"full", "half"});
+  if (beam == "half") {
+    v.block_depth = 0.023;
+    v.g_levels = {2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+  }
+  v.blocks = static_cast<int>(t.integer("blocks", v.blocks));
+  if (v.blocks < 1) t.fail("blocks", "a beam needs at least one block");
+  v.block_length = t.positive("block_length", v.block_length);
+  v.block_width = t.positive("block_width", v.block_width);
+  v.block_depth = t.positive("block_depth", v.block_depth);
+  v.abutment_length = t.positive("abutment_length", v.abutment_length);
+  v.abutment_height = t.positive("abutment_height", v.abutment_height);
+  v.density = t.positive("density", v.density);
+  v.preload_force = t.positive("preload_force", v.preload_force);
+  v.preload_tolerance = t.positive("preload_tolerance", v.preload_tolerance);
+  if (t.has("g_levels")) {
+    v.g_levels = t.numbers("g_levels");
+  }
+  if (t.has("g_max")) {
+    // g_max alone: the default levels up to it (and g_max itself).
+    const double g_max = t.number("g_max");
+    if (!(g_max >= 1.0)) t.fail("g_max", "must be at least 1 (the preload is at 1 g)");
+    std::vector<double> kept;
+    for (double g : v.g_levels) {
+      if (g < g_max) kept.push_back(g);
+    }
+    kept.push_back(g_max);
+    v.g_levels = kept;
+  }
+  v.servo_side = t.choice("servo_side", v.servo_side, {"both", "left", "right"});
+  v.plane_motion = t.boolean("plane_motion", v.plane_motion);
+  v.unbalanced_tolerance = t.positive("unbalanced_tolerance", v.unbalanced_tolerance);
+  v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
+  v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
+  v.ramp_steps = t.integer("ramp_steps", v.ramp_steps);
+  v.law.name = "joint";
+  read_joint_law_tables(t, v.law);
+  try {
+    v.validate();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    const auto colon = what.find(':');
+    t.fail(colon == std::string::npos ? "" : what.substr(0, colon),
+           colon == std::string::npos ? what : what.substr(colon + 2));
+  }
+  t.finish();
+  return v;
+}
+
+}  // namespace
+
+const VoussoirScene* voussoir_scene(const Scenario& scenario) {
+  return dynamic_cast<const VoussoirScene*>(scenario.built.get());
+}
+
+void VoussoirSceneBuilder::build(const CheckedTable& t, Scenario& sc) const {
+  auto scene = std::make_shared<VoussoirScene>();
+  scene->spec = read_voussoir(t);
+  VoussoirModel m = build_voussoir(scene->spec);
+  // The preload must be reachable: the end-face stress it needs must come at a closure the run
+  // accepts (below max_overlap_fraction of a block's radius).
+  const VoussoirSpec& v = scene->spec;
+  const double needed = v.preload_force / (v.block_width * v.block_depth);
+  const double max_closure =
+      sc.settings.max_overlap_fraction * m.blocks[m.layout.beam.front()].shape.bounding_radius();
+  const double available = normal_stress(v.law.normal, max_closure);
+  if (!(needed < available)) {
+    std::ostringstream msg;
+    msg << "a preload of " << v.preload_force << " N needs a joint stress of " << needed
+        << " Pa, which the normal law reaches only beyond the largest closure a run accepts ("
+        << max_closure << " m, where it gives " << available
+        << " Pa): the preload cannot be reached";
+    throw ScenarioError(sc.file, "voussoir.preload_force", msg.str());
+  }
+  const int law = static_cast<int>(sc.joint_laws.size());
+  for (auto& b : m.blocks) sc.blocks.push_back(std::move(b));
+  sc.joint_laws.push_back(m.law);
+  sc.joint_rules.push_back(JointRule{"", "", law});
+  for (auto& s : m.stages) sc.stages.push_back(std::move(s));
+  scene->layout = m.layout;
+  sc.built = std::move(scene);
+}
+
+}  // namespace blockdem
