@@ -38,10 +38,11 @@ TEST(Twist, ElasticMomentIsShearStiffnessTimesPolarMoment) {
 }
 
 TEST(Twist, FullSlipMomentIsTheCoulombCap) {
-  // Reference: |M| = μ σ_n ∫ r dA over the square at full slip, within 2%.
+  // Reference: |M| = μ σ_n ∫ r dA over the square at full slip, within 2%. Slip starts at
+  // θ = μ σ_n ∫ r dA / (k_s J) = 4.2e-3 rad; twist to 1e-2 rad.
   TwistState s;
   TwistResult r;
-  for (int i = 0; i < 100; ++i) r = update_twist(s, step(1e-5));
+  for (int i = 0; i < 100; ++i) r = update_twist(s, step(1e-4));
   EXPECT_TRUE(r.sliding);
   EXPECT_NEAR(-s.moment / (kMu * kStress * kRadial), 1.0, 2e-2);
 }
@@ -49,7 +50,9 @@ TEST(Twist, FullSlipMomentIsTheCoulombCap) {
 TEST(Twist, UnloadsElasticallyAfterSlip) {
   // After slipping, a reversed spin dθ changes M by +k_s J dθ exactly (no slip while below cap).
   TwistState s;
-  for (int i = 0; i < 50; ++i) update_twist(s, step(1e-5));
+  TwistResult loading;
+  for (int i = 0; i < 50; ++i) loading = update_twist(s, step(1e-4));
+  ASSERT_TRUE(loading.sliding);
   const double at_cap = s.moment;
   const TwistResult r = update_twist(s, step(-1e-7));
   EXPECT_FALSE(r.sliding);
