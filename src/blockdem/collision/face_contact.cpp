@@ -130,6 +130,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     }
   };
   for (const auto& p : planes_a) add(p);
+  const int top_a = static_cast<int>(top.size()), bottom_a = static_cast<int>(bottom.size());
   for (const auto& p : planes_b) add(p);
   if (top.empty() || bottom.empty()) return out;
   const int nt = static_cast<int>(top.size()), nb = static_cast<int>(bottom.size());
@@ -154,8 +155,12 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   Level middle{buffer + 2 * stride, buffer + 3 * stride, values};
   Level inner{buffer + 4 * stride, buffer + 5 * stride, values};
 
-  // The projection P of A∩B: the plane region, where every (upper, lower) pair leaves a
-  // non-negative chord, i.e. lower_k - upper_i <= 0.
+  // A region P' that contains the projection P of A∩B: the plane region where every pair of an
+  // upper plane of one block and a lower plane of the other leaves a non-negative chord,
+  // lower_k - upper_i <= 0 (the pairs of one block's own planes, which bound that block's own
+  // projection, are left out: P' may exceed P, and the cells below are exact within any such
+  // region, since within the region where i is the lowest upper plane and k the highest lower
+  // one the chord is upper_i - lower_k and each cell is clipped to its being non-negative).
   Polygon region{outer.first, 4};
   region.v[0] = {-extent, -extent};
   region.v[1] = {extent, -extent};
@@ -163,7 +168,9 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   region.v[3] = {-extent, extent};
   for (const auto& l : lateral) outer.clip_by(region, l);
   for (int i = 0; i < nt && region.n > 0; ++i) {
-    for (int k = 0; k < nb && region.n > 0; ++k) outer.clip_by(region, bottom[k] - top[i]);
+    for (int k = 0; k < nb && region.n > 0; ++k) {
+      if ((i < top_a) != (k < bottom_a)) outer.clip_by(region, bottom[k] - top[i]);
+    }
   }
   if (region.n == 0) return out;
 
@@ -181,8 +188,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     }
   };
 
-  // Lower planes that are the highest somewhere in P, with the box of that region; the others
-  // never bound a chord in P and drop out of the cells' constraints.
+  // Lower planes that are the highest somewhere in P', with the box of that region; the others
+  // never bound a chord in P' and drop out of the cells' constraints.
   SmallVector<int, 24> active_bottom;
   SmallVector<Box2, 24> bottom_box;
   for (int k = 0; k < nb; ++k) {
@@ -193,7 +200,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     bottom_box.push_back(box_of(poly));
   }
 
-  // For each upper plane that is the lowest somewhere in P, the cell of each active lower plane
+  // For each upper plane that is the lowest somewhere in P', the cell of each active lower plane
   // inside that region: clip to the pair's non-negative closure and to lower plane k being the
   // highest of the active ones.
   for (int i = 0; i < nt; ++i) {
