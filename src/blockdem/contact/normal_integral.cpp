@@ -12,14 +12,23 @@
 namespace blockdem {
 namespace {
 
-/// 1 / n! for small n.
-double inverse_factorial(int n) {
-  double value = 1.0;
-  for (int k = 2; k <= n; ++k) value /= k;
-  return value;
-}
-
 constexpr int kMaxTerms = 24;  ///< 1/24! ~ 1.6e-24: enough for any spread <= 1
+
+/// 1/m! for m <= 3 + kMaxTerms, each the previous one divided by m (so the series below use the
+/// same values as dividing term by term, without a chain of divisions at run time).
+constexpr std::array<double, kMaxTerms + 4> kInverseFactorial = [] {
+  std::array<double, kMaxTerms + 4> t{};
+  t[0] = 1.0;
+  for (int m = 1; m < kMaxTerms + 4; ++m) t[m] = t[m - 1] / m;
+  return t;
+}();
+
+/// 1/k for k <= kMaxTerms (entry 0 unused).
+constexpr std::array<double, kMaxTerms + 1> kInverse = [] {
+  std::array<double, kMaxTerms + 1> t{};
+  for (int k = 1; k <= kMaxTerms; ++k) t[k] = 1.0 / k;
+  return t;
+}();
 constexpr double kEulerE = 2.718281828459045;
 constexpr double kRoundOff = 0x1p-53;
 
@@ -32,7 +41,7 @@ int terms_needed(double r, double floor) {
   const double tolerance = kRoundOff * floor / kEulerE;
   double bound = 1.0;  // r^k / k!
   for (int k = 1; k <= kMaxTerms; ++k) {
-    bound *= r / k;
+    bound *= r * kInverse[k];
     if (bound <= tolerance) return k - 1;
   }
   return kMaxTerms;
@@ -57,7 +66,6 @@ void close_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d
   const int terms = floor > 0.0 ? terms_needed(r, floor) : kMaxTerms;
   // h_k over the first one, two, three nodes (prefix), and with d_j repeated (extended).
   Eigen::Vector3d prefix(1.0, 1.0, 1.0), extended(1.0, 1.0, 1.0);
-  double weight3 = 0.5, weight4 = 1.0 / 6.0;  // 1/(n+k)! for n = 2, 3
   double tail3 = 0.0;
   Eigen::Vector3d tail4 = Eigen::Vector3d::Zero();
   for (int k = 1; k <= terms; ++k) {
@@ -65,10 +73,8 @@ void close_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d
     prefix[1] = prefix[0] + d[1] * prefix[1];
     prefix[2] = prefix[1] + d[2] * prefix[2];
     extended = (prefix[2] + d.array() * extended.array()).matrix();
-    weight3 /= (2 + k);
-    weight4 /= (3 + k);
-    tail3 += prefix[2] * weight3;
-    tail4 += extended * weight4;
+    tail3 += prefix[2] * kInverseFactorial[2 + k];
+    tail4 += extended * kInverseFactorial[3 + k];
   }
   r3 = expm1_c * 0.5 + exp_c * tail3;
   r4 = (expm1_c / 6.0 + exp_c * tail4.array()).matrix();
@@ -96,11 +102,9 @@ double divided_difference_from_exps(const double* x, const double* e, int count)
     const double d = x[i] - x[0];
     for (int k = 1; k <= terms; ++k) h[k] += d * h[k - 1];
   }
-  double weight = inverse_factorial(n);
-  double sum = weight;
+  double sum = kInverseFactorial[n];
   for (int k = 1; k <= terms; ++k) {
-    weight /= (n + k);
-    sum += h[k] * weight;
+    sum += h[k] * kInverseFactorial[n + k];
   }
   return e[0] * sum;
 }
