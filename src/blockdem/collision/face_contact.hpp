@@ -1,4 +1,4 @@
-// Face-integrated contact geometry (DESIGN section 3): the overlap A∩B seen along the contact
+// Face-integrated contact geometry: the overlap A∩B seen along the contact
 // normal, split into cells over which the closure is linear, so that a joint law can be
 // integrated exactly over the contact.
 #pragma once
