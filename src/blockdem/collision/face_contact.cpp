@@ -1,7 +1,11 @@
-// Cells of linear closure over the projection of A∩B on the contact plane.
+// Cells of linear closure over the projection of A∩B on the contact plane: the projection first,
+// then the lower envelope of the upper planes and the upper envelope of the lower planes within it.
 #include "blockdem/collision/face_contact.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "blockdem/collision/slice_polygon.hpp"
 
@@ -10,28 +14,87 @@ namespace {
 
 // A linear function of the plane coordinates y = (a, b): f(y) = c0 + c·y.
 struct Linear {
-  double c0 = 0.0;
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  double c0;
+  Eigen::Vector2d c;
   double operator()(const Eigen::Vector2d& y) const { return c0 + c.dot(y); }
   Linear operator-(const Linear& o) const { return {c0 - o.c0, c - o.c}; }
 };
 
-// Keeps the part of `poly` where f(y) <= 0 (Sutherland-Hodgman, one half-plane).
-void clip(std::vector<Eigen::Vector2d>& poly, const Linear& f,
-          std::vector<Eigen::Vector2d>& scratch) {
-  scratch.clear();
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& p = poly[i];
-    const Eigen::Vector2d& q = poly[(i + 1) % n];
-    const double fp = f(p), fq = f(q);
-    if (fp <= 0.0) scratch.push_back(p);
-    if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0))
-      scratch.push_back(p + (fp / (fp - fq)) * (q - p));
+// A convex polygon in a caller's buffer of sufficient capacity.
+struct Polygon {
+  Eigen::Vector2d* v = nullptr;
+  int n = 0;
+};
+
+// Keeps the part of `poly` where f(y) <= 0 (Sutherland-Hodgman, one half-plane), writing the
+// result into `spare` (a buffer as large as poly's, not poly's own) and pointing poly there; a
+// polygon reduced below three vertices is emptied. A half-plane that keeps every vertex leaves
+// poly untouched.
+void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare, double* values) {
+  if (poly.n == 0) return;
+  // Which side each vertex is on decides whether anything is cut at all.
+  bool any_out = false, any_in = false;
+  for (int i = 0; i < poly.n; ++i) {
+    const double fp = f(poly.v[i]);
+    values[i] = fp;
+    any_out |= fp > 0.0;
+    any_in |= fp <= 0.0;
   }
-  poly.swap(scratch);
-  if (poly.size() < 3) poly.clear();
+  if (!any_out) return;
+  if (!any_in) {
+    poly.n = 0;
+    return;
+  }
+  int count = 0;
+  for (int i = 0; i < poly.n; ++i) {
+    const int j = i + 1 < poly.n ? i + 1 : 0;
+    const Eigen::Vector2d& p = poly.v[i];
+    const Eigen::Vector2d& q = poly.v[j];
+    const double fp = values[i], fq = values[j];
+    if (fp <= 0.0) spare[count++] = p;
+    if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0))
+      spare[count++] = p + (fp / (fp - fq)) * (q - p);
+  }
+  poly.v = spare;
+  poly.n = count >= 3 ? count : 0;
 }
+
+// Two buffers of one nesting level: a polygon in one, the clip output in the other.
+struct Level {
+  Eigen::Vector2d* first = nullptr;
+  Eigen::Vector2d* spare = nullptr;
+  double* values = nullptr;  // f at each vertex during a clip
+  // A copy of `from` in this level's buffers (any earlier polygon of this level is overwritten).
+  Polygon copy_of(const Polygon& from) {
+    std::copy(from.v, from.v + from.n, first);
+    return {first, from.n};
+  }
+  void clip_by(Polygon& poly, const Linear& f) {
+    clip(poly, f, poly.v == first ? spare : first, values);
+  }
+};
+
+struct Box2 {
+  Eigen::Vector2d lo, hi;
+  bool meets(const Box2& o) const {
+    return lo.x() <= o.hi.x() && o.lo.x() <= hi.x() && lo.y() <= o.hi.y() && o.lo.y() <= hi.y();
+  }
+};
+
+Box2 box_of(const Polygon& p) {
+  Box2 b{p.v[0], p.v[0]};
+  for (int i = 1; i < p.n; ++i) {
+    b.lo = b.lo.cwiseMin(p.v[i]);
+    b.hi = b.hi.cwiseMax(p.v[i]);
+  }
+  return b;
+}
+
+// Stack storage for the polygons (three nesting levels of two buffers) while the number of clips
+// any polygon may see stays below kStackCapacity (cube pairs need at most 52); a heap buffer
+// beyond.
+constexpr int kBuffers = 6;
+constexpr int kStackCapacity = 128;
 
 }  // namespace
 
@@ -50,50 +113,117 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
 
   Eigen::Vector3d u, v;
   plane_axes(normal, u, v);
-  // Every plane in plane coordinates: slack s(y) = s0 - (n·u) a - (n·v) b.
-  std::vector<Linear> top, bottom, lateral;
+  // Every plane in plane coordinates: slack s(y) = s0 - (n·u) a - (n·v) b. Upper planes bound
+  // the chord from above (t <= s/c), lower planes from below (t >= s/c), lateral ones the
+  // plane region (-s <= 0).
+  SmallVector<Linear, 24> top, bottom, lateral;
   auto add = [&](const Halfspace& p) {
     const double c = p.normal.dot(normal);
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (std::abs(c) <= settings.lateral_tolerance) {
-      lateral.push_back({-slack.c0, -slack.c});  // inside where -slack <= 0
+      lateral.push_back({-slack.c0, -slack.c});
     } else if (c > 0.0) {
-      top.push_back({slack.c0 / c, slack.c / c});  // t <= s/c
+      top.push_back({slack.c0 / c, slack.c / c});
     } else {
-      bottom.push_back({slack.c0 / c, slack.c / c});  // t >= s/c
+      bottom.push_back({slack.c0 / c, slack.c / c});
     }
   };
   for (const auto& p : planes_a) add(p);
+  const int top_a = static_cast<int>(top.size()), bottom_a = static_cast<int>(bottom.size());
   for (const auto& p : planes_b) add(p);
   if (top.empty() || bottom.empty()) return out;
+  const int nt = static_cast<int>(top.size()), nb = static_cast<int>(bottom.size());
+
+  // A clip adds at most one vertex, and no polygon below sees more clips than this.
+  const int capacity = 4 + static_cast<int>(lateral.size()) + nt * nb + nt + nb;
+  std::array<Eigen::Vector2d, kBuffers * kStackCapacity> stack_buffer;
+  std::array<double, kStackCapacity> stack_values;
+  std::vector<Eigen::Vector2d> heap_buffer;
+  std::vector<double> heap_values;
+  Eigen::Vector2d* buffer = stack_buffer.data();
+  double* values = stack_values.data();
+  int stride = kStackCapacity;
+  if (capacity > kStackCapacity) {
+    heap_buffer.resize(static_cast<std::size_t>(kBuffers) * static_cast<std::size_t>(capacity));
+    heap_values.resize(static_cast<std::size_t>(capacity));
+    stride = capacity;
+    buffer = heap_buffer.data();
+    values = heap_values.data();
+  }
+  Level outer{buffer, buffer + stride, values};
+  Level middle{buffer + 2 * stride, buffer + 3 * stride, values};
+  Level inner{buffer + 4 * stride, buffer + 5 * stride, values};
+
+  // A region P' that contains the projection P of A∩B: the plane region where every pair of an
+  // upper plane of one block and a lower plane of the other leaves a non-negative chord,
+  // lower_k - upper_i <= 0 (the pairs of one block's own planes, which bound that block's own
+  // projection, are left out: P' may exceed P, and the cells below are exact within any such
+  // region, since within the region where i is the lowest upper plane and k the highest lower
+  // one the chord is upper_i - lower_k and each cell is clipped to its being non-negative).
+  Polygon region{outer.first, 4};
+  region.v[0] = {-extent, -extent};
+  region.v[1] = {extent, -extent};
+  region.v[2] = {extent, extent};
+  region.v[3] = {-extent, extent};
+  for (const auto& l : lateral) outer.clip_by(region, l);
+  for (int i = 0; i < nt && region.n > 0; ++i) {
+    for (int k = 0; k < nb && region.n > 0; ++k) {
+      if ((i < top_a) != (k < bottom_a)) outer.clip_by(region, bottom[k] - top[i]);
+    }
+  }
+  if (region.n == 0) return out;
 
   // Ties (two planes giving the same chord end) go to the lower index, so that no region is
-  // counted twice.
+  // counted twice: plane i is the lowest upper plane where upper_i <= upper_j - tie for j < i
+  // and upper_i <= upper_j for j > i (and likewise for the highest lower plane).
   const Linear tie{1e-12 * extent, Eigen::Vector2d::Zero()};
-  std::vector<Eigen::Vector2d> poly, scratch;
-  for (std::size_t i = 0; i < top.size(); ++i) {
-    for (std::size_t k = 0; k < bottom.size(); ++k) {
-      poly = {{-extent, -extent}, {extent, -extent}, {extent, extent}, {-extent, extent}};
-      // Closure of this pair must be non-negative: bottom_k - top_i <= 0.
-      clip(poly, bottom[k] - top[i], scratch);
-      for (const auto& l : lateral) {
-        if (poly.empty()) break;
-        clip(poly, l, scratch);
+  auto envelope_region = [&](const SmallVector<Linear, 24>& planes, int i, bool lowest,
+                             Polygon& poly) {
+    const int count = static_cast<int>(planes.size());
+    for (int j = 0; j < count && poly.n > 0; ++j) {
+      if (j == i) continue;
+      const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
+      middle.clip_by(poly, j < i ? Linear{below.c0 + tie.c0, below.c} : below);
+    }
+  };
+
+  // Lower planes that are the highest somewhere in P', with the box of that region; the others
+  // never bound a chord in P' and drop out of the cells' constraints.
+  SmallVector<int, 24> active_bottom;
+  SmallVector<Box2, 24> bottom_box;
+  for (int k = 0; k < nb; ++k) {
+    Polygon poly = middle.copy_of(region);
+    envelope_region(bottom, k, false, poly);
+    if (poly.n == 0) continue;
+    active_bottom.push_back(k);
+    bottom_box.push_back(box_of(poly));
+  }
+
+  // For each upper plane that is the lowest somewhere in P', the cell of each active lower plane
+  // inside that region: clip to the pair's non-negative closure and to lower plane k being the
+  // highest of the active ones.
+  for (int i = 0; i < nt; ++i) {
+    Polygon upper = middle.copy_of(region);
+    envelope_region(top, i, true, upper);
+    if (upper.n == 0) continue;
+    const Box2 upper_box = box_of(upper);
+    for (std::size_t a = 0; a < active_bottom.size(); ++a) {
+      if (!upper_box.meets(bottom_box[a])) continue;
+      const int k = active_bottom[a];
+      Polygon poly = inner.copy_of(upper);
+      inner.clip_by(poly, bottom[k] - top[i]);
+      for (std::size_t b = 0; b < active_bottom.size() && poly.n > 0; ++b) {
+        const int j = active_bottom[b];
+        if (j == k) continue;
+        const Linear below = bottom[j] - bottom[k];
+        inner.clip_by(poly, j < k ? Linear{below.c0 + tie.c0, below.c} : below);
       }
-      // Plane i is the lowest top, plane k the highest bottom.
-      for (std::size_t j = 0; j < top.size() && !poly.empty(); ++j) {
-        if (j < i) clip(poly, top[i] - top[j] - Linear{-tie.c0, tie.c}, scratch);
-        if (j > i) clip(poly, top[i] - top[j], scratch);
-      }
-      for (std::size_t j = 0; j < bottom.size() && !poly.empty(); ++j) {
-        if (j < k) clip(poly, bottom[j] - bottom[k] - Linear{-tie.c0, tie.c}, scratch);
-        if (j > k) clip(poly, bottom[j] - bottom[k], scratch);
-      }
-      if (poly.empty()) continue;
+      if (poly.n == 0) continue;
       ClosureCell cell;
       const Linear g = top[i] - bottom[k];
-      for (const auto& y : poly) {
+      for (int m = 0; m < poly.n; ++m) {
+        const Eigen::Vector2d& y = poly.v[m];
         cell.vertices.push_back(origin + y.x() * u + y.y() * v);
         cell.closures.push_back(std::max(0.0, g(y)));
       }

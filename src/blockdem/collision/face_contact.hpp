@@ -1,21 +1,21 @@
-// Face-integrated contact geometry (DESIGN section 3): the overlap A∩B seen along the contact
+// Face-integrated contact geometry: the overlap A∩B seen along the contact
 // normal, split into cells over which the closure is linear, so that a joint law can be
 // integrated exactly over the contact.
 #pragma once
 
 #include <Eigen/Core>
 #include <span>
-#include <vector>
 
+#include "blockdem/collision/small_vector.hpp"
 #include "blockdem/geometry/halfspace.hpp"
 
 namespace blockdem {
 
 /// A convex cell of the contact plane with the closure at each vertex; the closure varies
-/// linearly inside the cell.
+/// linearly inside the cell. Up to 8 vertices are stored inline (no heap allocation).
 struct ClosureCell {
-  std::vector<Eigen::Vector3d> vertices;  ///< on the contact plane, in order (m)
-  std::vector<double> closures;           ///< closure at each vertex, >= 0 (m)
+  SmallVector<Eigen::Vector3d, 8> vertices;  ///< on the contact plane, in order (m)
+  SmallVector<double, 8> closures;           ///< closure at each vertex, >= 0 (m)
 };
 
 struct FaceContactGeometry {
@@ -23,7 +23,8 @@ struct FaceContactGeometry {
   /// edge-to-face or vertex-to-face contact); false for edge-to-edge and similar contacts, which
   /// the caller treats as point contacts.
   bool face_type = false;
-  std::vector<ClosureCell> cells;  ///< empty when !face_type or nothing overlaps
+  /// Empty when !face_type or nothing overlaps; up to 8 cells are stored inline.
+  SmallVector<ClosureCell, 8> cells;
 };
 
 struct FaceContactSettings {
@@ -40,6 +41,10 @@ struct FaceContactSettings {
 /// with c_j = n_j·n and s_j the slack of plane j at y. Each pair (upper plane, lower plane)
 /// that is active somewhere gives one cell where g is linear; the cells tile the projection of
 /// A∩B on the plane exactly. `extent` (m) must exceed the size of A∩B.
+/// Cost: the projection of A∩B is clipped once against every (upper, lower) pair; the region
+/// where each upper plane is the lowest (and each lower plane the highest) is then clipped within
+/// it, and only pairs of non-empty regions whose boxes meet form cells. Polygons live in a stack
+/// buffer for up to 24 planes in all (a heap buffer beyond).
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
                                           const Eigen::Vector3d& origin,

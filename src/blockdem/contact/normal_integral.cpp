@@ -12,57 +12,129 @@
 namespace blockdem {
 namespace {
 
-/// 1 / n! for small n.
-double inverse_factorial(int n) {
-  double value = 1.0;
-  for (int k = 2; k <= n; ++k) value /= k;
-  return value;
-}
+constexpr int kMaxTerms = 24;  ///< 1/24! ~ 1.6e-24: enough for any spread <= 1
 
-/// Divided difference exp[x_0, ..., x_n] of ascending nodes (repeats allowed, n <= 3), minus
-/// 1/n! if `remainder`: that is the divided difference of exp(x) - sum_{k<=n} x^k / k!, which
-/// stays accurate when the nodes are near zero.
-/// Close nodes (spread <= 1): Taylor series about their mean c,
-///   exp[x_0..x_n] = e^c sum_k h_k(x - c) / (n + k)!,
-/// with h_k the complete homogeneous symmetric polynomials (h_0 = 1, h_1 = 0 about the mean);
-/// terms fall like 1/(n! k!), so 24 terms reach rounding. Spread > 1: the recursion
-/// f[x_0..x_n] = (f[x_1..x_n] - f[x_0..x_n-1]) / (x_n - x_0), which then loses at most a few
-/// bits (the larger term dominates the difference).
-double divided_difference_exp(const double* x, int count, bool remainder) {
-  const int n = count - 1;
-  if (n == 0) return remainder ? std::expm1(x[0]) : std::exp(x[0]);
-  const double spread = x[n] - x[0];
-  if (spread <= 1.0) {
-    constexpr int kTerms = 24;
-    double c = 0.0;
-    for (int i = 0; i < count; ++i) c += x[i];
-    c /= count;
-    std::array<double, kTerms + 1> h{};
-    h[0] = 1.0;
-    for (int i = 0; i < count; ++i) {
-      const double d = x[i] - c;
-      for (int k = 1; k <= kTerms; ++k) h[k] += d * h[k - 1];
-    }
-    double weight = inverse_factorial(n);
-    const double leading = weight;
-    double tail = 0.0;
-    for (int k = 1; k <= kTerms; ++k) {
-      weight /= (n + k);
-      tail += h[k] * weight;
-    }
-    return remainder ? std::expm1(c) * leading + std::exp(c) * tail
-                     : std::exp(c) * (leading + tail);
+/// 1/m! for m <= 3 + kMaxTerms, each the previous one divided by m (so the series below use the
+/// same values as dividing term by term, without a chain of divisions at run time).
+constexpr std::array<double, kMaxTerms + 4> kInverseFactorial = [] {
+  std::array<double, kMaxTerms + 4> t{};
+  t[0] = 1.0;
+  for (int m = 1; m < kMaxTerms + 4; ++m) t[m] = t[m - 1] / m;
+  return t;
+}();
+
+/// 1/k for k <= kMaxTerms (entry 0 unused).
+constexpr std::array<double, kMaxTerms + 1> kInverse = [] {
+  std::array<double, kMaxTerms + 1> t{};
+  for (int k = 1; k <= kMaxTerms; ++k) t[k] = 1.0 / k;
+  return t;
+}();
+constexpr double kEulerE = 2.718281828459045;
+constexpr double kRoundOff = 0x1p-53;
+
+/// Number of Taylor terms k = 1..K after which the rest of the series is below round-off:
+/// about a centre c with every |x_i - c| <= r <= 1, the degree-k term of a divided difference of
+/// order n is at most r^k / (n! k!) in magnitude (h_k has C(n+k, n) monomials), so the terms
+/// after K sum to at most e r^(K+1) / (n! (K+1)!). `floor` is a lower bound of the divided
+/// difference being summed, times n! / e^c.
+int terms_needed(double r, double floor) {
+  const double tolerance = kRoundOff * floor / kEulerE;
+  double bound = 1.0;  // r^k / k!
+  for (int k = 1; k <= kMaxTerms; ++k) {
+    bound *= r * kInverse[k];
+    if (bound <= tolerance) return k - 1;
   }
-  const double value =
-      (divided_difference_exp(x + 1, n, false) - divided_difference_exp(x, n, false)) / spread;
-  return remainder ? value - inverse_factorial(n) : value;
+  return kMaxTerms;
 }
 
-/// divided_difference_exp(..., remainder = true) of unsorted nodes.
-template <std::size_t N>
-double exp_remainder_difference(std::array<double, N> nodes) {
-  std::sort(nodes.begin(), nodes.end());
-  return divided_difference_exp(nodes.data(), static_cast<int>(N), true);
+/// The four remainder differences of a compressed triangle whose nodes x_i >= 0 lie within 1 of
+/// each other, from one Taylor series about c = mean(x): r3 = E[x_0, x_1, x_2] and
+/// r4_j = E[x_j, x_j, x_k, x_l], E[x_0..x_n] = exp[x_0..x_n] - 1/n! the divided difference of
+/// exp(x) - sum_{k<=n} x^k / k!, which stays accurate when the nodes are near zero:
+///   E[x_0..x_n] = expm1(c) / n! + e^c sum_{k>=1} h_k(x - c) / (n + k)!,
+/// h_k the complete homogeneous symmetric polynomials (h_1 = 0 about the mean). With
+/// d_i = x_i - c, the 4-node h_k(d_j, d_0, d_1, d_2) = h_k(d_0, d_1, d_2) + d_j h_(k-1)(d_j, d_0,
+/// d_1, d_2), so the four series share the 3-node h_k, exp(c) and expm1(c).
+void close_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d& r4) {
+  const double c = (x[0] + x[1] + x[2]) / 3.0;
+  const Eigen::Vector3d d = x.array() - c;
+  const double r = d.cwiseAbs().maxCoeff();
+  const double exp_c = std::exp(c), expm1_c = std::expm1(c);
+  // Each remainder is at least the mean of its nodes (>= 3c/4) and at least expm1(min x), in
+  // units of 1/n!: by Hermite-Genocchi it is the simplex mean of e^t - 1 >= t, over 1/n!.
+  const double floor = std::max(0.75 * c, std::expm1(x.minCoeff())) / exp_c;
+  const int terms = floor > 0.0 ? terms_needed(r, floor) : kMaxTerms;
+  // h_k over the first one, two, three nodes (prefix), and with d_j repeated (extended).
+  Eigen::Vector3d prefix(1.0, 1.0, 1.0), extended(1.0, 1.0, 1.0);
+  double tail3 = 0.0;
+  Eigen::Vector3d tail4 = Eigen::Vector3d::Zero();
+  for (int k = 1; k <= terms; ++k) {
+    prefix[0] = d[0] * prefix[0];
+    prefix[1] = prefix[0] + d[1] * prefix[1];
+    prefix[2] = prefix[1] + d[2] * prefix[2];
+    extended = (prefix[2] + d.array() * extended.array()).matrix();
+    tail3 += prefix[2] * kInverseFactorial[2 + k];
+    tail4 += extended * kInverseFactorial[3 + k];
+  }
+  r3 = expm1_c * 0.5 + exp_c * tail3;
+  r4 = (expm1_c / 6.0 + exp_c * tail4.array()).matrix();
+}
+
+/// exp[x_0, ..., x_n] for ascending nodes (repeats allowed) with e_i = exp(x_i) given: the
+/// recursion f[x_0..x_n] = (f[x_1..x_n] - f[x_0..x_n-1]) / (x_n - x_0) while the spread exceeds 1
+/// (the larger term dominates: at most a few bits lost), and below that the Taylor series about
+/// the lowest node, exp[x] = e^{x_0} sum_k h_k(x - x_0) / (n + k)!, whose terms are all positive
+/// (x_i - x_0 >= 0) and are summed until the rest is below round-off (terms_needed with a floor
+/// of 1: the sum is at least its leading term 1/n!). No exp is evaluated: the triangle's three
+/// exponentials serve all its divided differences.
+double divided_difference_from_exps(const double* x, const double* e, int count) {
+  const int n = count - 1;
+  if (n == 0) return e[0];
+  const double spread = x[n] - x[0];
+  if (spread > 1.0) {
+    return (divided_difference_from_exps(x + 1, e + 1, n) - divided_difference_from_exps(x, e, n)) /
+           spread;
+  }
+  const int terms = terms_needed(spread, 1.0);
+  std::array<double, kMaxTerms + 1> h{};
+  h[0] = 1.0;
+  for (int i = 1; i < count; ++i) {
+    const double d = x[i] - x[0];
+    for (int k = 1; k <= terms; ++k) h[k] += d * h[k - 1];
+  }
+  double sum = kInverseFactorial[n];
+  for (int k = 1; k <= terms; ++k) {
+    sum += h[k] * kInverseFactorial[n + k];
+  }
+  return e[0] * sum;
+}
+
+/// The four remainder differences of a compressed triangle (as in close_node_remainders) when its
+/// nodes spread over more than 1: exp(x_i) once per node, then the sorted node sets
+/// {x_0, x_1, x_2} and {x_j, x_j, x_k, x_l} through divided_difference_from_exps.
+void wide_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d& r4) {
+  // Nodes in ascending order, with their exponentials and original indices.
+  std::array<int, 3> order{0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int p, int q) { return x[p] < x[q]; });
+  std::array<double, 3> xs{}, es{};
+  for (int i = 0; i < 3; ++i) {
+    xs[i] = x[order[i]];
+    es[i] = std::exp(xs[i]);
+  }
+  r3 = divided_difference_from_exps(xs.data(), es.data(), 3) - 0.5;
+  for (int i = 0; i < 3; ++i) {
+    // The sorted set with node i repeated.
+    std::array<double, 4> x4{}, e4{};
+    for (int m = 0, p = 0; m < 3; ++m) {
+      x4[p] = xs[m];
+      e4[p++] = es[m];
+      if (m == i) {
+        x4[p] = xs[m];
+        e4[p++] = es[m];
+      }
+    }
+    r4[order[i]] = divided_difference_from_exps(x4.data(), e4.data(), 4) - 1.0 / 6.0;
+  }
 }
 
 /// Mean stress and barycentric-weighted means over a triangle whose vertex closures y are all >= 0.
@@ -80,12 +152,19 @@ void compressed_triangle_moments(const NormalLaw& law, const Eigen::Vector3d& y,
   const auto& e = std::get<ExponentialNormal>(law);
   // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry the law.
   const Eigen::Vector3d x = e.b * y;
-  mean = 2.0 * e.a * exp_remainder_difference(std::array<double, 3>{x[0], x[1], x[2]});
-  for (int j = 0; j < 3; ++j) {
-    const int k = (j + 1) % 3, l = (j + 2) % 3;
-    weights[j] =
-        2.0 * e.a * exp_remainder_difference(std::array<double, 4>{x[j], x[j], x[k], x[l]});
+  if (x.maxCoeff() - x.minCoeff() <= 1.0) {
+    double r3 = 0.0;
+    Eigen::Vector3d r4;
+    close_node_remainders(x, r3, r4);
+    mean = 2.0 * e.a * r3;
+    weights = 2.0 * e.a * r4;
+    return;
   }
+  double r3 = 0.0;
+  Eigen::Vector3d r4;
+  wide_node_remainders(x, r3, r4);
+  mean = 2.0 * e.a * r3;
+  weights = 2.0 * e.a * r4;
 }
 
 void require_finite(const char* what, double value) {

@@ -1,6 +1,6 @@
 // Exact integrals of a normal joint law over a triangle or convex polygon on which the closure
 // varies linearly: resultant force, centre of pressure, compressed area, peak stress. These are the
-// kernels of the face-integrated contact mode (DESIGN.md section 3).
+// kernels of the face-integrated contact mode.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,0 +1,80 @@
+// Polar and radial moments over a face contact's cells, for the twisting resistance.
+#include "blockdem/collision/face_twist.hpp"
+
+#include <array>
+
+#include "blockdem/geometry/polygon_moments.hpp"
+
+namespace blockdem {
+namespace {
+
+// Dunavant's 7-point rule (degree 5): barycentric points and weights (weights sum to 1).
+struct QuadraturePoint {
+  double l0, l1, l2, weight;
+};
+constexpr double kA1 = 0.059715871789770, kB1 = 0.470142064105115, kW1 = 0.132394152788506;
+constexpr double kA2 = 0.797426985353087, kB2 = 0.101286507323456, kW2 = 0.125939180544827;
+constexpr std::array<QuadraturePoint, 7> kRule{{{1.0 / 3, 1.0 / 3, 1.0 / 3, 0.225},
+                                                {kA1, kB1, kB1, kW1},
+                                                {kB1, kA1, kB1, kW1},
+                                                {kB1, kB1, kA1, kW1},
+                                                {kA2, kB2, kB2, kW2},
+                                                {kB2, kA2, kB2, kW2},
+                                                {kB2, kB2, kA2, kW2}}};
+
+// A point of the contact with its closure (linear over each cell).
+struct Node {
+  Eigen::Vector3d x;
+  double g;
+};
+
+Node mix(const Node& a, const Node& b, const Node& c, double la, double lb, double lc) {
+  return {la * a.x + lb * b.x + lc * c.x, la * a.g + lb * b.g + lc * c.g};
+}
+
+// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its 16 similar sub-triangles.
+double radial_stress_moment(const Node& a, const Node& b, const Node& c, const NormalLaw& law,
+                            const Eigen::Vector3d& centre) {
+  constexpr int kSplit = 4;  // sub-triangles along each edge
+  const double area = 0.5 * (b.x - a.x).cross(c.x - a.x).norm() / (kSplit * kSplit);
+  double sum = 0.0;
+  auto at = [&](int i, int j) {  // lattice node i, j
+    const double li = static_cast<double>(i) / kSplit, lj = static_cast<double>(j) / kSplit;
+    return mix(a, b, c, 1.0 - li - lj, li, lj);
+  };
+  auto integrate = [&](const Node& p, const Node& q, const Node& r) {
+    for (const auto& w : kRule) {
+      const Node y = mix(p, q, r, w.l0, w.l1, w.l2);
+      sum += w.weight * normal_stress(law, y.g) * (y.x - centre).norm();
+    }
+  };
+  for (int i = 0; i < kSplit; ++i) {
+    for (int j = 0; i + j < kSplit; ++j) {
+      integrate(at(i, j), at(i + 1, j), at(i, j + 1));
+      if (i + j + 1 < kSplit) integrate(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  return sum * area;
+}
+
+}  // namespace
+
+FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                    const Eigen::Vector3d& centre) {
+  FaceTwistMoments m;
+  for (const ClosureCell& cell : cells) {
+    const std::span<const Eigen::Vector3d> vertices(cell.vertices.data(), cell.vertices.size());
+    const PolygonMoments pm = polygon_moments(vertices, centre);
+    m.compressed_area += pm.area;
+    m.polar_moment += pm.polar_moment;
+    m.radial_moment += pm.radial_moment;
+    for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
+      m.radial_normal_moment +=
+          radial_stress_moment({vertices[0], cell.closures[0]}, {vertices[k], cell.closures[k]},
+                               {vertices[k + 1], cell.closures[k + 1]}, law, centre);
+    }
+  }
+  return m;
+}
+
+}  // namespace blockdem

@@ -1,0 +1,64 @@
+// Area, centroid, polar and radial moments of a planar convex polygon in closed form.
+#include "blockdem/geometry/polygon_moments.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace blockdem {
+namespace {
+
+// Antiderivatives in ψ of sec³ψ and sec⁴ψ:
+//   ∫ sec³ = (sec ψ tan ψ + ln|sec ψ + tan ψ|) / 2,   ∫ sec⁴ = tan ψ + tan³ψ / 3.
+double integral_sec3(double t) {  // t = tan ψ, sec ψ = sqrt(1 + t²) > 0 for |ψ| < π/2
+  const double s = std::sqrt(1.0 + t * t);
+  return 0.5 * (s * t + std::asinh(t));  // ln(sec + tan) = asinh(tan)
+}
+double integral_sec4(double t) {
+  return t + t * t * t / 3.0;
+}
+
+}  // namespace
+
+PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
+                               const Eigen::Vector3d& pole) {
+  PolygonMoments m;
+  const std::size_t n = vertices.size();
+  if (n < 3) return m;
+  // Unit normal of the polygon's plane from its vector area.
+  Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) vector_area += vertices[i].cross(vertices[(i + 1) % n]);
+  if (!(vector_area.norm() > 0.0)) return m;
+  const Eigen::Vector3d normal = vector_area.normalized();
+
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = vertices[i] - pole;
+    const Eigen::Vector3d q = vertices[(i + 1) % n] - pole;
+    // Signed area of the triangle (pole, p, q): positive when it turns like the polygon.
+    const double area = 0.5 * normal.dot(p.cross(q));
+    m.area += area;
+    first += area * (p + q) / 3.0;
+    const Eigen::Vector3d edge = q - p;
+    const double length = edge.norm();
+    if (length == 0.0 || area == 0.0) continue;
+    // Distance h from the pole to the edge's line and the tangents of the edge ends' angles
+    // measured from the foot of the perpendicular.
+    const Eigen::Vector3d along = edge / length;
+    const double h = 2.0 * std::abs(area) / length;
+    const double t1 = along.dot(p) / h, t2 = along.dot(q) / h;
+    const double sign = area > 0.0 ? 1.0 : -1.0;
+    m.radial_moment += sign * h * h * h / 3.0 * (integral_sec3(t2) - integral_sec3(t1));
+    m.polar_moment += sign * h * h * h * h / 4.0 * (integral_sec4(t2) - integral_sec4(t1));
+  }
+  m.centroid = pole + first / m.area;
+  return m;
+}
+
+PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> vertices) {
+  const PolygonMoments about_first =
+      vertices.size() < 3 ? PolygonMoments{} : polygon_moments(vertices, vertices[0]);
+  if (about_first.area == 0.0) return about_first;
+  return polygon_moments(vertices, about_first.centroid);
+}
+
+}  // namespace blockdem

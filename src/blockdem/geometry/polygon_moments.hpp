@@ -1,0 +1,29 @@
+// Exact area moments of a planar convex polygon about a point of its plane: area, centroid, polar
+// moment J = ∫ r² dA and radial moment ∫ r dA (the twisting resistance of a contact face).
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+
+namespace blockdem {
+
+struct PolygonMoments {
+  double area = 0.0;                                   ///< A (m^2)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< (m)
+  double polar_moment = 0.0;   ///< J = ∫ |y - p|² dA about the given point p (m^4)
+  double radial_moment = 0.0;  ///< ∫ |y - p| dA about the given point p (m^3)
+};
+
+/// Moments of a planar convex polygon (vertices in order, m) about a point `pole` of its plane,
+/// by a fan of triangles (pole, v_i, v_i+1) in polar coordinates about the pole: a triangle whose
+/// far edge lies at distance h from the pole and spans angles ψ1..ψ2 from the foot of the
+/// perpendicular has ∫ r² dA = (h⁴/4) ∫ sec⁴ψ dψ and ∫ r dA = (h³/3) ∫ sec³ψ dψ, both in closed
+/// form; each triangle is signed by its orientation, so a pole outside the polygon works too.
+/// Fewer than three vertices give zero moments.
+PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
+                               const Eigen::Vector3d& pole);
+
+/// Moments about the polygon's own centroid.
+PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> vertices);
+
+}  // namespace blockdem
