@@ -45,6 +45,8 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
   v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
   v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
   v.ramp_steps = t.integer("ramp_steps", v.ramp_steps);
+  v.find_collapse = t.boolean("find_collapse", v.find_collapse);
+  v.collapse_tolerance = t.number("collapse_tolerance", v.collapse_tolerance);
   v.law.name = "joint";
   read_joint_law_tables(t, v.law);
   try {
