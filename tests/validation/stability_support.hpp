@@ -21,7 +21,7 @@ inline std::string incline_scenario(double psi_deg, double phi_deg, double b, do
   s.precision(12);
   s << "title = \"box on an incline\"\n[settings]\ndamping = 0.7\ncontact_mode = "
        "\"face_integrated\"\n"
-    << "time_step = " << time_step << "\n"
+    << (time_step > 0.0 ? "time_step = " + std::to_string(time_step) + "\n" : std::string())
     << "[[materials]]\nname = \"rock\"\ndensity = 2500.0\n"
     << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
     << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = " << phi_deg << " }\n"
