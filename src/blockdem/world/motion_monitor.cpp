@@ -65,7 +65,7 @@ void MotionMonitor::observe(const World& world, bool ramping) {
   previous_speed_ = r.max_speed;
   const bool past_limit = r.max_displacement > r.displacement_limit;
   const bool accelerating = r.growing_checks >= criteria_.growth_checks &&
-                            r.max_displacement > 0.1 * r.displacement_limit;
+                            r.max_displacement > 0.5 * r.displacement_limit;
   if (past_limit || accelerating) r.mechanism = true;
 }
 

@@ -17,7 +17,7 @@ struct MechanismCriteria {
   /// mechanism (m); 0: half the bounding radius of the smallest free block.
   double displacement_limit = 0.0;
   /// A mechanism also forms when the largest block speed has grown at this many successive
-  /// convergence checks (outside a ramp) while some block has moved by a tenth of the limit (-).
+  /// convergence checks (outside a ramp) while some block has moved by half the limit (-).
   std::int64_t growth_checks = 100;
 
   void validate() const;  ///< throws std::invalid_argument naming the field

@@ -62,16 +62,6 @@ struct ReportInput {
   double wall_time = 0.0;
 };
 
-/// What every section of the report reads.
-struct ReportInput {
-  std::vector<Boon2015CaseRun> all_runs;    ///< in the order they were given
-  std::vector<Boon2015CaseRun> runs;        ///< mode boon2012 (the face-integrated when none)
-  std::vector<Boon2015CaseRun> integrated;  ///< mode face_integrated
-  std::vector<std::string> figures;
-  std::string figure_note;
-  double wall_time = 0.0;
-};
-
 // The analytical beam (D&K 1999) at g level `g` for a linear normal law: "stable (span safety
 // factor x)" or "snap-through (x)"; empty for a nonlinear law (no single E_rm).
 std::string analytic_snap_check(const Boon2015CaseRun& r, double g) {
@@ -90,10 +80,12 @@ std::string analytic_snap_check(const Boon2015CaseRun& r, double g) {
 }
 
 // Collapse loads found by the bisection of every case that lost equilibrium, as findings.
-void write_collapse_section(std::ostream& o, const std::vector<Boon2015CaseRun>& runs) {
+void write_collapse_section(std::ostream& o, const ReportInput& in) {
+  const auto& runs = in.all_runs;
   o << "## Collapse loads (snap-through)\n\n"
     << "Every case runs with `find_collapse = true`: when a gravity level fails by a mechanism "
-       "(beam blocks moving past half their size, or speeding up for 1000 steps after the ramp, "
+       "(a beam block moving past half its bounding radius, or speeding up for 1000 steps after "
+       "the ramp once past a quarter of it, "
        "under a stable time step with the kinetic energy supplied by gravity's work), the level "
        "is bisected between the last stable level and the failed one, each trial from the last "
        "stable level's state, to a bracket of at most 0.5 g. Such a collapse is a result of the "
