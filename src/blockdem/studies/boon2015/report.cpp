@@ -79,6 +79,30 @@ std::string analytic_snap_check(const Boon2015CaseRun& r, double g) {
          f("%.3f", a.buckling.span_safety_factor) + ")";
 }
 
+// The g level at which the analytical beam (linear normal law) snaps through, by bisection on
+// its status; 0 for a nonlinear law or when none is found below 10^4 g.
+double analytic_snap_through_g(const Boon2015CaseRun& r) {
+  const VoussoirSpec& v = voussoir_scene(r.scenario)->spec;
+  const auto* lin = std::get_if<LinearNormal>(&v.law.normal);
+  if (lin == nullptr) return 0.0;
+  auto stable = [&](double g) {
+    VoussoirBeamDef def;
+    def.span = v.span();
+    def.depth = v.block_depth;
+    def.unit_weight = v.density * g * kOneG;
+    def.rock_mass_modulus = rock_mass_modulus_rigid_blocks(lin->stiffness, v.block_length);
+    return solve_voussoir_beam(def).status == VoussoirStatus::stable;
+  };
+  double lo = 1.0, hi = 2.0;
+  while (stable(hi)) {
+    lo = hi;
+    hi *= 2.0;
+    if (hi > 1e4) return 0.0;
+  }
+  for (int i = 0; i < 30; ++i) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
 // Collapse loads found by the bisection of every case that lost equilibrium, as findings.
 void write_collapse_section(std::ostream& o, const ReportInput& in) {
   const auto& runs = in.all_runs;
@@ -101,6 +125,12 @@ void write_collapse_section(std::ostream& o, const ReportInput& in) {
     if (!a_lo.empty())
       o << ". Analytical voussoir beam (Diederichs & Kaiser 1999, E_rm = k_n s): " << a_lo << "; "
         << a_hi;
+    const double snap = analytic_snap_through_g(r);
+    if (snap > 0.0) {
+      o << "; the analytical beam snaps through at " << f("%.1f", snap) << " g, so the DEM beam "
+        << (hi < snap ? "(joints that open, hinges that rotate) loses equilibrium before it"
+                      : "outlasts it");
+    }
     o << ".\n";
   }
   for (const auto& r : runs) {
