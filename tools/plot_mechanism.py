@@ -33,14 +33,22 @@ def main():
     vx = [float(b["vx_m_s"]) for b in blocks]
     vz = [float(b["vz_m_s"]) for b in blocks]
     moving = [b["moving"] == "1" for b in blocks]
+    if not any(moving):
+        # The failed trial stopped early: show the blocks moving at half the top speed or more.
+        speed = [float(b["speed_m_s"]) for b in blocks]
+        moving = [v >= 0.5 * max(speed) and v > 0 for v in speed]
     ax.scatter([x for x, m in zip(xs, moving) if not m], [z for z, m in zip(zs, moving) if not m],
                c="0.6", s=18, label="block centroid, at rest")
     ax.scatter([x for x, m in zip(xs, moving) if m], [z for z, m in zip(zs, moving) if m],
                c="tab:red", s=24, label="block centroid, moving")
-    ax.quiver([x for x, m in zip(xs, moving) if m], [z for z, m in zip(zs, moving) if m],
-              [v for v, m in zip(vx, moving) if m], [v for v, m in zip(vz, moving) if m],
-              color="tab:red", angles="xy", width=0.004)
+    if any(moving):
+        ax.quiver([x for x, m in zip(xs, moving) if m], [z for z, m in zip(zs, moving) if m],
+                  [v for v, m in zip(vx, moving) if m], [v for v, m in zip(vz, moving) if m],
+                  color="tab:red", angles="xy", width=0.004)
     ax.set_aspect("equal", adjustable="datalim")
+    span = max(max(xs) - min(xs), max(zs) - min(zs), 0.05)
+    ax.set_xlim(min(xs) - 0.5 * span, max(xs) + 0.5 * span)
+    ax.set_ylim(min(zs) - 0.5 * span, max(zs) + 0.5 * span)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("z (m)")
     ax.set_title(f"Mechanism at F = {fos['first_failed']:.3f} (velocity arrows)")
