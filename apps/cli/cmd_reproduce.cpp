@@ -66,6 +66,7 @@ int reproduce(const ReproduceOptions& opt) {
                       r.result.status.c_str(), static_cast<long long>(r.result.steps),
                       r.result.wall_time);
         progress.message(buf);
+        if (r.result.status != "completed") progress.message("  " + r.result.message);
       },
       [&](const std::string& id, const std::string& line) {
         if (!opt.quiet) progress.update(id + ": " + line);

@@ -34,6 +34,20 @@ int run(const RunOptions& opt) {
   RunResult r;
   bool beam = false;
   bool rock_mass = false;
+  // Some input errors show only while running (strength-reduction bounds that do not bracket
+  // the failure): then what the run wrote is removed, so that nothing is left.
+  const bool existed = std::filesystem::exists(opt.out);
+  auto remove_outputs = [&] {
+    std::error_code ec;
+    if (!existed) {
+      std::filesystem::remove_all(opt.out, ec);
+      return;
+    }
+    for (const char* f : {"history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
+                          "summary.json", "strength_reduction.csv", "mechanism.csv",
+                          "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
+      std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
+  };
   try {
     // Read and check everything before anything is written.
     Scenario sc = load_scenario(opt.scenario);
@@ -52,9 +66,11 @@ int run(const RunOptions& opt) {
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
+    remove_outputs();
     std::cerr << "blockdem: error: " << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
+    remove_outputs();
     std::cerr << "blockdem: error: " << opt.scenario << ": " << e.what() << "\n";
     return 2;
   }
@@ -80,6 +96,17 @@ int run(const RunOptions& opt) {
                           (std::filesystem::path(opt.out) / "blocks_final.png").string()},
                          why))
       std::cerr << "blockdem: warning: no figures: " << why << "\n";
+  }
+  if (r.factor_of_safety && opt.figures) {
+    std::string why;
+    if (!run_plot_script("plot_mechanism.py", {opt.out}, why))
+      std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
+  }
+  if (r.factor_of_safety)
+    std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
+  if (r.collapse) {
+    std::fprintf(stderr, "blockdem: collapse between %.4g g (stable) and %.4g g (failed)\n",
+                 r.collapse->first, r.collapse->second);
   }
   if (r.exit_code != 0) {
     std::cerr << "blockdem: error: " << r.message << "\n"

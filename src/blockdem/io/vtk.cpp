@@ -52,6 +52,11 @@ void write_vtk_blocks(const std::filesystem::path& path, const World& world) {
     for (std::size_t f = 0; f < b.shape.faces().size(); ++f)
       out << d.x() << " " << d.y() << " " << d.z() << "\n";
   }
+  out << "VECTORS velocity_m_s double\n";
+  for (const auto& b : world.blocks()) {
+    for (std::size_t f = 0; f < b.shape.faces().size(); ++f)
+      out << b.velocity.x() << " " << b.velocity.y() << " " << b.velocity.z() << "\n";
+  }
 }
 
 void write_vtk_contacts(const std::filesystem::path& path, const World& world) {

@@ -10,7 +10,8 @@
 
 namespace blockdem {
 
-/// Writes the blocks' faces as polygons with cell data block_index, displacement (m).
+/// Writes the blocks' faces as polygons with cell data block_index, displacement (m) and
+/// velocity (m/s).
 void write_vtk_blocks(const std::filesystem::path& path, const World& world);
 /// Writes contact points with point data normal, normal_force_N, shear_force_N, overlap_m, area_m2,
 /// and the contact slice polygons as cells.

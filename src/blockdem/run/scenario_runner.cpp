@@ -1,14 +1,18 @@
 // Scenario runner: stages, outputs, summary.
 #include "blockdem/run/scenario_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/voussoir/recorder.hpp"
 #include "blockdem/voussoir/scene.hpp"
+#include "blockdem/world/stability.hpp"
 
 namespace blockdem {
 namespace {
@@ -55,28 +59,97 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   const int n = static_cast<int>(sc.stages.size());
   for (int level = 0; level < n; ++level) {
     const Stage& stage = sc.stages[level];
+    const bool search_collapse = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
+    const bool reduce = stage.kind == Stage::Kind::strength_reduction;
+    // The state before the stage, from which every trial of a search starts.
+    std::optional<World> before;
+    if (search_collapse || reduce) before.emplace(world);
+    auto progress = [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
+      if (cb.progress) {
+        cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
+                    ": step " + std::to_string(k) + ", unbalanced " +
+                    fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
+                    fmt("%.2e", m.kinetic_energy_ratio));
+      }
+    };
+    auto trial_done = [&](const StabilityTrial& t) {
+      if (cb.stage_done)
+        cb.stage_done("  trial " + fmt("%.4g", t.parameter) + ": " + t.outcome + " after " +
+                      std::to_string(t.steps) + " steps");
+    };
+    if (reduce) {
+      // Strength reduction: the stage's outcome is the factor of safety; the world stays in
+      // the state before the stage.
+      std::vector<int> laws;
+      for (int i = 0; i < static_cast<int>(world.joint_laws().size()); ++i) {
+        const auto& names = stage.strength.laws;
+        if (names.empty() ||
+            std::find(names.begin(), names.end(), world.joint_laws()[i].name) != names.end())
+          laws.push_back(i);
+      }
+      StabilitySearch sr;
+      try {
+        sr = strength_reduction(*before, stage, laws, stage.strength.lower, stage.strength.upper,
+                                stage.strength.tolerance, trial_done);
+      } catch (const std::invalid_argument& e) {
+        // The reason starts with the key ("factor_bounds: ...").
+        const std::string what = e.what();
+        const auto colon = what.find(": ");
+        const std::string key = colon == std::string::npos ? "kind" : what.substr(0, colon);
+        throw ScenarioError(sc.file, "stages[" + std::to_string(level + 1) + "]." + key,
+                            colon == std::string::npos ? what : what.substr(colon + 2));
+      }
+      const double F = 0.5 * (sr.last_stable + sr.first_failed);
+      summary["factor_of_safety"] = {{"value", F},
+                                     {"last_stable", sr.last_stable},
+                                     {"first_failed", sr.first_failed},
+                                     {"stage", stage.name},
+                                     {"tolerance", stage.strength.tolerance},
+                                     {"trials", trials_json(sr)}};
+      write_trials_csv(out / "strength_reduction.csv", "factor", sr);
+      write_mechanism(out, "mechanism", sr, sc.output.vtk);
+      res.factor_of_safety = F;
+      StageResult result;
+      result.name = stage.name;
+      result.converged = true;
+      for (const auto& t : sr.trials) result.steps += t.steps;
+      result.time = world.time();
+      result.measures = world.equilibrium();
+      res.steps_per_stage.push_back(result.steps);
+      stages.push_back({{"name", stage.name},
+                        {"converged", true},
+                        {"steps", result.steps},
+                        {"factor_of_safety", F},
+                        {"message", ""}});
+      recorder.record(world, result, level);
+      if (cb.stage_done)
+        cb.stage_done("stage " + std::to_string(level + 1) + "/" + std::to_string(n) + " '" +
+                      stage.name + "': factor of safety " + fmt("%.4g", F) + " (stable at " +
+                      fmt("%.4g", sr.last_stable) + ", failed at " + fmt("%.4g", sr.first_failed) +
+                      ")");
+      continue;
+    }
     StageResult result;
     bool diverged = false;
+    std::optional<MotionMonitor> monitor;
     try {
-      result = run_stage(world, stage,
-                         [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
-                           if (cb.progress) {
-                             cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) +
-                                         "] " + s.name + ": step " + std::to_string(k) +
-                                         ", unbalanced " + fmt("%.2e", m.unbalanced_force_ratio) +
-                                         ", KE ratio " + fmt("%.2e", m.kinetic_energy_ratio));
-                           }
-                         });
+      result = run_stage(world, stage, progress, &monitor);
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
       result.time = world.time();
       result.measures = world.equilibrium();
       result.message = e.what();
+      result.motion = monitor->report();
     }
     res.steps_per_stage.push_back(result.steps);
+    const bool failed = diverged || !result.converged;
+    const FailureKind kind =
+        failed ? classify_failure(*monitor, diverged) : FailureKind::not_converged;
+    if (failed) result.message += ". " + explain_failure(kind, result.motion, world);
     stages.push_back({{"name", stage.name},
                       {"converged", result.converged},
+                      {"status", failed ? to_string(kind) : "completed"},
                       {"steps", result.steps},
                       {"time_s", result.time},
                       {"unbalanced_force_ratio", result.measures.unbalanced_force_ratio},
@@ -95,31 +168,42 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
       if (result.converged) res.levels.push_back(lv);
     }
     if (cb.stage_done) {
-      cb.stage_done(
-          "stage " + std::to_string(level + 1) + "/" + std::to_string(n) + " '" + stage.name +
-          "': " + (result.converged ? "done" : (diverged ? "DIVERGED" : "NOT CONVERGED")) +
-          " after " + std::to_string(result.steps) + " steps (unbalanced " +
-          fmt("%.2e", result.measures.unbalanced_force_ratio) + ")");
+      cb.stage_done("stage " + std::to_string(level + 1) + "/" + std::to_string(n) + " '" +
+                    stage.name + "': " + (failed ? to_string(kind) : "done") + " after " +
+                    std::to_string(result.steps) + " steps (unbalanced " +
+                    fmt("%.2e", result.measures.unbalanced_force_ratio) + ")");
     }
-    if (diverged) {
-      res.status = "diverged";
-      res.message = "stage '" + stage.name + "': " + result.message;
-      break;
+    if (!failed) continue;
+    res.status = to_string(kind);
+    res.message = "stage '" + stage.name + "': " + result.message;
+    if (search_collapse && kind != FailureKind::diverged) {
+      // Bracket the collapse load between the previous gravity and this stage's.
+      const double g_stable = before->settings().gravity.norm() / kOneG;
+      const double g_failed = stage.gravity->norm() / kOneG;
+      const StabilitySearch cs = find_collapse_load(*before, stage, g_stable, g_failed,
+                                                    stage.collapse_tolerance, trial_done);
+      summary["collapse"] = {{"last_stable", cs.last_stable},
+                             {"first_failed", cs.first_failed},
+                             {"unit", "g"},
+                             {"stage", stage.name},
+                             {"tolerance", stage.collapse_tolerance},
+                             {"trials", trials_json(cs)}};
+      write_trials_csv(out / "collapse_search.csv", "g_level", cs);
+      write_mechanism(out, "collapse_mechanism", cs, sc.output.vtk);
+      res.collapse = std::make_pair(cs.last_stable, cs.first_failed);
+      res.status = "collapsed";
+      res.message = "stage '" + stage.name + "': collapse between " + fmt("%.4g", cs.last_stable) +
+                    " g (stable) and " + fmt("%.4g", cs.first_failed) +
+                    " g (failed), found by bisection";
+      res.exit_code = 0;  // asked to search, and found
+    } else {
+      res.exit_code = 3;
     }
-    if (!result.converged) {
-      res.status = "not_converged";
-      res.message = "stage '" + stage.name + "': " + result.message;
-      if (beam) {
-        res.message +=
-            res.levels.empty()
-                ? ""
-                : "; the beam lost equilibrium (snap-through or collapse); last stable level " +
-                      fmt("%g g", res.levels.back().g_level);
-      }
-      break;
+    if (beam && !res.levels.empty()) {
+      res.message += "; last stable level " + fmt("%g g", res.levels.back().g_level);
     }
+    break;
   }
-  res.exit_code = res.status == "completed" ? 0 : 3;
   res.steps = world.step_count();
   res.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary["status"] = res.status;

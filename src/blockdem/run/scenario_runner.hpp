@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "blockdem/scenario/scenario.hpp"
@@ -14,12 +16,16 @@
 namespace blockdem {
 
 struct RunResult {
-  /// "completed", "not_converged" (a stage hit its step limit: for a voussoir beam, loss of
-  /// equilibrium / snap-through) or "diverged".
+  /// "completed", "collapsed" (physical: a mechanism formed), "diverged" (numerical blow-up),
+  /// "not_converged" (no equilibrium and no mechanism within the step limit).
   std::string status = "completed";
   std::string message;
-  int exit_code = 0;                  ///< 0 completed, 3 otherwise
-  nlohmann::json summary;             ///< what summary.json holds
+  /// 0 completed, or collapsed with a collapse search asked for (the search found it);
+  /// 3 otherwise.
+  int exit_code = 0;
+  std::optional<std::pair<double, double>> collapse;  ///< last stable, first failed (g)
+  std::optional<double> factor_of_safety;             ///< of the last strength_reduction stage
+  nlohmann::json summary;                             ///< what summary.json holds
   std::vector<VoussoirLevel> levels;  ///< voussoir runs: the converged levels, preload first
   std::vector<std::int64_t> steps_per_stage;
   std::int64_t steps = 0;

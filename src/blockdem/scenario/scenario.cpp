@@ -15,6 +15,7 @@
 #include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/world/stability.hpp"
 
 namespace blockdem {
 namespace {
@@ -207,12 +208,53 @@ JointLaw read_joint_law(const CheckedTable& t) {
   return law;
 }
 
+// Mechanism criteria, collapse search and strength reduction keys (docs/stability.md).
+void read_stability_keys(const CheckedTable& t, Stage& s) {
+  s.mechanism.displacement_limit = t.positive("displacement_limit", 0.0, true);
+  s.mechanism.growth_checks = t.integer("growth_checks", s.mechanism.growth_checks);
+  if (s.mechanism.growth_checks < 2) t.fail("growth_checks", "must be at least 2");
+  s.find_collapse = t.boolean("find_collapse", false);
+  s.stop_on_mechanism = s.find_collapse;
+  if (s.find_collapse) {
+    if (s.kind != Stage::Kind::equilibrium)
+      t.fail("find_collapse", "only an equilibrium stage can search for a collapse load");
+    if (!s.gravity)
+      t.fail("find_collapse", "the collapse search raises gravity: this stage needs a gravity");
+  }
+  if (t.has("collapse_tolerance")) {
+    if (!s.find_collapse) t.fail("collapse_tolerance", "only with find_collapse = true");
+    const double tol = t.number("collapse_tolerance");
+    if (!(tol > 0.0)) t.fail("collapse_tolerance", "must be > 0 (g)");
+    s.collapse_tolerance = tol;
+  }
+  const bool sr = s.kind == Stage::Kind::strength_reduction;
+  for (const char* key : {"laws", "factor_bounds", "tolerance"}) {
+    if (!sr && t.has(key)) t.fail(key, "only a stage of kind \"strength_reduction\" takes this");
+  }
+  if (!sr) return;
+  s.strength.laws = t.strings("laws");
+  if (t.has("factor_bounds")) {
+    const std::vector<double> b = t.numbers("factor_bounds");
+    if (b.size() != 2) t.fail("factor_bounds", "needs two factors [lo, hi]");
+    if (!(b[0] > 0.0 && b[1] > b[0]))
+      t.fail("factor_bounds", "needs 0 < lo < hi (lo must be stable, hi must fail)");
+    s.strength.lower = b[0];
+    s.strength.upper = b[1];
+  }
+  if (t.has("tolerance")) {
+    const double tol = t.number("tolerance");
+    if (!(tol > 0.0)) t.fail("tolerance", "must be > 0 (a width of the factor's bracket)");
+    s.strength.tolerance = tol;
+  }
+}
+
 Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names,
                  const std::map<std::string, std::vector<std::string>>& excavations) {
   Stage s;
   s.name = t.string("name");
   const std::string kind =
-      t.choice("kind", "equilibrium", {"equilibrium", "steps", "duration", "excavation"});
+      t.choice("kind", "equilibrium",
+               {"equilibrium", "steps", "duration", "excavation", "strength_reduction"});
   // An excavation stage removes the blocks inside an excavation, then runs to equilibrium.
   if (kind == "excavation" && !t.has("excavation"))
     t.fail("excavation", "a stage of kind \"excavation\" names the excavation to remove");
@@ -223,9 +265,10 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
       t.fail("excavation", "no excavation named \"" + name + "\" in [[excavations]]");
     s.remove = it->second;
   }
-  s.kind = kind == "steps"      ? Stage::Kind::steps
-           : kind == "duration" ? Stage::Kind::duration
-                                : Stage::Kind::equilibrium;
+  s.kind = kind == "steps"                ? Stage::Kind::steps
+           : kind == "duration"           ? Stage::Kind::duration
+           : kind == "strength_reduction" ? Stage::Kind::strength_reduction
+                                          : Stage::Kind::equilibrium;
   if (t.has("gravity")) s.gravity = t.vec3("gravity");
   if (t.has("damping")) {
     s.damping = t.number("damping");
@@ -255,6 +298,7 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
                           "); raise max_steps for a longer stage");
   }
   if (s.kind == Stage::Kind::duration) s.duration = t.positive("duration", 0.0);
+  read_stability_keys(t, s);
   auto check_block = [&](const std::string& key, const std::string& name) {
     if (!block_names.count(name)) t.fail(key, "no block named \"" + name + "\"");
   };
@@ -409,8 +453,27 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
            "several joint laws and no [[joints]] rule saying which acts between which groups");
   }
 
-  for (const auto& st : t.tables("stages"))
+  for (const auto& st : t.tables("stages")) {
     sc.stages.push_back(read_stage(st, names, sc.excavations));
+    const Stage& stage = sc.stages.back();
+    if (stage.kind != Stage::Kind::strength_reduction) continue;
+    // The laws to reduce exist and at least one has a strength (friction) to divide.
+    bool strength = false;
+    for (const auto& name : stage.strength.laws) {
+      if (!law_index.count(name)) {
+        std::string known;
+        for (const auto& [n, i] : law_index) known += (known.empty() ? "" : ", ") + n;
+        st.fail("laws", "no joint law named \"" + name + "\" (known: " + known + ")");
+      }
+    }
+    for (const auto& law : sc.joint_laws) {
+      const bool chosen = stage.strength.laws.empty() ||
+                          std::find(stage.strength.laws.begin(), stage.strength.laws.end(),
+                                    law.name) != stage.strength.laws.end();
+      if (chosen && has_strength(law)) strength = true;
+    }
+    if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
+  }
   // A built scene without stages can be generated (blockdem generate), not run.
   if (sc.stages.empty() && !sc.built)
     t.fail("stages", "a scenario needs at least one [[stages]] entry");

@@ -41,6 +41,7 @@ void VoussoirSpec::validate() const {
   }
   if (max_steps_per_level <= 0) fail("max_steps_per_level: must be positive");
   if (ramp_steps < 0) fail("ramp_steps: must be zero or positive");
+  if (!(collapse_tolerance > 0.0)) fail("collapse_tolerance: must be positive (g)");
 }
 
 VoussoirModel build_voussoir(const VoussoirSpec& spec) {
@@ -105,6 +106,11 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
     st.gravity = Eigen::Vector3d(0, 0, -g * kOneG);
     st.ramp_steps = spec.ramp_steps;
     st.max_steps = spec.max_steps_per_level + spec.ramp_steps;
+    // A beam that snaps through stops at once (its blocks pass half their size) instead of
+    // falling until a divergence check trips.
+    st.stop_on_mechanism = true;
+    st.find_collapse = spec.find_collapse;
+    st.collapse_tolerance = spec.collapse_tolerance;
     m.stages.push_back(st);
   }
   return m;

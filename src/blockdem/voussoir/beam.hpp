@@ -41,6 +41,10 @@ struct VoussoirSpec {
   std::int64_t max_steps_per_level = 400000;
   /// Steps over which gravity is raised to each new level before equilibrium is sought.
   std::int64_t ramp_steps = 1000;
+  /// When a level fails by a mechanism (snap-through), bisect between the last stable level and
+  /// the failed one, each trial from the last stable level's state, to collapse_tolerance (g).
+  bool find_collapse = false;
+  double collapse_tolerance = 0.5;  ///< (g)
 
   double span() const { return blocks * block_length; }  ///< S (m)
   double g_max() const { return g_levels.empty() ? 1.0 : g_levels.back(); }

@@ -52,6 +52,8 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
     t.fail("max_steps_per_level", "must be between 1 and 1e12");
   if (!(v.ramp_steps >= 0 && v.ramp_steps <= 1000000000000))
     t.fail("ramp_steps", "must be between 0 and 1e12");
+  v.find_collapse = t.boolean("find_collapse", v.find_collapse);
+  v.collapse_tolerance = t.number("collapse_tolerance", v.collapse_tolerance);
   v.law.name = "joint";
   read_joint_law_tables(t, v.law);
   try {

@@ -21,6 +21,18 @@ void Stage::validate() const {
   if (check_interval <= 0) fail("check_interval must be positive");
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
+  if (find_collapse && !gravity) fail("find_collapse needs a new gravity in this stage");
+  if (find_collapse && !(collapse_tolerance > 0.0)) fail("collapse_tolerance must be positive");
+  if (kind == Kind::strength_reduction) {
+    if (!(strength.lower > 0.0 && strength.upper > strength.lower))
+      fail("factor_bounds must satisfy 0 < lo < hi");
+    if (!(strength.tolerance > 0.0)) fail("tolerance must be positive");
+  }
+  try {
+    mechanism.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
   for (const auto& s : servos) {
     if (!(s.target_force >= 0.0) || !std::isfinite(s.target_force))
       fail("servo target_force must be >= 0");
@@ -38,7 +50,8 @@ bool servos_settled(const World& world) {
   return true;
 }
 
-StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress) {
+StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
+                      std::optional<MotionMonitor>* monitor) {
   stage.validate();
   const Eigen::Vector3d gravity_before = world.settings().gravity;
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
@@ -70,6 +83,9 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     world.remove_blocks(gone);
   }
   world.save_checkpoint();
+  std::optional<MotionMonitor> own_monitor;
+  std::optional<MotionMonitor>& watch = monitor ? *monitor : own_monitor;
+  watch.emplace(world, stage.mechanism);
 
   StageResult r;
   r.name = stage.name;
@@ -84,6 +100,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     world.step();
     r.steps = k;
     const bool check = k % stage.check_interval == 0;
+    if (check) watch->observe(world, ramping);
     if (progress && check) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_report > std::chrono::milliseconds(250)) {
@@ -107,6 +124,12 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
         break;
       }
     }
+    if (stage.kind == Stage::Kind::equilibrium && stage.stop_on_mechanism &&
+        watch->report().mechanism) {
+      r.mechanism = true;
+      r.message = "a mechanism formed after " + std::to_string(k) + " steps";
+      break;
+    }
     if (k >= stage.max_steps) {
       const EquilibriumMeasures m = world.equilibrium();
       r.message = "no equilibrium after " + std::to_string(k) + " steps: unbalanced force ratio " +
@@ -125,6 +148,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   }
   r.time = world.time();
   r.measures = world.equilibrium();
+  watch->observe(world, false);
+  r.motion = watch->report();
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/world/motion_monitor.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -20,7 +21,9 @@ struct ServoCommand {
 };
 
 struct Stage {
-  enum class Kind { equilibrium, steps, duration };
+  /// strength_reduction: equilibrium trials with the joint strengths divided by a factor F,
+  /// bisected for the factor of safety (each trial from the state before the stage).
+  enum class Kind { equilibrium, steps, duration, strength_reduction };
   std::string name = "stage";
   Kind kind = Kind::equilibrium;
 
@@ -44,6 +47,25 @@ struct Stage {
   std::int64_t min_steps = 10;
   std::int64_t check_interval = 10;  ///< steps between convergence checks
 
+  /// Kind::equilibrium: what counts as a mechanism, and whether the stage stops as soon as one
+  /// forms (else it runs to max_steps and the mechanism only explains why it did not converge).
+  MechanismCriteria mechanism;
+  bool stop_on_mechanism = false;
+
+  /// Kind::equilibrium with a new gravity: when the stage fails by a mechanism, bisect between
+  /// the previous gravity and this one (each trial from the state before the stage) until the
+  /// bracket is narrower than collapse_tolerance.
+  bool find_collapse = false;
+  double collapse_tolerance = 0.5;  ///< width of the collapse bracket (g)
+
+  /// Kind::strength_reduction.
+  struct StrengthReduction {
+    std::vector<std::string> laws;  ///< joint law names; empty: every law
+    double lower = 0.5;             ///< factor that must be stable (-)
+    double upper = 4.0;             ///< factor that must fail (-)
+    double tolerance = 0.01;        ///< width of the final bracket of F (-)
+  } strength;
+
   std::int64_t steps = 0;  ///< Kind::steps
   double duration = 0.0;   ///< Kind::duration (s)
 
@@ -57,14 +79,19 @@ struct StageResult {
   std::int64_t steps = 0;  ///< steps taken in the stage
   double time = 0.0;       ///< world time at the end (s)
   EquilibriumMeasures measures;
-  std::string message;  ///< why the stage did not converge, empty otherwise
+  std::string message;     ///< why the stage did not converge, empty otherwise
+  bool mechanism = false;  ///< stopped because a mechanism formed (Kind::equilibrium)
+  MotionReport motion;     ///< the motion monitor's last observation
 };
 
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
 
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
-StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {});
+/// `monitor`, when given, is created at the stage start and observed at every check, so that
+/// after a DivergenceError it still holds the last observation before the blow-up.
+StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
+                      std::optional<MotionMonitor>* monitor = nullptr);
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

@@ -64,6 +64,14 @@ int World::add_joint_law(JointLaw law) {
   return static_cast<int>(laws_.size()) - 1;
 }
 
+void World::replace_joint_law(int index, JointLaw law) {
+  if (index < 0 || index >= static_cast<int>(laws_.size()))
+    throw std::invalid_argument("no joint law " + std::to_string(index));
+  validate(law.normal);
+  validate(law.shear);
+  laws_[static_cast<std::size_t>(index)] = std::move(law);
+}
+
 void World::add_joint_rule(JointRule rule) {
   if (rule.law < 0 || rule.law >= static_cast<int>(laws_.size())) {
     throw std::invalid_argument("joint rule refers to an unknown joint law");
@@ -162,6 +170,12 @@ double World::next_time_step() const {
         "cannot choose an automatic time step: no joint law has stiffness; set time_step");
   }
   return dt;
+}
+
+double World::critical_time_step() const {
+  double dt = a_priori_time_step();
+  if (contact_dt_ > 0.0) dt = std::min(dt, contact_dt_);
+  return dt / settings_.safety_factor;
 }
 
 void World::apply_servos(double dt) {

@@ -91,6 +91,9 @@ class World {
   /// Adds a block (its index is set) and returns the index.
   int add_block(Block block);
   int add_joint_law(JointLaw law);
+  /// Replaces joint law `index` (validated), e.g. with reduced strengths; contacts keep their
+  /// history.
+  void replace_joint_law(int index, JointLaw law);
   void add_joint_rule(JointRule rule);
 
   std::vector<Block>& blocks() { return blocks_; }
@@ -125,6 +128,9 @@ class World {
   double last_time_step() const { return last_dt_; }  ///< (s)
   /// The step the next call of step() will take (s).
   double next_time_step() const;
+  /// The critical time step estimate sqrt(m/K) of the stiffest block, without the safety factor
+  /// (s): from this step's contact stiffness once contacts exist, else from the joint laws.
+  double critical_time_step() const;
 
   EquilibriumMeasures equilibrium() const;
 

@@ -62,6 +62,89 @@ struct ReportInput {
   double wall_time = 0.0;
 };
 
+// The analytical beam (D&K 1999) at g level `g` for a linear normal law: "stable (span safety
+// factor x)" or "snap-through (x)"; empty for a nonlinear law (no single E_rm).
+std::string analytic_snap_check(const Boon2015CaseRun& r, double g) {
+  const VoussoirSpec& v = voussoir_scene(r.scenario)->spec;
+  const auto* lin = std::get_if<LinearNormal>(&v.law.normal);
+  if (lin == nullptr) return {};
+  VoussoirBeamDef def;
+  def.span = v.span();
+  def.depth = v.block_depth;
+  def.unit_weight = v.density * g * kOneG;
+  def.rock_mass_modulus = rock_mass_modulus_rigid_blocks(lin->stiffness, v.block_length);
+  def.width = v.block_width;
+  const VoussoirResult a = solve_voussoir_beam(def);
+  return f("%g g: ", g) + to_string(a.status) + " (span safety factor " +
+         f("%.3f", a.buckling.span_safety_factor) + ")";
+}
+
+// The g level at which the analytical beam (linear normal law) snaps through, by bisection on
+// its status; 0 for a nonlinear law or when none is found below 10^4 g.
+double analytic_snap_through_g(const Boon2015CaseRun& r) {
+  const VoussoirSpec& v = voussoir_scene(r.scenario)->spec;
+  const auto* lin = std::get_if<LinearNormal>(&v.law.normal);
+  if (lin == nullptr) return 0.0;
+  auto stable = [&](double g) {
+    VoussoirBeamDef def;
+    def.span = v.span();
+    def.depth = v.block_depth;
+    def.unit_weight = v.density * g * kOneG;
+    def.rock_mass_modulus = rock_mass_modulus_rigid_blocks(lin->stiffness, v.block_length);
+    return solve_voussoir_beam(def).status == VoussoirStatus::stable;
+  };
+  double lo = 1.0, hi = 2.0;
+  while (stable(hi)) {
+    lo = hi;
+    hi *= 2.0;
+    if (hi > 1e4) return 0.0;
+  }
+  for (int i = 0; i < 30; ++i) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+// Collapse loads found by the bisection of every case that lost equilibrium, as findings.
+void write_collapse_section(std::ostream& o, const ReportInput& in) {
+  const auto& runs = in.all_runs;
+  o << "## Collapse loads (snap-through)\n\n"
+    << "Every case runs with `find_collapse = true`: when a gravity level fails by a mechanism "
+       "(a beam block moving past half its bounding radius, or speeding up for 1000 steps after "
+       "the ramp once past a quarter of it, "
+       "under a stable time step with the kinetic energy supplied by gravity's work), the level "
+       "is bisected between the last stable level and the failed one, each trial from the last "
+       "stable level's state, to a bracket of at most 0.5 g. Such a collapse is a result of the "
+       "model, not a numerical failure.\n\n";
+  bool any = false;
+  for (const auto& r : runs) {
+    if (!r.result.collapse) continue;
+    any = true;
+    const auto [lo, hi] = *r.result.collapse;
+    o << "- **" << r.spec.id << ": snap-through between " << f("%.4g", lo) << " and "
+      << f("%.4g", hi) << " g** (mode " << to_string(r.scenario.settings.contact_mode) << ")";
+    const std::string a_lo = analytic_snap_check(r, lo), a_hi = analytic_snap_check(r, hi);
+    if (!a_lo.empty())
+      o << ". Analytical voussoir beam (Diederichs & Kaiser 1999, E_rm = k_n s): " << a_lo << "; "
+        << a_hi;
+    const double snap = analytic_snap_through_g(r);
+    if (snap > 0.0) {
+      o << "; the analytical beam snaps through at " << f("%.1f", snap) << " g, so the DEM beam "
+        << (hi < snap ? "(joints that open, hinges that rotate) loses equilibrium before it"
+                      : "outlasts it");
+    }
+    o << ".\n";
+  }
+  for (const auto& r : runs) {
+    if (r.result.collapse || r.result.levels.empty()) continue;
+    if (r.result.status == "completed")
+      o << "- " << r.spec.id << ": no collapse up to " << f("%g", r.result.levels.back().g_level)
+        << " g.\n";
+    else
+      o << "- " << r.spec.id << ": " << r.result.status << " (no collapse search result).\n";
+  }
+  if (!any) o << "\nNo case collapsed.\n";
+  o << "\n";
+}
+
 void write_model(std::ostream& o, const ReportInput& in) {
   const auto& runs = in.runs;
   const VoussoirSpec& any = voussoir_scene(in.runs.front().scenario)->spec;
@@ -490,9 +573,9 @@ void write_boon2015_report(const std::filesystem::path& dir,
   // The sections, in order.
   using Section = void (*)(std::ostream&, const ReportInput&);
   for (Section section :
-       {write_model, write_headline_table, write_table3_ratios, write_thrust, write_line_of_thrust,
-        write_rotations, write_analytical, write_contact_modes, write_incomplete, write_differences,
-        write_figures, write_runs})
+       {write_model, write_headline_table, write_collapse_section, write_table3_ratios,
+        write_thrust, write_line_of_thrust, write_rotations, write_analytical, write_contact_modes,
+        write_incomplete, write_differences, write_figures, write_runs})
     section(o, in);
 
   std::ofstream out(dir / "report.md");

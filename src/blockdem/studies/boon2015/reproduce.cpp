@@ -38,6 +38,11 @@ std::vector<Boon2015CaseRun> select_boon2015_cases(const Boon2015Selection& sel)
       r.mode = mode;
       r.scenario = load_scenario((sel.scenarios / (c.id + ".toml")).string());
       r.scenario.settings.contact_mode = mode;
+      // A level that fails by a mechanism is bisected for the collapse load (not the preload).
+      for (std::size_t k = 1; k < r.scenario.stages.size(); ++k) {
+        Stage& st = r.scenario.stages[k];
+        if (st.gravity && st.kind == Stage::Kind::equilibrium) st.find_collapse = true;
+      }
       runs.push_back(std::move(r));
     }
   }

@@ -1,0 +1,136 @@
+// Mechanism detection and the energy balance of a stage (docs/stability.md).
+#include "blockdem/world/motion_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace blockdem {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+void MechanismCriteria::validate() const {
+  if (!(displacement_limit >= 0.0) || !std::isfinite(displacement_limit))
+    throw std::invalid_argument("displacement_limit: must be >= 0 (0: automatic)");
+  if (growth_checks < 2) throw std::invalid_argument("growth_checks: must be at least 2");
+}
+
+MotionMonitor::MotionMonitor(const World& world, const MechanismCriteria& criteria)
+    : criteria_(criteria) {
+  criteria_.validate();
+  double limit = std::numeric_limits<double>::infinity();
+  for (const auto& b : world.blocks()) {
+    start_.push_back(b.position);
+    if (b.is_dynamic()) limit = std::min(limit, 0.5 * b.shape.bounding_radius());
+  }
+  report_.displacement_limit =
+      criteria_.displacement_limit > 0.0 ? criteria_.displacement_limit : limit;
+  for (const Contact* c : world.contacts())
+    report_.elastic_energy_start += 0.5 * std::max(c->normal_force, 0.0) * c->geometry.overlap;
+  observe(world, true);
+}
+
+void MotionMonitor::observe(const World& world, bool ramping) {
+  MotionReport& r = report_;
+  r.max_displacement = 0.0;
+  r.max_speed = 0.0;
+  r.kinetic_energy = 0.0;
+  r.load_work = 0.0;
+  r.moving_blocks.clear();
+  const Eigen::Vector3d g = world.settings().gravity;
+  for (const auto& b : world.blocks()) {
+    if (!b.is_dynamic()) continue;
+    const Eigen::Vector3d d = b.position - start_[static_cast<std::size_t>(b.index)];
+    r.max_displacement = std::max(r.max_displacement, d.norm());
+    r.max_speed = std::max(r.max_speed, b.velocity.norm());
+    r.kinetic_energy += b.kinetic_energy();
+    // Gravity and external forces are constant over a stage (outside a ramp), so their work is
+    // the load times the displacement; during a ramp the current gravity overstates it.
+    r.load_work += (b.mass * g + b.external_force).dot(d);
+    if (d.norm() > 0.1 * r.displacement_limit) r.moving_blocks.push_back(b.index);
+  }
+  const double critical = world.critical_time_step();
+  r.time_step_ratio =
+      critical > 0.0 && std::isfinite(critical) ? world.next_time_step() / critical : 0.0;
+  r.growing_checks = (!ramping && r.max_speed > previous_speed_) ? r.growing_checks + 1 : 0;
+  previous_speed_ = r.max_speed;
+  const bool past_limit = r.max_displacement > r.displacement_limit;
+  const bool accelerating = r.growing_checks >= criteria_.growth_checks &&
+                            r.max_displacement > 0.5 * r.displacement_limit;
+  if (past_limit || accelerating) r.mechanism = true;
+}
+
+bool MotionMonitor::energy_created() const {
+  const double available = std::max(report_.load_work, 0.0) + report_.elastic_energy_start;
+  return report_.kinetic_energy > 1.1 * available + 1e-12;
+}
+
+FailureKind classify_failure(const MotionMonitor& monitor, bool blew_up) {
+  const MotionReport& r = monitor.report();
+  if (r.time_step_ratio > 1.0 || monitor.energy_created()) return FailureKind::diverged;
+  if (!std::isfinite(r.kinetic_energy)) return FailureKind::diverged;
+  if (r.mechanism) return FailureKind::collapsed;
+  // A divergence check tripped under a stable step with the energy accounted for: the blocks
+  // were set moving by the loads (e.g. falling after a snap-through).
+  if (blew_up) return FailureKind::collapsed;
+  return FailureKind::not_converged;
+}
+
+const char* to_string(FailureKind kind) {
+  switch (kind) {
+    case FailureKind::collapsed:
+      return "collapsed";
+    case FailureKind::diverged:
+      return "diverged";
+    case FailureKind::not_converged:
+      return "not_converged";
+  }
+  return "failed";
+}
+
+std::string explain_failure(FailureKind kind, const MotionReport& r, const World& world) {
+  std::string blocks;
+  for (std::size_t i = 0; i < r.moving_blocks.size() && i < 8; ++i)
+    blocks += (i ? ", " : "") + world.blocks()[static_cast<std::size_t>(r.moving_blocks[i])].name;
+  if (r.moving_blocks.size() > 8) blocks += ", ...";
+  const std::string energy = "kinetic energy " + fmt("%.3g J", r.kinetic_energy) + " against " +
+                             fmt("%.3g J", r.load_work) + " of work by the loads and " +
+                             fmt("%.3g J", r.elastic_energy_start) + " stored in the joints";
+  switch (kind) {
+    case FailureKind::collapsed:
+      return "physical collapse: a mechanism formed under a stable time step (step " +
+             fmt("%.2f", r.time_step_ratio) + " of the critical one); blocks moving: " +
+             (blocks.empty() ? "none past a tenth of the limit" : blocks) +
+             "; largest displacement " + fmt("%.3g m", r.max_displacement) + " (limit " +
+             fmt("%.3g m", r.displacement_limit) + "), speed " + fmt("%.3g m/s", r.max_speed) +
+             "; " + energy +
+             ". The model cannot carry this load: this is a result, not a numerical problem. "
+             "Use find_collapse = true to bracket the collapse load, or a strength_reduction "
+             "stage for a factor of safety";
+    case FailureKind::diverged:
+      return std::string("numerical blow-up: ") +
+             (r.time_step_ratio > 1.0 ? "the time step is " + fmt("%.3g", r.time_step_ratio) +
+                                            " times the critical estimate sqrt(m/K)"
+                                      : "energy was created by the integrator") +
+             "; " + energy +
+             ". Use the automatic time step (time_step = 0) or a smaller safety_factor; check "
+             "the joint stiffness against the block masses";
+    case FailureKind::not_converged:
+      return "no equilibrium within the step limit, but no mechanism either (largest "
+             "displacement " +
+             fmt("%.3g m", r.max_displacement) + ", limit " + fmt("%.3g m", r.displacement_limit) +
+             "): raise max_steps, add damping, or loosen the tolerances";
+  }
+  return {};
+}
+
+}  // namespace blockdem

@@ -1,0 +1,131 @@
+// Bisection searches for the collapse load and the factor of safety (docs/stability.md): the
+// strength reduction method of Dawson, Roth & Drescher (1999, Geotechnique 49(6):835-840), as
+// used by UDEC/3DEC, applied to joint strengths.
+#include "blockdem/world/stability.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <variant>
+
+#include "blockdem/numerics/units.hpp"
+
+namespace blockdem {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+// tan(phi) / F as an angle in degrees.
+double reduced_friction_deg(double friction_deg, double factor) {
+  return rad_to_deg(std::atan(std::tan(deg_to_rad(friction_deg)) / factor));
+}
+
+}  // namespace
+
+JointLaw divide_strength(const JointLaw& law, double factor) {
+  if (!(factor > 0.0) || !std::isfinite(factor))
+    throw std::invalid_argument("strength reduction factor must be positive");
+  JointLaw out = law;
+  std::visit([&](auto& s) { s.friction_deg = reduced_friction_deg(s.friction_deg, factor); },
+             out.shear);
+  return out;
+}
+
+bool has_strength(const JointLaw& law) {
+  return std::visit([](const auto& s) { return s.friction_deg > 0.0; }, law.shear);
+}
+
+StabilityTrial run_trial(World& world, Stage stage, double parameter) {
+  stage.kind = Stage::Kind::equilibrium;
+  stage.stop_on_mechanism = true;
+  StabilityTrial t;
+  t.parameter = parameter;
+  std::optional<MotionMonitor> monitor;
+  try {
+    const StageResult r = run_stage(world, stage, {}, &monitor);
+    t.steps = r.steps;
+    t.motion = r.motion;
+    t.stable = r.converged && !r.motion.mechanism;
+    t.outcome = t.stable ? "stable" : to_string(classify_failure(*monitor, false));
+  } catch (const DivergenceError&) {
+    t.motion = monitor->report();
+    t.outcome = to_string(classify_failure(*monitor, true));
+  }
+  return t;
+}
+
+StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
+                                   double g_failed, double tolerance, const TrialFn& done) {
+  if (!(tolerance > 0.0)) throw std::invalid_argument("collapse_tolerance: must be positive");
+  if (!stage.gravity || stage.gravity->norm() == 0.0)
+    throw std::invalid_argument("find_collapse: the stage must set a gravity");
+  const Eigen::Vector3d direction = stage.gravity->normalized();
+  StabilitySearch s;
+  s.last_stable = g_stable;
+  s.first_failed = g_failed;
+  while (s.first_failed - s.last_stable > tolerance) {
+    const double g = 0.5 * (s.last_stable + s.first_failed);
+    World w = saved;
+    Stage trial = stage;
+    trial.name = stage.name + " trial " + fmt("%g g", g);
+    trial.gravity = g * kOneG * direction;
+    StabilityTrial t = run_trial(w, trial, g);
+    s.trials.push_back(t);
+    if (done) done(t);
+    if (t.stable) {
+      s.last_stable = g;
+      s.stable_world = std::move(w);
+    } else {
+      s.first_failed = g;
+      s.failed_world = std::move(w);
+    }
+  }
+  return s;
+}
+
+StabilitySearch strength_reduction(const World& saved, const Stage& stage,
+                                   const std::vector<int>& laws, double lower, double upper,
+                                   double tolerance, const TrialFn& done) {
+  if (!(tolerance > 0.0)) throw std::invalid_argument("tolerance: must be positive");
+  if (!(lower > 0.0 && upper > lower))
+    throw std::invalid_argument("factor_bounds: need 0 < lo < hi");
+  StabilitySearch s;
+  auto trial = [&](double factor) {
+    World w = saved;
+    for (int i : laws) w.replace_joint_law(i, divide_strength(saved.joint_laws()[i], factor));
+    Stage st = stage;
+    st.name = stage.name + " F = " + fmt("%.4g", factor);
+    StabilityTrial t = run_trial(w, st, factor);
+    s.trials.push_back(t);
+    if (done) done(t);
+    if (t.stable) {
+      s.last_stable = factor;
+      s.stable_world = std::move(w);
+    } else {
+      s.first_failed = factor;
+      s.failed_world = std::move(w);
+    }
+    return t;
+  };
+  const StabilityTrial lo = trial(lower);
+  const StabilityTrial hi = trial(upper);
+  if (!lo.stable || hi.stable) {
+    throw std::invalid_argument("factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
+                                "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
+                                lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome +
+                                (lo.stable
+                                     ? "; both stable: raise the upper bound"
+                                     : (!hi.stable ? "; both failed: lower the lower bound" : "")) +
+                                " (the lower bound must be stable and the upper one fail)");
+  }
+  s.last_stable = lower;
+  s.first_failed = upper;
+  while (s.first_failed - s.last_stable > tolerance) trial(0.5 * (s.last_stable + s.first_failed));
+  return s;
+}
+
+}  // namespace blockdem

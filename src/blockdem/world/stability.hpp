@@ -1,0 +1,64 @@
+// Stability searches by bisection, each trial from a saved world: the collapse load of a rising
+// gravity, and the factor of safety by strength reduction (docs/stability.md).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "blockdem/world/stage.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+/// One trial of a search: the parameter tried (g level or factor) and how it ended.
+struct StabilityTrial {
+  double parameter = 0.0;
+  bool stable = false;
+  /// "stable", or why not: "collapsed" (a mechanism), "not_converged" (no equilibrium and no
+  /// mechanism within the step limit: counted as failed), "diverged" (numerical blow-up:
+  /// counted as failed and reported).
+  std::string outcome;
+  std::int64_t steps = 0;
+  MotionReport motion;
+};
+
+struct StabilitySearch {
+  double last_stable = 0.0;
+  double first_failed = 0.0;
+  std::vector<StabilityTrial> trials;  ///< in the order they ran
+  /// The world at the end of the first-failed trial (the mechanism), and of the last stable one.
+  std::optional<World> failed_world;
+  std::optional<World> stable_world;
+};
+
+/// Called after each trial.
+using TrialFn = std::function<void(const StabilityTrial&)>;
+
+/// Runs `stage` (Kind::equilibrium) on a copy of `saved` and says whether it reached
+/// equilibrium without a mechanism. The stage stops as soon as a mechanism forms.
+StabilityTrial run_trial(World& world, Stage stage, double parameter);
+
+/// The collapse load of a gravity that rises to `stage.gravity`: `saved` is the world in
+/// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
+/// (each trial from `saved`, the stage's gravity direction and ramp) until
+/// g_failed - g_stable <= tolerance (g).
+StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
+                                   double g_failed, double tolerance, const TrialFn& done = {});
+
+/// The strength reduction of a stage: divides tan(phi), cohesion and tensile strength of the
+/// joint laws `laws` (indices into saved.joint_laws()) by F and seeks equilibrium with the
+/// stage's criteria. Tries the bounds first: throws std::invalid_argument (naming the factors
+/// tried and what happened) when they do not bracket the failure; then bisects until
+/// first_failed - last_stable <= tolerance.
+StabilitySearch strength_reduction(const World& saved, const Stage& stage,
+                                   const std::vector<int>& laws, double lower, double upper,
+                                   double tolerance, const TrialFn& done = {});
+
+/// The law with its strengths divided by `factor`: tan(phi) / F for every friction angle.
+JointLaw divide_strength(const JointLaw& law, double factor);
+/// True when the law has a strength that strength reduction can divide (a friction angle).
+bool has_strength(const JointLaw& law);
+
+}  // namespace blockdem

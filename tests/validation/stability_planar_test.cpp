@@ -1,0 +1,61 @@
+// Strength reduction against Hoek & Bray's planar sliding (Rock Slope Engineering, 3rd ed.,
+// ch. 7): a block on a plane dipping psi with friction phi and no cohesion has
+// F = W cos(psi) tan(phi) / (W sin(psi)) = tan(phi) / tan(psi). The incline is modelled by tilting
+// gravity over a flat base. Tolerance 2% (the bisection's bracket is 0.01 in F).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "blockdem/numerics/units.hpp"
+#include "stability_support.hpp"
+
+namespace blockdem {
+namespace {
+
+const char* kStrengthReduction =
+    "[[stages]]\nname = \"srm\"\nkind = \"strength_reduction\"\nfactor_bounds = [0.8, 3.0]\n"
+    "tolerance = 0.01\nmax_steps = 60000\n";
+
+struct PlanarCase {
+  double psi_deg;
+  double phi_deg;
+};
+
+class PlanarSliding : public ::testing::TestWithParam<PlanarCase> {};
+
+TEST_P(PlanarSliding, FactorOfSafetyIsTanPhiOverTanPsi) {
+  const PlanarCase c = GetParam();
+  const std::string name = "stab_planar_" + std::to_string(static_cast<int>(c.psi_deg));
+  const RunResult r = test::run_text(
+      test::incline_scenario(c.psi_deg, c.phi_deg, 0.1, 0.02, kStrengthReduction), name);
+  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_TRUE(r.factor_of_safety.has_value());
+  const double expected = std::tan(deg_to_rad(c.phi_deg)) / std::tan(deg_to_rad(c.psi_deg));
+  EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
+  const auto& fos = r.summary["factor_of_safety"];
+  EXPECT_LE(fos["last_stable"].get<double>(), expected * 1.005);
+  EXPECT_GE(fos["first_failed"].get<double>(), expected * 0.995);
+  EXPECT_LE(fos["first_failed"].get<double>() - fos["last_stable"].get<double>(), 0.01 + 1e-12);
+  // One CSV row per trial, and the mechanism written.
+  const auto out = std::filesystem::temp_directory_path() / ("blockdem_" + name);
+  std::ifstream csv(out / "strength_reduction.csv");
+  int rows = -1;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(fos["trials"].size()));
+  EXPECT_TRUE(std::filesystem::exists(out / "mechanism.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "vtk" / "mechanism.vtk"));
+  std::printf("psi %.0f phi %.0f: F = %.4f (closed form %.4f), %zu trials\n", c.psi_deg, c.phi_deg,
+              *r.factor_of_safety, expected, fos["trials"].size());
+}
+
+INSTANTIATE_TEST_SUITE_P(HoekBray, PlanarSliding,
+                         ::testing::Values(PlanarCase{30, 40}, PlanarCase{25, 35}),
+                         [](const ::testing::TestParamInfo<PlanarCase>& p) {
+                           return "psi" + std::to_string(static_cast<int>(p.param.psi_deg)) +
+                                  "_phi" + std::to_string(static_cast<int>(p.param.phi_deg));
+                         });
+
+}  // namespace
+}  // namespace blockdem
