@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "blockdem/contact/overloaded.hpp"
+
 namespace blockdem {
 namespace {
 
@@ -70,22 +72,28 @@ double exp_remainder_difference(std::array<double, N> nodes) {
 /// (1/A) int lambda_j f(g) dA = 2 G[y_j, y_j, y_k, y_l] with G''' = f (Hermite-Genocchi).
 void compressed_triangle_moments(const NormalLaw& law, const Eigen::Vector3d& y, double& mean,
                                  Eigen::Vector3d& weights) {
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) {
-    // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA = (1 + delta_ij) / 12.
-    const double sum = y.sum();
-    mean = lin->stiffness * sum / 3.0;
-    for (int j = 0; j < 3; ++j) weights[j] = lin->stiffness * (sum + y[j]) / 12.0;
-    return;
-  }
-  const auto& e = std::get<ExponentialNormal>(law);
-  // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry the law.
-  const Eigen::Vector3d x = e.b * y;
-  mean = 2.0 * e.a * exp_remainder_difference(std::array<double, 3>{x[0], x[1], x[2]});
-  for (int j = 0; j < 3; ++j) {
-    const int k = (j + 1) % 3, l = (j + 2) % 3;
-    weights[j] =
-        2.0 * e.a * exp_remainder_difference(std::array<double, 4>{x[j], x[j], x[k], x[l]});
-  }
+  std::visit(
+      Overloaded{
+          [&](const LinearNormal& lin) {
+            // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA =
+            // (1 + delta_ij) / 12.
+            const double sum = y.sum();
+            mean = lin.stiffness * sum / 3.0;
+            for (int j = 0; j < 3; ++j) weights[j] = lin.stiffness * (sum + y[j]) / 12.0;
+          },
+          [&](const ExponentialNormal& e) {
+            // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry the
+            // law.
+            const Eigen::Vector3d x = e.b * y;
+            mean = 2.0 * e.a * exp_remainder_difference(std::array<double, 3>{x[0], x[1], x[2]});
+            for (int j = 0; j < 3; ++j) {
+              const int k = (j + 1) % 3, l = (j + 2) % 3;
+              weights[j] = 2.0 * e.a *
+                           exp_remainder_difference(std::array<double, 4>{x[j], x[j], x[k], x[l]});
+            }
+          },
+      },
+      law);
 }
 
 void require_finite(const char* what, double value) {
