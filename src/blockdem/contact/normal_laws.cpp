@@ -43,8 +43,9 @@ void LinearNormal::validate() const {
 
 ExponentialNormal ExponentialNormal::from_tangent(double k0, double c) {
   // The tangent-stiffness form (eq 1): k0 and c, alternative keys of the exponential law.
-  check_range("normal", "exponential", "k0", "Pa/m", ParamRange::positive, k0);
-  check_range("normal", "exponential", "c", "1/m", ParamRange::positive, c);
+  constexpr std::string_view law = LawTraits<ExponentialNormal>::name;
+  check_range("normal", law, "k0", "Pa/m", ParamRange::positive, k0);
+  check_range("normal", law, "c", "1/m", ParamRange::positive, c);
   return ExponentialNormal{k0 / c, c};
 }
 
