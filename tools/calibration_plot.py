@@ -85,8 +85,7 @@ def plot_normal(plt, directory, report):
     ax2.legend(fontsize=8)
     fig.suptitle("blockdem calibrate normal: " + report["data"]["file"] + title_suffix(report),
                  fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(directory, "normal_fit.png"), dpi=110)
+    plot_style.save(fig, os.path.join(directory, "normal_fit.png"))
     return ["normal_fit.png"]
 
 
@@ -118,8 +117,7 @@ def plot_shear_curves(plt, directory, report, points_name, curves_name, model_ke
         ax.set_ylabel("shear stress (kPa)")
     axes[0].legend(fontsize=7)
     fig.suptitle(title + ": " + report["data"]["file"] + title_suffix(report), fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(directory, out_name), dpi=110)
+    plot_style.save(fig, os.path.join(directory, out_name))
     return [out_name]
 
 
@@ -144,8 +142,7 @@ def plot_shear_stiffness(plt, directory, report):
     ax.set_title("Instantaneous shear stiffness (cf. Fig 2): eq 5 lines, data differences (dots)"
                  + title_suffix(report), fontsize=9)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(directory, "shear_stiffness.png"), dpi=110)
+    plot_style.save(fig, os.path.join(directory, "shear_stiffness.png"))
     return ["shear_stiffness.png"]
 
 
@@ -193,8 +190,7 @@ def plot_shear_power_laws(plt, directory, report):
     ax1.set_title("(b) peak displacement (x-intercepts of Fig 2)", fontsize=9)
     fig.suptitle("blockdem calibrate shear: " + report["data"]["file"] + title_suffix(report),
                  fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(directory, "shear_power_laws.png"), dpi=110)
+    plot_style.save(fig, os.path.join(directory, "shear_power_laws.png"))
     return ["shear_power_laws.png"]
 
 
@@ -223,8 +219,7 @@ def plot_cy_parameters(plt, directory, report):
     plain_log_ticks(ax1)
     fig.suptitle("blockdem calibrate cy: " + report["data"]["file"] + title_suffix(report),
                  fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(directory, "cy_parameters.png"), dpi=110)
+    plot_style.save(fig, os.path.join(directory, "cy_parameters.png"))
     return ["cy_parameters.png"]
 
 
@@ -244,6 +239,9 @@ def main(argv):
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        global plot_style
+        import plot_style
+        plot_style.setup()
     except ImportError as error:
         print("matplotlib is not installed for %s (%s)" % (sys.executable, error), file=sys.stderr)
         return 3

@@ -2,7 +2,7 @@
 """How well `blockdem calibrate` recovers known joint laws from noisy synthetic data.
 
 For each seed: make a synthetic data set with tools/make_synthetic_calibration_data.py (known
-parameters, relative noise), run `blockdem calibrate normal|shear|cy --no-plots --out DIR`, read
+parameters, relative noise), run `blockdem calibrate normal|shear|cy --no-figures --out DIR`, read
 DIR/calibration.json and record the relative error of every fitted parameter. Prints, per
 parameter, the RMS and the largest relative error over the seeds. Pure Python standard library.
 
@@ -41,7 +41,7 @@ def calibrate(blockdem, work, test, generator_args, calibrate_args):
     data = os.path.join(work, test + ".csv")
     out = os.path.join(work, test + "_out")
     run([sys.executable, GENERATOR] + generator_args + ["--out", data])
-    run([blockdem, "calibrate", test, "--data", data, "--no-plots", "--out", out] + calibrate_args)
+    run([blockdem, "calibrate", test, "--data", data, "--no-figures", "--out", out] + calibrate_args)
     with open(os.path.join(out, "calibration.json"), encoding="utf-8") as f:
         return json.load(f)
 

@@ -89,8 +89,7 @@ def plot_compression(plt, csv_path, png_path, label):
     ax.set_title("Joint compression test\n%s" % label, fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(loc="upper left")
-    fig.tight_layout()
-    fig.savefig(png_path, dpi=120)
+    plot_style.save(fig, png_path)
 
 
 def plot_shear(plt, csv_path, png_path, label):
@@ -120,8 +119,7 @@ def plot_shear(plt, csv_path, png_path, label):
     axes[0].legend(loc="best", fontsize=9)
     axes[-1].set_xlabel("shear displacement u_s (%s)" % ll)
     axes[0].set_title("Direct shear test at constant normal stress\n%s" % label, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(png_path, dpi=120)
+    plot_style.save(fig, png_path)
 
 
 def fig1b(plt, directory):
@@ -141,9 +139,8 @@ def fig1b(plt, directory):
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.legend(loc="upper left", fontsize=9)
-    fig.tight_layout()
     path = os.path.join(directory, "fig1b_normal_laws.png")
-    fig.savefig(path, dpi=120)
+    plot_style.save(fig, path)
     return path
 
 
@@ -172,9 +169,8 @@ def fig2(plt, directory):
     ax.set_ylim(bottom=-0.05 * ax.get_ylim()[1])
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize=9)
-    fig.tight_layout()
     path = os.path.join(directory, "fig2_shear_stiffness.png")
-    fig.savefig(path, dpi=120)
+    plot_style.save(fig, path)
     return path
 
 
@@ -196,9 +192,8 @@ def fig3(plt, directory):
     ax.set_title("Initial shear stiffness vs normal stress, eqs 7 and 2 (cf. Fig. 3)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(loc="upper left", fontsize=9)
-    fig.tight_layout()
     path = os.path.join(directory, "fig3_initial_shear_stiffness.png")
-    fig.savefig(path, dpi=120)
+    plot_style.save(fig, path)
     return path
 
 
@@ -219,9 +214,8 @@ def fig4(plt, directory):
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=9)
-    fig.tight_layout()
     path = os.path.join(directory, "fig4_shear_stress.png")
-    fig.savefig(path, dpi=120)
+    plot_style.save(fig, path)
     return path
 
 
@@ -239,6 +233,9 @@ def main(argv):
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        global plot_style
+        import plot_style
+        plot_style.setup()
     except ImportError as error:
         print("matplotlib is not installed for %s (%s)" % (sys.executable, error), file=sys.stderr)
         return 3

@@ -18,6 +18,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import plot_style  # noqa: E402
+from plot_style import legend  # noqa: E402
+
 
 def read_csv(path):
     with open(path, newline="") as f:
@@ -73,7 +76,11 @@ def style(ax, xlabel, ylabel, title=None):
     ax.set_ylabel(ylabel)
     if title:
         ax.set_title(title)
-    ax.grid(True, alpha=0.3)
+
+
+def downward(ax):
+    """Deflections are downward positive: draw them downward, as the beam sags."""
+    ax.invert_yaxis()
 
 
 def draw_thrust_line(ax, run, g_level, colour):
@@ -105,21 +112,26 @@ def case_figures(folder):
     run = Run(folder)
     out = []
     fig, ax = plt.subplots(figsize=(5.5, 4))
-    ax.plot(run.g, column(run.history, "thrust_N"), "o-")
-    style(ax, "gravity (g)", "horizontal thrust (N)", f"{run.label}: thrust")
+    ax.plot(run.g, column(run.history, "thrust_N"), **plot_style.mode_style(run.label))
+    style(ax, plot_style.GRAVITY_LABEL, plot_style.THRUST_LABEL, f"{run.label}: thrust")
     out.append(save(fig, folder, "thrust_vs_g.png"))
 
     fig, ax = plt.subplots(figsize=(5.5, 4))
-    ax.plot(run.g, column(run.history, "midspan_deflection_mm"), "o-")
-    style(ax, "gravity (g)", "midspan deflection (mm)", f"{run.label}: midspan deflection")
+    ax.plot(run.g, column(run.history, "midspan_deflection_mm"), **plot_style.mode_style(run.label))
+    style(ax, plot_style.GRAVITY_LABEL, plot_style.MIDSPAN_DEFLECTION_LABEL,
+          f"{run.label}: midspan deflection")
+    downward(ax)
     out.append(save(fig, folder, "midspan_deflection_vs_g.png"))
 
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    for level, g in zip(run.levels(), run.g):
+    colours = plot_style.level_colours(len(run.g))
+    for colour, level, g in zip(colours, run.levels(), run.g):
         x, d = run.profile(level)
-        ax.plot(x, -d, "o-", label=f"{g:g} g")
-    style(ax, "x (mm)", "deflection of block bottoms (mm, up positive)", f"{run.label}: deflection profiles")
-    ax.legend(fontsize=7, ncol=2)
+        ax.plot(x, d, color=colour, label=f"{g:g} g", **plot_style.mode_style(run.label))
+    style(ax, "x along the span (mm)", "block bottom " + plot_style.DEFLECTION_LABEL,
+          f"{run.label}: deflection profiles")
+    downward(ax)
+    legend(ax, ncol=2)
     out.append(save(fig, folder, "deflection_profiles.png"))
 
     fig, ax = plt.subplots(figsize=(7, 4))
@@ -128,19 +140,32 @@ def case_figures(folder):
     drawn = False
     for i, g in enumerate(sorted({10.0, float(run.g[-1])})):
         drawn |= draw_thrust_line(ax, run, g, colours[i % len(colours)])
-    style(ax, "x (mm)", "z (mm)", f"{run.label}: line of thrust")
+    style(ax, "x along the span (mm)", "z, up positive (mm)", f"{run.label}: line of thrust")
     if drawn:
-        ax.legend(fontsize=7)
+        legend(ax)
     out.append(save(fig, folder, "thrust_line.png"))
     return out
 
 
 def save(fig, folder, name):
-    fig.tight_layout()
-    path = os.path.join(folder, name)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return plot_style.save(fig, os.path.join(folder, name))
+
+
+def panels(groups):
+    """One panel per non-empty (runs, title) group: a subset draws only what ran."""
+    groups = [(runs, title) for runs, title in groups if runs]
+    if not groups:
+        return None, []
+    fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 4), squeeze=False)
+    return fig, list(zip(axes[0], groups))
+
+
+def case_colour(label):
+    """One colour per paper case, shared by its two contact modes."""
+    base = label[:-3] if label.endswith("-fi") else label
+    order = ["T2-1", "T2-2", "T2-3", "F8", "T3-full", "T3-half", "T3-half-old"]
+    index = order.index(base) if base in order else len(order)
+    return plt.get_cmap("tab10")(index % 10)
 
 
 def report_figures(folder, cases):
@@ -151,35 +176,45 @@ def report_figures(folder, cases):
     half = [r for r in runs.values() if r.summary["voussoir"]["beam"]["block_depth_m"] <= 0.03]
 
     # Fig. 5 analogue: thrust build-up of the full-block beam.
-    fig, ax = plt.subplots(figsize=(6, 4.2))
-    for r in full:
-        ax.plot(r.g, column(r.history, "thrust_N"), "o-", ms=3, label=r.label)
-    ax.plot([40], [349], "D", color="tab:blue", mfc="none", ms=8,
-            label="test 180-E, strain gauges, 40 g (349 N, as read by the paper)")
-    style(ax, "gravity (g)", "horizontal thrust (N)", "Thrust build-up, full-block beam (cf. paper Fig. 5)")
-    ax.legend(fontsize=7)
-    save(fig, figs, "fig5_thrust_full_block.png")
+    if full:
+        fig, ax = plt.subplots(figsize=(6, 4.2))
+        for r in full:
+            ax.plot(r.g, column(r.history, "thrust_N"), color=case_colour(r.label), label=r.label,
+                    **plot_style.mode_style(r.label))
+        ax.plot([40], [349], "D", color="0.2", mfc="none", ms=8,
+                label="test 180-E, strain gauges, 40 g (349 N, as read by the paper)")
+        style(ax, plot_style.GRAVITY_LABEL, plot_style.THRUST_LABEL,
+              "Thrust build-up, full-block beam (cf. paper Fig. 5)")
+        legend(ax)
+        save(fig, figs, "fig5_thrust_full_block.png")
 
     # Midspan deflection against g, both beams.
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, group, title in ((axes[0], full, "full-block beam"), (axes[1], half, "half-block beam")):
+    fig, pairs = panels([(full, "full-block beam"), (half, "half-block beam")])
+    for ax, (group, title) in pairs:
         for r in group:
-            ax.plot(r.g, column(r.history, "midspan_deflection_mm"), "o-", ms=3, label=r.label)
-        style(ax, "gravity (g)", "midspan deflection (mm)", f"Midspan deflection, {title}")
-        ax.legend(fontsize=7)
-    save(fig, figs, "midspan_deflection_vs_g.png")
+            ax.plot(r.g, column(r.history, "midspan_deflection_mm"), color=case_colour(r.label),
+                    label=r.label, **plot_style.mode_style(r.label))
+        style(ax, plot_style.GRAVITY_LABEL, plot_style.MIDSPAN_DEFLECTION_LABEL,
+              f"Midspan deflection, {title}")
+        downward(ax)
+        legend(ax)
+    if fig is not None:
+        save(fig, figs, "midspan_deflection_vs_g.png")
 
     # Figs 6, 8, 9 analogues: deflection profiles at the last level.
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, group, title in ((axes[0], full, "full-block beam, 40 g"), (axes[1], half, "half-block beam, 90 g")):
+    fig, pairs = panels([(full, "full-block beam"), (half, "half-block beam")])
+    for ax, (group, title) in pairs:
         for r in group:
             level = r.levels()[-1]
             x, d = r.profile(level)
-            ax.plot(x, -d, "o-", ms=4, label=f"{r.label} ({r.g[-1]:g} g)")
-        style(ax, "x (mm)", "deflection of block bottoms (mm, up positive)",
+            ax.plot(x, d, color=case_colour(r.label), label=f"{r.label} ({r.g[-1]:g} g)",
+                    **plot_style.mode_style(r.label))
+        style(ax, "x along the span (mm)", "block bottom " + plot_style.DEFLECTION_LABEL,
               f"Deflection profiles, {title}\n(cf. paper Figs 6, 8, 9)")
-        ax.legend(fontsize=7)
-    save(fig, figs, "deflection_profiles.png")
+        downward(ax)
+        legend(ax)
+    if fig is not None:
+        save(fig, figs, "deflection_profiles.png")
 
     # Fig. 7 analogue: line of thrust, catenary and parabola at 10 g and 40 g.
     first = next((r for r in full if r.label == "T2-1"), full[0] if full else None)
@@ -188,26 +223,30 @@ def report_figures(folder, cases):
         beam_outline(ax, first)
         draw_thrust_line(ax, first, 10.0, "tab:blue")
         draw_thrust_line(ax, first, 40.0, "tab:red")
-        style(ax, "x (mm)", "z (mm)", f"Line of thrust, {first.label} (cf. Fig. 7)")
-        ax.legend(fontsize=7, loc="lower center")
+        style(ax, "x along the span (mm)", "z, up positive (mm)",
+              f"Line of thrust, {first.label} (cf. Fig. 7)")
+        legend(ax, loc="lower center")
         save(fig, figs, "fig7_thrust_line.png")
 
     # Block rotations along the beam.
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, group, title in ((axes[0], full, "full-block beam"), (axes[1], half, "half-block beam")):
+    fig, pairs = panels([(full, "full-block beam"), (half, "half-block beam")])
+    for ax, (group, title) in pairs:
         for r in group:
             level = r.levels()[-1]
             rows = [b for b in r.blocks if int(b["level"]) == level]
-            ax.plot([1e3 * float(b["x_m"]) for b in rows], [float(b["rotation_deg"]) for b in rows], "o-", ms=4,
-                    label=f"{r.label} ({r.g[-1]:g} g)")
-        style(ax, "x (mm)", "rotation about y (deg)", f"Block rotations, {title}")
-        ax.legend(fontsize=7)
-    save(fig, figs, "block_rotations.png")
+            ax.plot([1e3 * float(b["x_m"]) for b in rows], [float(b["rotation_deg"]) for b in rows],
+                    color=case_colour(r.label), label=f"{r.label} ({r.g[-1]:g} g)",
+                    **plot_style.mode_style(r.label))
+        style(ax, "x along the span (mm)", "rotation about y (degrees)", f"Block rotations, {title}")
+        legend(ax)
+    if fig is not None:
+        save(fig, figs, "block_rotations.png")
     for r in runs.values():
         case_figures(r.folder)
 
 
 def main(argv):
+    plot_style.setup()
     if len(argv) >= 2 and argv[0] == "case":
         case_figures(argv[1])
     elif len(argv) >= 3 and argv[0] == "report":

@@ -1,5 +1,5 @@
 // `blockdem analytic voussoir`: the Diederichs & Kaiser (1999) voussoir beam from the command
-// line, printed as JSON on stdout (DESIGN.md sections 7 and 9).
+// line, printed as JSON on stdout.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
-// `blockdem calibrate normal|shear|cy`: joint laws from laboratory data (DESIGN.md section 8,
-// docs/calibration.md). Prints a summary and the joint-law block (JSON and TOML); with --out DIR
+// `blockdem calibrate normal|shear|cy`: joint laws from laboratory data
+// (docs/calibration.md). Prints a summary and the joint-law block (JSON and TOML); with --out DIR
 // writes calibration.json, fit CSVs and PNG plots. Everything is checked before anything is
 // written.
 #include <CLI/CLI.hpp>
@@ -46,7 +46,7 @@ void add_common_options(CLI::App* sub, CommonArgs& args, const std::string& colu
       ->required();
   sub->add_option("--out", args.out,
                   "Directory for calibration.json, fit CSVs and PNG plots (created if needed)");
-  sub->add_flag("--no-plots", args.no_plots, "With --out: write JSON and CSVs but no PNG plots");
+  sub->add_flag("--no-figures", args.no_plots, "With --out: write JSON and CSVs but no PNG plots");
   sub->add_option("--python", args.python,
                   "Python interpreter for the plots (default: /usr/bin/python3 if it exists, "
                   "else python3)");
@@ -73,7 +73,7 @@ void write_outputs(
   std::filesystem::create_directories(dir);
   report["files"] = write_csv(dir);
   report["figures"] = nlohmann::ordered_json::array();
-  report["plots"] = args.no_plots ? "not requested (--no-plots)" : "pending";
+  report["plots"] = args.no_plots ? "not requested (--no-figures)" : "pending";
   write_json(dir / "calibration.json", report);
   if (!args.no_plots) {
     const std::string python = args.python.empty() ? default_python() : args.python;

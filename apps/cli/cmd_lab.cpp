@@ -85,7 +85,7 @@ bool plot(const std::vector<std::string>& args, const std::filesystem::path& png
     return true;
   }
   summary["figure_error"] = why;
-  std::cerr << "blockdem lab: error: no figure: " << why << "\n";
+  std::cerr << "blockdem: error: lab: no figure: " << why << "\n";
   return false;
 }
 
@@ -106,7 +106,7 @@ int run_compression(const CompressionArgs& a, bool max_closure_given, bool max_s
   nlohmann::ordered_json summary = compression_summary(def, kernel, dem_ptr);
   int code = 0;
   if (dem && !dem->converged) {
-    std::cerr << "blockdem lab compression: error: the DEM run did not converge: " << dem->message
+    std::cerr << "blockdem: error: lab compression: the DEM run did not converge: " << dem->message
               << "\n";
     code = kFailed;
   }
@@ -144,7 +144,7 @@ int run_shear(const ShearArgs& a) {
   nlohmann::ordered_json summary = shear_summary(def, normal, kernel, dem_ptr);
   int code = 0;
   if (dem && !dem->settled) {
-    std::cerr << "blockdem lab shear: error: the DEM run did not settle: " << dem->message << "\n";
+    std::cerr << "blockdem: error: lab shear: the DEM run did not settle: " << dem->message << "\n";
     code = kFailed;
   }
   if (!a.out.empty()) {
@@ -182,7 +182,7 @@ int run_figures(const FiguresArgs& a) {
       }
     } else {
       summary["figure_error"] = why;
-      std::cerr << "blockdem lab figures: error: no figures: " << why << "\n";
+      std::cerr << "blockdem: error: lab figures: no figures: " << why << "\n";
       code = kFailed;
     }
   }
@@ -197,10 +197,10 @@ void guarded(const char* name, Body&& body) {
   try {
     set_exit_code(body());
   } catch (const std::invalid_argument& e) {
-    std::cerr << "blockdem lab " << name << ": error: " << e.what() << "\n";
+    std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
     set_exit_code(kInvalidInput);
   } catch (const std::exception& e) {
-    std::cerr << "blockdem lab " << name << ": error: " << e.what() << "\n";
+    std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
     set_exit_code(kFailed);
   }
 }
@@ -237,7 +237,7 @@ void register_lab(CLI::App& app) {
     cmd->add_option("--mode", a->mode, "Contact mode of --dem (default boon2012, the paper's)")
         ->check(CLI::IsMember({"boon2012", "face_integrated"}));
     cmd->add_option("--out", a->out, "Folder for compression.csv and compression.png");
-    cmd->add_flag("!--no-plot", a->plot, "With --out: write the CSV only");
+    cmd->add_flag("!--no-figures", a->plot, "With --out: write the CSV only");
     cmd->callback([a, closure, stress] {
       guarded("compression", [&] {
         if (closure->count() + stress->count() != 1) {
@@ -272,7 +272,7 @@ void register_lab(CLI::App& app) {
     cmd->add_option("--mode", a->mode, "Contact mode of --dem (default boon2012, the paper's)")
         ->check(CLI::IsMember({"boon2012", "face_integrated"}));
     cmd->add_option("--out", a->out, "Folder for shear.csv and shear.png");
-    cmd->add_flag("!--no-plot", a->plot, "With --out: write the CSV only");
+    cmd->add_flag("!--no-figures", a->plot, "With --out: write the CSV only");
     cmd->callback([a] { guarded("shear", [&] { return run_shear(*a); }); });
   }
 
@@ -283,7 +283,7 @@ void register_lab(CLI::App& app) {
         "figures",
         "Joint-law figures in the style of the paper's Figs 1(b), 2, 3, 4 (CSV and PNG)");
     cmd->add_option("--out", a->out, "Output folder")->required();
-    cmd->add_flag("!--no-plot", a->plot, "Write the CSV files only");
+    cmd->add_flag("!--no-figures", a->plot, "Write the CSV files only");
     cmd->callback([a] { guarded("figures", [&] { return run_figures(*a); }); });
   }
 }

@@ -32,9 +32,13 @@ int reproduce(const ReproduceOptions& opt) {
   }
   const auto wall0 = std::chrono::steady_clock::now();
   Boon2015Selection selection;
-  selection.scenarios = opt.scenarios.empty()
-                            ? std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" / "boon2015"
-                            : std::filesystem::path(opt.scenarios);
+  selection.scenarios = opt.scenarios.empty() ? data_dir() / "scenarios" / "boon2015"
+                                              : std::filesystem::path(opt.scenarios);
+  if (!std::filesystem::is_directory(selection.scenarios)) {
+    std::cerr << "blockdem: error: the case files' folder " << selection.scenarios.string()
+              << " does not exist (give --scenarios, or set BLOCKDEM_DATA_DIR)\n";
+    return 2;
+  }
   selection.cases = opt.cases;
   selection.modes.clear();
   if (opt.modes != "face_integrated") selection.modes.push_back(ContactMode::boon2012);
@@ -118,7 +122,7 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option("--jobs", opt->jobs, "Cases run in parallel (default: number of cores)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--scenarios", opt->scenarios,
-                  "Folder of the case files (default: the source tree's scenarios/boon2015)");
+                  "Folder of the case files (default: the installed scenarios/boon2015)");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->add_flag("!--no-figures", opt->figures, "Do not draw figures (no Python needed)");
   cmd->callback([opt] { set_exit_code(reproduce(*opt)); });

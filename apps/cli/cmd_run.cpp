@@ -1,4 +1,5 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -17,6 +18,7 @@ struct RunOptions {
   std::string out;
   bool quiet = false;
   bool figures = true;
+  std::int64_t max_steps = 0;  ///< > 0: every stage stops after at most this many steps
 };
 
 int run(const RunOptions& opt) {
@@ -30,8 +32,16 @@ int run(const RunOptions& opt) {
   bool beam = false;
   try {
     // Read and check everything before anything is written.
-    const Scenario sc = load_scenario(opt.scenario);
+    Scenario sc = load_scenario(opt.scenario);
+    if (opt.max_steps > 0) {
+      for (auto& stage : sc.stages) {
+        stage.max_steps = std::min(stage.max_steps, opt.max_steps);
+        stage.min_steps = std::min(stage.min_steps, opt.max_steps);
+      }
+    }
     beam = voussoir_scene(sc) != nullptr;
+    for (const auto& w : sc.warnings)
+      std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     r = run_scenario(sc, opt.out, cb);
   } catch (const ScenarioError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
@@ -67,6 +77,10 @@ void register_run(CLI::App& app) {
   cmd->add_option("scenario", opt->scenario, "Scenario file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", opt->out, "Output folder (created if missing)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
+  cmd->add_option("--max-steps", opt->max_steps,
+                  "Stop every stage after at most N steps (a quick look at a scenario; a stage "
+                  "cut short is reported as not converged)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("!--no-figures", opt->figures,
                 "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });

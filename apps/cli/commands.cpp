@@ -7,7 +7,7 @@ int g_exit_code = 0;
 }
 
 const char* version() {
-  return "0.1.0";
+  return BLOCKDEM_VERSION;
 }
 int exit_code() {
   return g_exit_code;

@@ -27,16 +27,30 @@ std::string quote(const std::string& s) {
 
 }  // namespace
 
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("BLOCKDEM_DATA_DIR")) return env;
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return "share/blockdem";
+  const std::filesystem::path bin = exe.parent_path();
+  for (const auto& candidate :
+       {bin / "share" / "blockdem", bin.parent_path() / "share" / "blockdem"}) {
+    if (std::filesystem::is_directory(candidate, error)) return candidate;
+  }
+  return bin.parent_path() / "share" / "blockdem";
+}
+
 std::string tools_dir() {
   if (const char* env = std::getenv("BLOCKDEM_TOOLS_DIR")) return env;
-  return std::string(BLOCKDEM_SOURCE_DIR) + "/tools";
+  return (data_dir() / "tools").string();
 }
 
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args,
                      std::string& why) {
   const std::string path = tools_dir() + "/" + script;
   if (!std::filesystem::exists(path)) {
-    why = "the plotting script " + path + " is missing (set BLOCKDEM_TOOLS_DIR)";
+    why = "the plotting script " + path +
+          " is missing (reinstall blockdem, or set BLOCKDEM_DATA_DIR)";
     return false;
   }
   std::string python;

@@ -12,7 +12,10 @@ namespace blockdem::cli {
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args,
                      std::string& why);
 
-/// Folder of the project's scripts: $BLOCKDEM_TOOLS_DIR, else the source tree's tools/.
+/// Folder of the program's data (plot scripts, case files): $BLOCKDEM_DATA_DIR, else
+/// share/blockdem beside the executable (a build folder) or ../share/blockdem (an installation).
+std::filesystem::path data_dir();
+/// Folder of the plot scripts: $BLOCKDEM_TOOLS_DIR, else data_dir()/tools.
 std::string tools_dir();
 
 struct PlotOutcome {

@@ -3,6 +3,7 @@
 
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 
 #include "commands.hpp"
 
@@ -20,10 +21,22 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
-  } catch (const std::exception& e) {
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // A bad command line is an input error like any other: exit code 2 (README, exit codes).
+    std::cerr << "blockdem: error: " << e.what() << "\nRun with --help for more information.\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    // A subcommand's check of a value it was given.
     std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "blockdem: internal error: " << e.what() << "\n";
     return 1;
   }
   return blockdem::cli::exit_code();

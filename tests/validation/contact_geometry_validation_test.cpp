@@ -1,5 +1,5 @@
 // Contact geometry of two unit cubes in face, edge and vertex contact (mode boon2012) against
-// hand-computed point, normal, overlap and area (DESIGN section 2).
+// hand-computed point, normal, overlap and area.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

@@ -1,4 +1,4 @@
-// Mode face_integrated (DESIGN section 3) against closed forms: pressure distributions under an
+// Mode face_integrated against closed forms: pressure distributions under an
 // eccentric load, equality with the point contact under uniform closure, the exponential law
 // against a high-order quadrature, and energy conservation of an undamped rocking block.
 #include <gtest/gtest.h>
@@ -171,7 +171,7 @@ TEST(FaceIntegrated, UniformClosureGivesThePointContactForce) {
 // peak closure follow the closed form of a rigid footing on a Winkler foundation:
 // e <= L/6: θ = 12 P e / (k W L³), peak closure P/(k W L) + θ L/2;
 // e > L/6: contact length c = 3 (L/2 - e), peak closure 2 P / (k W c), θ = peak / c.
-// The contact normal (the rounded normal of DESIGN section 2) turns with the block by about θ/2,
+// The contact normal (the rounded normal) turns with the block by about θ/2,
 // a geometric effect of relative size ~θ H / e that the small-rotation closed form ignores; at
 // this load θ ~ 1e-5 and the tolerance is 2e-3 relative.
 class EccentricLoad : public ::testing::TestWithParam<double> {};

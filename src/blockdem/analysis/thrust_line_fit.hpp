@@ -1,4 +1,4 @@
-// Line-of-thrust fits of a voussoir beam (DESIGN.md section 6): a parabola by linear least squares
+// Line-of-thrust fits of a voussoir beam: a parabola by linear least squares
 // and a uniform catenary by Levenberg-Marquardt, each with the horizontal thrust its curvature
 // implies for a given distributed load. Pure maths: points in, curves and thrusts out.
 #pragma once
@@ -34,7 +34,7 @@ ParabolaFit fit_parabola(const Eigen::VectorXd& x, const Eigen::VectorXd& y);
 /// Horizontal thrust implied by the parabola for a load w uniformly distributed per unit
 /// horizontal length (span). A funicular under such a load obeys H y'' = -w, so
 /// H = w / |y''| = w / (2 |c2|). For a beam of weight W on span S, w = W / S and, with the sag z
-/// between abutment and midspan thrust points, H = W S / (8 z) (DESIGN.md section 6).
+/// between abutment and midspan thrust points, H = W S / (8 z).
 /// Units follow w: w in N/m gives H in N; w in N/m per metre of width gives N/m.
 /// Throws std::invalid_argument if w is not positive and finite, std::domain_error if the
 /// curvature is not resolved (collinear points: H -> infinity).

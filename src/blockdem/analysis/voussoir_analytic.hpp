@@ -1,7 +1,6 @@
 // The analytical voussoir beam of Diederichs & Kaiser (1999), "Stability of large excavations in
-// laminated hard rock masses: the voussoir analogue revisited", IJRMMS 36:97-117 (D&K below), as
-// stated in DESIGN.md section 7: compression arch, iterated lever arm, snap-through, safety
-// factors.
+// laminated hard rock masses: the voussoir analogue revisited", IJRMMS 36:97-117 (D&K below):
+// compression arch, iterated lever arm, snap-through, safety factors.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -57,7 +56,7 @@ enum class VoussoirTrialStatus {
   iteration_limit,  ///< neither after max_iterations (only right at the snap-through fold)
 };
 
-/// The D&K iteration at a fixed n (D&K's iterative procedure; DESIGN.md section 7):
+/// The D&K iteration at a fixed n (D&K's iterative procedure):
 ///   Z0 = T (1 - 2n/3),  L = S + 8 Z0^2 / (3 S),  Z := Z0, then repeat
 ///   f_m = gamma S^2 / (4 n Z),  f_av = f_m (2/3 + n) / 3,  dL = f_av L / E_rm,
 ///   Z = sqrt(3S/8 (8 Z0^2 / (3S) - dL))

@@ -1,4 +1,4 @@
-// Laboratory data for joint-law calibration (DESIGN.md section 8): a strict CSV reader (named
+// Laboratory data for joint-law calibration: a strict CSV reader (named
 // columns, '#' comment lines, every value finite) and the two test types the paper calibrates
 // from, column compression (its Fig 1) and direct shear at several normal stresses (Figs 2-4).
 #pragma once

@@ -1,5 +1,5 @@
 // Calibration of the exponential normal joint law (the paper's eqs 3-4) from a column compression
-// test (its Fig 1, DESIGN.md section 8): intact deformation removed, closure per equivalent joint,
+// test (its Fig 1): intact deformation removed, closure per equivalent joint,
 // sigma = a [exp(b u) - 1] fitted by Levenberg-Marquardt, with a linear law for comparison.
 #pragma once
 

@@ -25,6 +25,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
                        const RunCallbacks& cb) {
   const auto wall0 = std::chrono::steady_clock::now();
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
+  check_time_step(sc, world);
   RunResult res;
   const VoussoirScene* voussoir = voussoir_scene(sc);
   const bool beam = voussoir != nullptr;

@@ -27,6 +27,10 @@ std::string type_name(const toml::node& n) {
   }
 }
 
+// The most entries one array of a scenario file may hold: far more than any hand-written list
+// needs, and small enough that a runaway array is refused before it costs time and memory.
+constexpr std::size_t kMaxArrayEntries = 1000000;
+
 std::optional<double> as_number(const toml::node& n) {
   if (auto v = n.value_exact<double>()) return *v;
   if (auto v = n.value_exact<std::int64_t>()) return static_cast<double>(*v);
@@ -51,6 +55,12 @@ void CheckedTable::fail(const std::string& key, const std::string& reason) const
   throw ScenarioError(file_, key_path(key), reason);
 }
 
+void CheckedTable::check_length(const std::string& key, std::size_t entries) const {
+  if (entries > kMaxArrayEntries)
+    fail(key, "has " + std::to_string(entries) + " entries, more than the limit of " +
+                  std::to_string(kMaxArrayEntries));
+}
+
 const toml::node* CheckedTable::get(const std::string& key) const {
   used_.insert(key);
   return table_->get(key);
@@ -67,11 +77,6 @@ double CheckedTable::number(const std::string& key) const {
 
 double CheckedTable::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : (used_.insert(key), fallback);
-}
-
-std::optional<double> CheckedTable::optional_number(const std::string& key) const {
-  if (!has(key)) return std::nullopt;
-  return number(key);
 }
 
 double CheckedTable::positive(const std::string& key, double fallback, bool allow_zero) const {
@@ -135,6 +140,7 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
   if (n == nullptr) fail(key, "is required");
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
+  check_length(key, a->size());
   // width 0: the value itself is one row of three numbers (vec3).
   auto read_row = [&](const toml::array& row, std::size_t want, const std::string& where) {
     if (row.size() != want) {
@@ -173,6 +179,7 @@ std::vector<double> CheckedTable::numbers(const std::string& key) const {
   if (n == nullptr) fail(key, "is required (an array of numbers)");
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array of numbers, got " + type_name(*n));
+  check_length(key, a->size());
   std::vector<double> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto v = as_number(*a->get(i));
@@ -190,6 +197,7 @@ std::vector<std::string> CheckedTable::strings(const std::string& key) const {
   if (n == nullptr) return {};
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array of strings, got " + type_name(*n));
+  check_length(key, a->size());
   std::vector<std::string> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     auto v = a->get(i)->value_exact<std::string>();

@@ -45,7 +45,6 @@ class CheckedTable {
 
   double number(const std::string& key) const;
   double number(const std::string& key, double fallback) const;
-  std::optional<double> optional_number(const std::string& key) const;
   /// A number that must be > 0 (or >= 0 when allow_zero).
   double positive(const std::string& key, double fallback, bool allow_zero = false) const;
   std::int64_t integer(const std::string& key, std::int64_t fallback) const;
@@ -75,6 +74,8 @@ class CheckedTable {
 
  private:
   const toml::node* get(const std::string& key) const;
+  /// Fails for an array longer than the limit.
+  void check_length(const std::string& key, std::size_t entries) const;
   const toml::table* table_;
   std::string file_, path_;
   mutable std::set<std::string> used_;

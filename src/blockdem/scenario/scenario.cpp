@@ -4,7 +4,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -47,7 +49,8 @@ Eigen::Matrix3d read_rotation(const CheckedTable& t) {
   if (!t.has("rotation_deg") && !t.has("rotation_axis")) return Eigen::Matrix3d::Identity();
   const double angle = t.number("rotation_deg", 0.0);
   const Eigen::Vector3d axis = t.vec3("rotation_axis", Eigen::Vector3d::UnitZ());
-  if (axis.norm() == 0.0) t.fail("rotation_axis", "must not be the zero vector");
+  if (!(axis.norm() > 0.0) || !std::isfinite(axis.norm()))
+    t.fail("rotation_axis", "must be a non-zero vector of finite length");
   return Eigen::AngleAxisd(deg_to_rad(angle), axis.normalized()).toRotationMatrix();
 }
 
@@ -89,15 +92,33 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     } else {
       std::vector<Eigen::Vector3d> pts;
       for (const auto& r : t.rows("vertices", 3)) pts.emplace_back(r[0], r[1], r[2]);
+      // Two vertices at one point are a typing error, not a shape (the hull would hide it).
+      double extent = 0.0;
+      for (const auto& p : pts) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+          if ((pts[i] - pts[j]).norm() <= 1e-12 * std::max(extent, 1e-300))
+            t.fail("vertices",
+                   "vertex " + std::to_string(i + 1) + " repeats vertex " + std::to_string(j + 1));
+        }
+      }
       poly = Polyhedron::from_vertices(pts);
     }
   } catch (const GeometryError& e) {
     t.fail(shape == "box" ? "size" : shape, e.what());
   }
   // Box: `position` is its centre. Planes/vertices: the shape is rotated about the origin of
-  // its own coordinates, then moved by `position`.
-  poly = poly.transformed(rot, pos);
-  Block b = make_block(poly, density, name, group);
+  // its own coordinates, then moved by `position`. A shape that positioning makes degenerate
+  // (coordinates so large that the block's size is lost in round-off) is an input error.
+  if (!(pos.cwiseAbs().maxCoeff() < 1e12))
+    t.fail("position", "must be finite and within 1e12 m of the origin");
+  Block b;
+  try {
+    poly = poly.transformed(rot, pos);
+    b = make_block(poly, density, name, group);
+  } catch (const GeometryError& e) {
+    t.fail("position", "block \"" + name + "\" is degenerate once positioned: " + e.what());
+  }
 
   const std::string motion = t.choice("motion", "free", {"free", "fixed", "prescribed", "servo"});
   b.external_force = t.vec3("external_force", Eigen::Vector3d::Zero());
@@ -115,7 +136,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     b.motion = Motion::servo;
     const CheckedTable s = t.table("servo");
     const Eigen::Vector3d axis = s.vec3("axis");
-    if (axis.norm() == 0.0) s.fail("axis", "must not be the zero vector");
+    if (!(axis.norm() > 0.0) || !std::isfinite(axis.norm()))
+      s.fail("axis", "must be a non-zero vector of finite length");
     b.servo.axis = axis.normalized();
     b.servo.target_force = s.positive("target_force", 0.0, true);
     b.servo.gain = s.positive("gain", 0.0, true);
@@ -199,18 +221,25 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.unbalanced_tolerance = t.positive("unbalanced_tolerance", s.unbalanced_tolerance);
   s.kinetic_tolerance = t.positive("kinetic_tolerance", s.kinetic_tolerance);
   s.ramp_steps = t.integer("ramp_steps", s.ramp_steps);
-  if (s.ramp_steps < 0) t.fail("ramp_steps", "must be zero or positive");
+  if (s.ramp_steps < 0 || s.ramp_steps > 1000000000000)
+    t.fail("ramp_steps", "must be between 0 and 1e12");
   if (s.ramp_steps > 0 && !s.gravity)
     t.fail("ramp_steps", "a ramp needs a new gravity in this stage");
   s.max_steps = t.integer("max_steps", s.max_steps);
-  if (s.max_steps <= 0) t.fail("max_steps", "must be positive");
+  if (s.max_steps <= 0 || s.max_steps > 1000000000000)
+    t.fail("max_steps", "must be between 1 and 1e12");
   s.min_steps = t.integer("min_steps", s.min_steps);
   if (s.min_steps < 0) t.fail("min_steps", "must be zero or positive");
+  if (s.min_steps > s.max_steps)
+    t.fail("min_steps", "must not exceed max_steps (" + std::to_string(s.max_steps) + ")");
   s.check_interval = t.integer("check_interval", s.check_interval);
   if (s.check_interval <= 0) t.fail("check_interval", "must be positive");
   if (s.kind == Stage::Kind::steps) {
     s.steps = t.integer("steps", 0);
     if (s.steps <= 0) t.fail("steps", "a stage of kind \"steps\" needs steps > 0");
+    if (s.steps > s.max_steps)
+      t.fail("steps", "must not exceed max_steps (" + std::to_string(s.max_steps) +
+                          "); raise max_steps for a longer stage");
   }
   if (s.kind == Stage::Kind::duration) s.duration = t.positive("duration", 0.0);
   auto check_block = [&](const std::string& key, const std::string& name) {
@@ -223,7 +252,8 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
     c.target_force = st.positive("target_force", 0.0, true);
     if (st.has("axis")) {
       const Eigen::Vector3d a = st.vec3("axis");
-      if (a.norm() == 0.0) st.fail("axis", "must not be the zero vector");
+      if (!(a.norm() > 0.0) || !std::isfinite(a.norm()))
+        st.fail("axis", "must be a non-zero vector of finite length");
       c.axis = a.normalized();
     }
     st.finish();
@@ -234,6 +264,37 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.hold_servos_after = t.boolean("hold_servos_after", false);
   t.finish();
   return s;
+}
+
+// Checks what depends on the blocks' sizes, and warns of values off by orders of magnitude.
+void check_block_scales(Scenario& sc) {
+  const double r_round = sc.settings.boon2012.rounding_distance;
+  for (const Block& b : sc.blocks) {
+    // The rounded normal moves every face inward by r_round: the block must keep a core. The
+    // smallest distance from the centroid to a face bounds the inscribed ball from below.
+    double inner = std::numeric_limits<double>::infinity();
+    for (const auto& p : b.shape.planes()) inner = std::min(inner, p.offset);
+    if (!(r_round < inner)) {
+      std::ostringstream s;
+      s << "must be smaller than every block's half-thickness; block \"" << b.name
+        << "\" has a face " << inner
+        << " m from its centroid (the paper used 0.2 mm on 46 mm blocks)";
+      throw ScenarioError(sc.file, "settings.rounding_distance", s.str());
+    }
+    if (b.motion == Motion::free && (b.density < 100.0 || b.density > 30000.0)) {
+      std::ostringstream s;
+      s << "block \"" << b.name << "\": density " << b.density
+        << " kg/m^3 is far from any rock's (about 1000 to 5000 kg/m^3): check the unit";
+      sc.warnings.push_back(s.str());
+    }
+    const double size = b.shape.bounding_radius();
+    if (size < 1e-4 || size > 1e4) {
+      std::ostringstream s;
+      s << "block \"" << b.name << "\" is " << 2.0 * size
+        << " m across: check the unit of its size (metres)";
+      sc.warnings.push_back(s.str());
+    }
+  }
 }
 
 }  // namespace
@@ -305,6 +366,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
     }
   }
   if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");
+  check_block_scales(sc);
 
   for (const auto& jt : t.tables("joints")) {
     JointRule r;
@@ -345,9 +407,32 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
 Scenario load_scenario(const std::string& path, const SceneBuilders& builders) {
   std::ifstream in(path);
   if (!in) throw ScenarioError(path, "", "cannot open the file");
+  // A listed block costs about 120 bytes of TOML: 64 MiB is half a million listed blocks. Larger
+  // models are described by joint sets ([rock_mass]), which the builder cuts in memory.
+  constexpr std::uintmax_t kMaxFileBytes = 64ull << 20;
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (!error && bytes > kMaxFileBytes) {
+    throw ScenarioError(
+        path, "",
+        "the file has " + std::to_string(bytes >> 20) +
+            " MiB, more than the 64 MiB limit of a scenario file (describe a "
+            "large rock mass by joint sets, [rock_mass], instead of listing blocks)");
+  }
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_scenario(ss.str(), path, builders);
+}
+
+void check_time_step(const Scenario& sc, const World& world) {
+  const double dt = world.next_time_step();
+  if (dt < 1e-9) {
+    std::ostringstream s;
+    s << "the time step would be " << dt
+      << " s: a second of model time would take more than 1e9 steps. Check the units of the "
+         "densities (kg/m^3), block sizes (m) and joint stiffnesses (Pa/m), or set time_step";
+    throw ScenarioError(sc.file, "settings.time_step", s.str());
+  }
 }
 
 World build_world(const Scenario& sc) {

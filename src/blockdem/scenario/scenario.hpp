@@ -29,6 +29,8 @@ struct Scenario {
   OutputSpec output;
   /// Densities of the [[materials]] by name (kg/m^3).
   std::map<std::string, double> materials;
+  /// Values that are allowed but probably wrong (e.g. a density off by orders of magnitude).
+  std::vector<std::string> warnings;
   /// Set by a scene builder (e.g. the voussoir beam: its spec and where its parts are).
   std::shared_ptr<const BuiltScene> built;
 };
@@ -45,6 +47,10 @@ Scenario parse_scenario(const std::string& toml_text, const std::string& file,
 void read_joint_law_tables(const CheckedTable& table, JointLaw& law);
 /// Reads an [output] table.
 void read_output(const CheckedTable& table, OutputSpec& output);
+
+/// Throws ScenarioError when the world's first time step is absurdly small (below 1 ns), which
+/// means a unit is wrong somewhere.
+void check_time_step(const Scenario& scenario, const World& world);
 
 /// Builds the world. Throws ScenarioError when blocks overlap deeply at the start (more than
 /// the settings' max_overlap_fraction of the smaller block's radius).

@@ -1,4 +1,4 @@
-// Voussoir-beam measurements (DESIGN section 6).
+// Voussoir-beam measurements.
 #include "blockdem/voussoir/measures.hpp"
 
 #include <cmath>
@@ -130,7 +130,7 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec,
                                point_displacement(last, ref, end_r).z());
   }
 
-  // Statics of the half span (DESIGN section 6): H z = W S / 8.
+  // Statics of the half span: H z = W S / 8.
   lv.equilibrium_residual = std::numeric_limits<double>::quiet_NaN();
   if (n % 2 == 0) {
     const VoussoirJoint& mid = lv.joints[static_cast<std::size_t>(n / 2)];

@@ -1,4 +1,4 @@
-// What is measured on a voussoir beam at each load level (DESIGN section 6): thrust, deflections,
+// What is measured on a voussoir beam at each load level: thrust, deflections,
 // rotations, abutment slip, per-joint forces and thrust points, statics check, line of thrust.
 #pragma once
 

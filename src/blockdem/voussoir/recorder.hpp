@@ -1,5 +1,5 @@
 // Voussoir-beam outputs per load level: history.csv, blocks.csv, joints.csv, and the JSON
-// summary (DESIGN section 6 and the voussoir issue's list of columns).
+// summary.
 #pragma once
 
 #include <filesystem>

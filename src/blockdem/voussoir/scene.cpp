@@ -28,6 +28,8 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
   if (t.has("g_levels")) {
     v.g_levels = t.numbers("g_levels");
   }
+  if (t.has("g_max") && t.has("g_levels"))
+    t.fail("g_max", "give either g_levels or g_max, not both");
   if (t.has("g_max")) {
     // g_max alone: the default levels up to it (and g_max itself).
     const double g_max = t.number("g_max");
@@ -45,6 +47,11 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
   v.kinetic_tolerance = t.positive("kinetic_tolerance", v.kinetic_tolerance);
   v.max_steps_per_level = t.integer("max_steps_per_level", v.max_steps_per_level);
   v.ramp_steps = t.integer("ramp_steps", v.ramp_steps);
+  // Step counts beyond 1e12 would take years, and their sum would overflow.
+  if (!(v.max_steps_per_level > 0 && v.max_steps_per_level <= 1000000000000))
+    t.fail("max_steps_per_level", "must be between 1 and 1e12");
+  if (!(v.ramp_steps >= 0 && v.ramp_steps <= 1000000000000))
+    t.fail("ramp_steps", "must be between 0 and 1e12");
   v.law.name = "joint";
   read_joint_law_tables(t, v.law);
   try {

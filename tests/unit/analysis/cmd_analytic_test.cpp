@@ -15,38 +15,13 @@
 #include <string>
 
 #include "blockdem/analysis/voussoir_analytic.hpp"
+#include "support/cli_runner.hpp"
 
 namespace blockdem {
 namespace {
 
-struct CommandOutput {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs the CLI with `arguments`, capturing stdout through a pipe and stderr through a file.
-CommandOutput run_cli(const std::string& arguments) {
-  const std::filesystem::path err_path =
-      std::filesystem::temp_directory_path() /
-      ("blockdem_analytic_test_" + std::to_string(::getpid()) + ".err");
-  const std::string command =
-      std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>" + err_path.string();
-  CommandOutput result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
-  std::filesystem::remove(err_path);
-  return result;
-}
+using test::CommandOutput;
+using test::run_cli;
 
 TEST(CliAnalyticVoussoir, PrintsTheLibrarySolutionAsJson) {
   // The paper's full-block beam at 40 g: S = 276 mm, T = 46 mm, 1207 kg/m^3, E_rm = k_n s with

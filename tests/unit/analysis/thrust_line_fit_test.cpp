@@ -105,7 +105,7 @@ TEST(CatenaryFit, RmsResidualMatchesNoiseLevel) {
 
 TEST(ThrustLineFit, ParabolaThrustSatisfiesHalfSpanStatics) {
   // Thrust line through the abutment points (0, 0), (S, 0) with rise z at midspan: statics of
-  // the half span give H z = W S / 8 (DESIGN.md section 6), with W = w S.
+  // the half span give H z = W S / 8, with W = w S.
   const double z = 0.03;                                               // m
   const double weight = 40.0 * 9.81 * 1207.0 * kSpan * 0.046 * 0.046;  // W at 40 g (N)
   const double w = weight / kSpan;                                     // N/m

@@ -124,7 +124,7 @@ TEST(VoussoirAnalytic, DeflectionScalesAsInverseModulusForStiffBeams) {
 
 TEST(VoussoirAnalytic, ThrustSatisfiesHalfSpanMomentEquilibrium) {
   // The thrust acts at lever arm Z between midspan (top) and abutment (bottom); the half span's
-  // moment balance is H Z = W S / 8 with W = gamma T S per unit width (DESIGN.md section 6).
+  // moment balance is H Z = W S / 8 with W = gamma T S per unit width.
   const VoussoirBeamDef beam = rock_beam(5e8);
   const VoussoirResult result = solve_voussoir_beam(beam);
   ASSERT_EQ(result.status, VoussoirStatus::stable);

@@ -20,6 +20,7 @@
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "calibration_test_support.hpp"
+#include "support/cli_runner.hpp"
 
 namespace blockdem {
 namespace {
@@ -27,31 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::relative_error;
 
-struct CommandOutput {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs the CLI with `arguments`, capturing stdout through a pipe and stderr through a file.
-CommandOutput run_cli(const std::string& arguments) {
-  const fs::path err_path = test::scratch_directory() / "cli.err";
-  const std::string command =
-      std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>'" + err_path.string() + "'";
-  CommandOutput result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
-  return result;
-}
+using test::CommandOutput;
+using test::run_cli;
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -91,7 +69,7 @@ TEST(CliCalibrate, NormalWritesReportCsvsAndAPastableExponentialLaw) {
   const fs::path out = test::scratch_directory() / "cli_normal_out";
   const CommandOutput run = run_cli(
       "calibrate normal --data '" + data.string() +
-      "' --modulus 5.6e9 --height 0.138 --joints 3 --no-plots --out '" + out.string() + "'");
+      "' --modulus 5.6e9 --height 0.138 --joints 3 --no-figures --out '" + out.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json report = read_json(out / "calibration.json");
   EXPECT_EQ(report["command"], "calibrate normal");
@@ -102,7 +80,7 @@ TEST(CliCalibrate, NormalWritesReportCsvsAndAPastableExponentialLaw) {
       report["exponential"]["k0_Pa_per_m"].get<double>(),
       report["exponential"]["a_Pa"].get<double>() * report["exponential"]["b_per_m"].get<double>());
   EXPECT_EQ(report["exponential"]["fit"]["residuals_m"].size(), 25u);
-  EXPECT_EQ(report["plots"], "not requested (--no-plots)");
+  EXPECT_EQ(report["plots"], "not requested (--no-figures)");
   for (const auto& f : report["files"]) EXPECT_TRUE(fs::exists(out / f.get<std::string>()));
 
   // The TOML line on stdout builds the law a scenario would build, to the 7 digits printed.

@@ -35,7 +35,7 @@ TEST(Boon2012, ChordLengthOfABox) {
   }
 }
 
-// The rounded gradient (DESIGN section 2 step 3) of a unit cube: within r_round of one face only,
+// The rounded gradient of a unit cube: within r_round of one face only,
 // 2 (r - s) n of that face; within r_round of two faces, the sum; deeper, 2 r n of the nearest.
 TEST(Boon2012, PotentialGradientOfACube) {
   const Planes cube = test_shapes::box(Eigen::Vector3d::Constant(0.5));

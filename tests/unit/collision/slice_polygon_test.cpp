@@ -1,4 +1,4 @@
-// Tests of the slice polygon (DESIGN section 2 step 5): closed-form areas, the small-vector vertex
+// Tests of the slice polygon: closed-form areas, the small-vector vertex
 // storage on and off the heap, and the warm start against plain clipping.
 #include "blockdem/collision/slice_polygon.hpp"
 

@@ -16,38 +16,13 @@
 #include <iterator>
 #include <string>
 #include <vector>
+#include "support/cli_runner.hpp"
 
 namespace blockdem {
 namespace {
 
-struct CommandOutput {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs the CLI with `arguments`, capturing stdout through a pipe and stderr through a file.
-CommandOutput run_cli(const std::string& arguments) {
-  const std::filesystem::path err_path =
-      std::filesystem::temp_directory_path() /
-      ("blockdem_lab_test_" + std::to_string(::getpid()) + ".err");
-  const std::string command =
-      std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>" + err_path.string();
-  CommandOutput result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t count = 0;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.out.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
-  std::filesystem::remove(err_path);
-  return result;
-}
+using test::CommandOutput;
+using test::run_cli;
 
 struct BadInput {
   const char* name;
@@ -131,7 +106,7 @@ TEST(CliLab, CompressionPrintsTheKernelCurveAndTheDemComparison) {
       std::filesystem::temp_directory_path() / ("blockdem_lab_cli_" + std::to_string(::getpid()));
   const CommandOutput run = run_cli(
       "lab compression --normal law=linear,stiffness=1e10 --max-stress 1e6 --steps 4 "
-      "--dem --no-plot --out " +
+      "--dem --no-figures --out " +
       out.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary = nlohmann::json::parse(run.out);

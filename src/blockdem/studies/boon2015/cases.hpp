@@ -1,4 +1,4 @@
-// The cases of Boon, Houlsby & Utili (2015), Tables 2 and 3 (DESIGN section 6), with what the
+// The cases of Boon, Houlsby & Utili (2015), Tables 2 and 3, with what the
 // paper reports for each, and the comparisons the reproduction report makes.
 #pragma once
 

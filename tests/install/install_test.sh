@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs blockdem into a temporary prefix, moves the prefix, and checks that the moved
+# installation works without the source tree: --version, a reproduction case (its case file and
+# scripts found relative to the executable), no source path in the program, and a CMake project
+# that uses the library through find_package(blockdem).
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1
+source=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+mv "$work/prefix" "$work/moved"
+bin="$work/moved/bin/blockdem"
+
+"$bin" --version | grep -q '^blockdem [0-9]' || { echo "install_test: --version failed"; exit 1; }
+if grep -q -a -F "$source" "$bin"; then
+  echo "install_test: the installed program contains the source path $source"; exit 1
+fi
+"$bin" reproduce boon2015 --case T2-1 --mode boon2012 --no-figures --quiet --out "$work/out"
+test -s "$work/out/report.md" || { echo "install_test: no report.md"; exit 1; }
+test -s "$work/out/T2-1/summary.json" || { echo "install_test: no summary.json"; exit 1; }
+
+# A project of a user's: the volume of a 2 x 3 x 4 m box through the installed library (24 m^3).
+cmake -S "$source/tests/install/consumer" -B "$work/consumer" \
+  -DCMAKE_PREFIX_PATH="$work/moved" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/consumer" >/dev/null
+volume=$("$work/consumer/consumer")
+[ "$volume" = "24" ] || { echo "install_test: consumer printed '$volume', expected 24"; exit 1; }
+echo "install_test: installed, moved, reproduced T2-1, find_package(blockdem) works"

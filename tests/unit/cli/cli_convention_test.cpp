@@ -1,0 +1,83 @@
+// One convention for every subcommand (README, "Exit codes"): a missing file, an unknown option
+// and a bad value are input errors: exit code 2, a message that starts with "blockdem:", and
+// nothing written into the output folder.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/cli_runner.hpp"
+
+namespace blockdem {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BadCommand {
+  const char* name;
+  std::string arguments;  // "OUT" stands for a fresh output folder
+};
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("blockdem_cli_convention_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string with_out(std::string arguments, const fs::path& out) {
+  const auto at = arguments.find("OUT");
+  if (at != std::string::npos) arguments.replace(at, 3, "'" + out.string() + "'");
+  return arguments;
+}
+
+class CliConvention : public ::testing::TestWithParam<BadCommand> {};
+
+TEST_P(CliConvention, InputErrorsExitTwoWithABlockdemMessageAndWriteNothing) {
+  const BadCommand& c = GetParam();
+  const fs::path out = fresh_folder(c.name);
+  const test::CommandOutput r = test::run_cli(with_out(c.arguments, out));
+  EXPECT_EQ(r.exit_code, 2) << c.arguments << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("blockdem:", 0), 0u) << "stderr: " << r.err;
+  EXPECT_FALSE(fs::exists(out)) << "an input error must write nothing: " << out;
+}
+
+const std::string kScenario = std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/examples/column.toml";
+
+INSTANTIATE_TEST_SUITE_P(
+    EverySubcommand, CliConvention,
+    ::testing::Values(
+        BadCommand{"run_missing_file", "run /no/such/file.toml --out OUT"},
+        BadCommand{"run_bad_option", "run '" + kScenario + "' --out OUT --no-such-option"},
+        BadCommand{"run_missing_out", "run '" + kScenario + "'"},
+        BadCommand{"reproduce_bad_option", "reproduce boon2015 --out OUT --no-such-option"},
+        BadCommand{"reproduce_bad_case", "reproduce boon2015 --case T9-9 --out OUT"},
+        BadCommand{"reproduce_bad_value", "reproduce boon2015 --mode sideways --out OUT"},
+        BadCommand{"reproduce_missing_folder",
+                   "reproduce boon2015 --scenarios /no/such/folder --out OUT"},
+        BadCommand{"analytic_bad_value",
+                   "analytic voussoir --span -1 --depth 0.046 --density 1207 --gravity 9.81 "
+                   "--modulus 4.6e8"},
+        BadCommand{"analytic_bad_option", "analytic voussoir --no-such-option"},
+        BadCommand{
+            "lab_bad_value",
+            "lab compression --normal 'law=linear,stiffness=-1' --max-closure 1e-4 --out OUT"},
+        BadCommand{"lab_bad_option", "lab compression --no-such-option --out OUT"},
+        BadCommand{"calibrate_missing_file",
+                   "calibrate normal --data /no/such/file.csv --modulus 5.6e9 --height 0.138 "
+                   "--joints 3 --out OUT"},
+        BadCommand{"calibrate_bad_option", "calibrate normal --no-such-option --out OUT"},
+        BadCommand{"no_subcommand_bad_option", "--no-such-option"}),
+    [](const ::testing::TestParamInfo<BadCommand>& p) { return std::string(p.param.name); });
+
+TEST(CliConvention, HelpAndVersionExitZero) {
+  const test::CommandOutput help = test::run_cli("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("reproduce"), std::string::npos);
+  const test::CommandOutput version = test::run_cli("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("blockdem ", 0), 0u) << version.out;
+}
+
+}  // namespace
+}  // namespace blockdem
