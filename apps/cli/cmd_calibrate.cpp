@@ -184,7 +184,7 @@ void register_shear(CLI::App* calibrate) {
                 << "  eq 6: u_peak = C sigma_n^D, C = " << g(cal.peak.coefficient)
                 << ", D = " << g(cal.peak.exponent) << " (R^2 of log = " << g(cal.peak.r_squared)
                 << ")\n  Mohr-Coulomb cap of the degrading law: friction_deg = "
-                << g(cal.law.friction_deg) << "\n";
+                << g(cal.law.strength.friction_deg()) << "\n";
       print_block(report);
       std::cout << "next: " << report["next_step"].get<std::string>() << "\n";
       if (!args->out.empty()) {
@@ -223,7 +223,7 @@ void register_cy(CLI::App* calibrate) {
                 << "  k_s,initial = A sigma_n^B held at A = " << g(stiffness->stiffness_coefficient)
                 << ", B = " << g(stiffness->stiffness_exponent) << "\n"
                 << "  eq 8: mu0 = tan(phi) = " << g(cal.friction_coefficient)
-                << ", friction_deg = " << g(cal.law.friction_deg) << "\n"
+                << ", friction_deg = " << g(cal.law.strength.friction_deg()) << "\n"
                 << "  eq 6: u_peak = C sigma_n^D, C = " << g(cal.law.power_laws.peak_coefficient)
                 << ", D = " << g(cal.law.power_laws.peak_exponent) << "\n"
                 << "  all rows, in tau / sigma_n: " << quality_line(cal.quality, "(-)") << "\n";

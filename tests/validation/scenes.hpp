@@ -12,7 +12,7 @@ inline World linear_world(double kn, double ks, double friction_deg, WorldSettin
   JointLaw law;
   law.name = "joint";
   law.normal = LinearNormal{kn};
-  law.shear = LinearShear{ks, friction_deg};
+  law.shear = LinearShear{ks, JointStrength::from_friction_deg(friction_deg)};
   w.add_joint_law(law);
   w.add_joint_rule(JointRule{"", "", 0});
   return w;

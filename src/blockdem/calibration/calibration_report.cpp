@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "blockdem/calibration/shear_path.hpp"
+#include "blockdem/contact/law_table.hpp"
 #include "blockdem/io/csv.hpp"
 
 namespace blockdem {
@@ -62,26 +63,21 @@ nlohmann::ordered_json data_json(const std::string& source,
   return out;
 }
 
-nlohmann::ordered_json power_laws_block_json(const std::string& law, const ShearPowerLaws& p,
-                                             double friction_deg) {
-  nlohmann::ordered_json inner;
-  inner["law"] = law;
-  inner["stiffness_coefficient"] = rounded(p.stiffness_coefficient);
-  inner["stiffness_exponent"] = rounded(p.stiffness_exponent);
-  inner["peak_coefficient"] = rounded(p.peak_coefficient);
-  inner["peak_exponent"] = rounded(p.peak_exponent);
-  inner["friction_deg"] = rounded(friction_deg);
-  return inner;
-}
-
-std::string power_laws_block_toml(const std::string& law, const ShearPowerLaws& p,
-                                  double friction_deg) {
-  return "shear = { law = \"" + law +
-         "\", stiffness_coefficient = " + law_number(p.stiffness_coefficient) +
-         ", stiffness_exponent = " + law_number(p.stiffness_exponent) +
-         ", peak_coefficient = " + law_number(p.peak_coefficient) +
-         ", peak_exponent = " + law_number(p.peak_exponent) +
-         ", friction_deg = " + law_number(friction_deg) + " }";
+// A law's table as a joint-law block: "<section> = { law = "<name>", key = value, ... }" and the
+// same keys in JSON (values rounded as in law_number). The keys come from the law's table.
+template <class Law>
+JointLawBlock law_block(const std::string& section, const Law& law) {
+  JointLawBlock block;
+  const std::string name(LawTraits<Law>::name);
+  block.json[section]["law"] = name;
+  block.toml = section + " = { law = \"" + name + "\"";
+  for (const LawValue& v : law_values(law)) {
+    const std::string key(v.key);
+    block.json[section][key] = rounded(v.value);
+    block.toml += ", " + key + " = " + law_number(v.value);
+  }
+  block.toml += " }";
+  return block;
 }
 
 nlohmann::ordered_json block_json(const JointLawBlock& block) {
@@ -113,28 +109,15 @@ std::string law_number(double value) {
 }
 
 JointLawBlock joint_law_block(const ExponentialNormal& law) {
-  JointLawBlock block;
-  block.json["normal"]["law"] = "exponential";
-  block.json["normal"]["a"] = rounded(law.a);
-  block.json["normal"]["b"] = rounded(law.b);
-  block.toml = "normal = { law = \"exponential\", a = " + law_number(law.a) +
-               ", b = " + law_number(law.b) + " }";
-  return block;
+  return law_block("normal", law);
 }
 
 JointLawBlock joint_law_block(const DegradingShear& law) {
-  JointLawBlock block;
-  block.json["shear"] = power_laws_block_json("degrading", law.power_laws, law.friction_deg);
-  block.toml = power_laws_block_toml("degrading", law.power_laws, law.friction_deg);
-  return block;
+  return law_block("shear", law);
 }
 
 JointLawBlock joint_law_block(const ContinuouslyYieldingShear& law) {
-  JointLawBlock block;
-  block.json["shear"] =
-      power_laws_block_json("continuously_yielding", law.power_laws, law.friction_deg);
-  block.toml = power_laws_block_toml("continuously_yielding", law.power_laws, law.friction_deg);
-  return block;
+  return law_block("shear", law);
 }
 
 nlohmann::ordered_json normal_report(const ColumnCompressionData& data,
@@ -205,7 +188,7 @@ nlohmann::ordered_json shear_report(const DirectShearData& data, const ShearCali
   out["curves"] = curves;
   out["initial_stiffness_eq7"] = power_law_json(cal.stiffness, "Pa_per_m");
   out["peak_displacement_eq6"] = power_law_json(cal.peak, "m");
-  out["friction_deg"] = cal.law.friction_deg;
+  out[std::string(kStrengthParams[0].key)] = cal.law.strength.friction_deg();
   out["joint_law"] = block_json(joint_law_block(cal.law));
   out["next_step"] = "blockdem calibrate cy --data " + data.source + " --stiffness-coefficient " +
                      law_number(cal.stiffness.coefficient) + " --stiffness-exponent " +
@@ -228,7 +211,7 @@ nlohmann::ordered_json cy_report(const DirectShearData& data, const CyCalibratio
       "(eqs 6, 8) fitted by Levenberg-Marquardt to all curves at once (residuals relative to "
       "the measured stress), started from single-curve fits; k_s,initial = A sigma_n^B held "
       "at the inputs";
-  out["friction_deg"] = cal.law.friction_deg;
+  out[std::string(kStrengthParams[0].key)] = cal.law.strength.friction_deg();
   out["friction_coefficient"] = cal.friction_coefficient;
   out["peak_coefficient"] = cal.law.power_laws.peak_coefficient;
   out["peak_exponent"] = cal.law.power_laws.peak_exponent;

@@ -25,12 +25,12 @@ struct JointLawBlock {
   std::string toml;             ///< e.g. normal = { law = "exponential", a = ..., b = ... }
 };
 
-/// normal = { law = "exponential", a = ..., b = ... }
+/// normal = { law = "exponential", a = ..., b = ... }: the keys of the law's table (law_table.hpp).
 JointLawBlock joint_law_block(const ExponentialNormal& law);
-/// shear = { law = "degrading", stiffness_coefficient = ..., stiffness_exponent = ...,
-///           peak_coefficient = ..., peak_exponent = ..., friction_deg = ... }
+/// shear = { law = "degrading", ... }: the law's keys, then its strength keys (optional ones
+/// only when they differ from their defaults).
 JointLawBlock joint_law_block(const DegradingShear& law);
-/// shear = { law = "continuously_yielding", ... the same keys ... }
+/// shear = { law = "continuously_yielding", ... }, as for the degrading law.
 JointLawBlock joint_law_block(const ContinuouslyYieldingShear& law);
 
 /// The JSON reports (calibration.json): the data file and its comments, the inputs, the method,

@@ -28,7 +28,7 @@ ContinuouslyYieldingShear make_law(const CyStiffnessDef& stiffness, double mu0,
   law.power_laws.stiffness_exponent = stiffness.stiffness_exponent;
   law.power_laws.peak_coefficient = peak_coefficient;
   law.power_laws.peak_exponent = peak_exponent;
-  law.friction_deg = rad_to_deg(std::atan(mu0));
+  law.strength.friction_coefficient = mu0;
   return law;
 }
 

@@ -37,7 +37,7 @@ struct CyCurveFit {
 /// Result of calibrate_continuously_yielding.
 struct CyCalibration {
   CyStiffnessDef stiffness;           ///< the fixed k_s,initial law
-  ContinuouslyYieldingShear law;      ///< fitted: friction_deg, peak_coefficient, peak_exponent
+  ContinuouslyYieldingShear law;      ///< fitted: tan(phi), peak_coefficient, peak_exponent
   double friction_coefficient = 0.0;  ///< mu0 = tan(friction_deg) (-)
   double reference_stress = 0.0;      ///< sigma_ref, geometric mean of the normal stresses (Pa)
   double reference_peak = 0.0;        ///< u_peak at sigma_ref (m)

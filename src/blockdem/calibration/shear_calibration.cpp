@@ -181,7 +181,7 @@ ShearCalibration calibrate_shear(const DirectShearData& data) {
     ratio = std::max(ratio, 0.5 * laws.initial_stiffness(s) * laws.peak_displacement(s) / s);
   }
   cal.law.power_laws = laws;
-  cal.law.friction_deg = rad_to_deg(std::atan(ratio));
+  cal.law.strength.friction_coefficient = ratio;
   try {
     cal.law.validate();
   } catch (const std::invalid_argument& e) {

@@ -3,7 +3,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
+
+#include "blockdem/contact/law_param.hpp"
 
 namespace blockdem {
 
@@ -22,6 +25,12 @@ std::string format_value(double value) {
 void check_known_params(std::string_view kind, std::string_view law,
                         const std::map<std::string, double>& params,
                         std::initializer_list<std::string_view> known) {
+  check_known_params(kind, law, params, std::vector<std::string_view>(known));
+}
+
+void check_known_params(std::string_view kind, std::string_view law,
+                        const std::map<std::string, double>& params,
+                        const std::vector<std::string_view>& known) {
   for (const auto& [name, value] : params) {
     bool found = false;
     for (const auto k : known) found = found || (k == name);
@@ -31,6 +40,38 @@ void check_known_params(std::string_view kind, std::string_view law,
     throw std::invalid_argument(law_error_prefix(kind, law) + "unknown parameter '" + name +
                                 "' (known: " + list + ")");
   }
+}
+
+void check_range(std::string_view kind, std::string_view law, std::string_view key,
+                 std::string_view unit, ParamRange range, double value) {
+  bool ok = false;
+  std::string requirement;
+  switch (range) {
+    case ParamRange::positive:
+      ok = std::isfinite(value) && value > 0.0;
+      requirement = "a finite positive number (" + std::string(unit) + ")";
+      break;
+    case ParamRange::non_negative:
+      ok = std::isfinite(value) && value >= 0.0;
+      requirement = "a finite non-negative number (" + std::string(unit) + ")";
+      break;
+    case ParamRange::friction_angle:
+      ok = std::isfinite(value) && value > 0.0 && value < 90.0;
+      requirement = "an angle strictly between 0 and 90 degrees";
+      break;
+  }
+  if (!ok) {
+    throw std::invalid_argument(law_error_prefix(kind, law) + "parameter '" + std::string(key) +
+                                "' must be " + requirement + ", got " + format_value(value));
+  }
+}
+
+double friction_from_deg(double friction_deg) {
+  return std::tan(friction_deg * std::numbers::pi / 180.0);
+}
+
+double friction_deg_from(double friction_coefficient) {
+  return std::atan(friction_coefficient) * 180.0 / std::numbers::pi;
 }
 
 double param_or(const std::map<std::string, double>& params, const std::string& name,

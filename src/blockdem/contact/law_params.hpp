@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace blockdem {
 
@@ -20,6 +21,14 @@ std::string format_value(double value);
 void check_known_params(std::string_view kind, std::string_view law,
                         const std::map<std::string, double>& params,
                         std::initializer_list<std::string_view> known);
+void check_known_params(std::string_view kind, std::string_view law,
+                        const std::map<std::string, double>& params,
+                        const std::vector<std::string_view>& known);
+
+/// tan(phi) from phi in degrees: the one conversion of a friction angle at the input edge (-).
+double friction_from_deg(double friction_deg);
+/// phi in degrees from tan(phi), for reports and error messages (degrees).
+double friction_deg_from(double friction_coefficient);
 
 /// params[name] if present, else `fallback` (the struct default the documentation announces).
 double param_or(const std::map<std::string, double>& params, const std::string& name,

@@ -5,7 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "blockdem/contact/law_params.hpp"
+#include "blockdem/contact/law_table.hpp"
+#include "blockdem/contact/overloaded.hpp"
 
 namespace blockdem {
 namespace {
@@ -34,24 +35,17 @@ double exp_remainder(int n, double x) {
   return std::exp(x) - poly;
 }
 
-void require_positive(std::string_view law, std::string_view name, double value,
-                      std::string_view unit) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw std::invalid_argument(law_error_prefix("normal", law) + "parameter '" +
-                                std::string(name) + "' must be a finite positive number (" +
-                                std::string(unit) + "), got " + format_value(value));
-  }
-}
-
 }  // namespace
 
 void LinearNormal::validate() const {
-  require_positive("linear", "stiffness", stiffness, "Pa/m");
+  validate_law(*this);
 }
 
 ExponentialNormal ExponentialNormal::from_tangent(double k0, double c) {
-  require_positive("exponential", "k0", k0, "Pa/m");
-  require_positive("exponential", "c", c, "1/m");
+  // The tangent-stiffness form (eq 1): k0 and c, alternative keys of the exponential law.
+  constexpr std::string_view law = LawTraits<ExponentialNormal>::name;
+  check_range("normal", law, "k0", "Pa/m", ParamRange::positive, k0);
+  check_range("normal", law, "c", "1/m", ParamRange::positive, c);
   return ExponentialNormal{k0 / c, c};
 }
 
@@ -64,8 +58,7 @@ ExponentialNormal ExponentialNormal::eq4() {
 }
 
 void ExponentialNormal::validate() const {
-  require_positive("exponential", "a", a, "Pa");
-  require_positive("exponential", "b", b, "1/m");
+  validate_law(*this);
 }
 
 void validate(const NormalLaw& law) {
@@ -73,71 +66,80 @@ void validate(const NormalLaw& law) {
 }
 
 std::string law_name(const NormalLaw& law) {
-  return std::holds_alternative<LinearNormal>(law) ? "linear" : "exponential";
+  return std::visit(
+      [](const auto& l) { return std::string(LawTraits<std::decay_t<decltype(l)>>::name); }, law);
 }
 
 std::string describe(const NormalLaw& law) {
-  std::ostringstream out;
-  out.precision(6);
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) {
-    out << "linear normal law sigma_n = k_n u_n, k_n = " << lin->stiffness << " Pa/m";
-  } else {
-    const auto& e = std::get<ExponentialNormal>(law);
-    out << "exponential normal law sigma_n = a [exp(b u_n) - 1] (Boon et al. 2015 eqs 3-4), a = "
-        << e.a << " Pa, b = " << e.b << " 1/m, k_n = " << e.initial_stiffness() << " + " << e.b
-        << " sigma_n Pa/m";
-  }
-  return out.str();
+  return std::visit([](const auto& l) { return describe_law(l); }, law);
 }
 
 double normal_stress(const NormalLaw& law, double closure) {
   if (closure <= 0.0) return 0.0;
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) return lin->stiffness * closure;
-  const auto& e = std::get<ExponentialNormal>(law);
-  return e.a * std::expm1(e.b * closure);
+  return std::visit(
+      Overloaded{
+          [closure](const LinearNormal& l) { return l.stiffness * closure; },
+          [closure](const ExponentialNormal& e) { return e.a * std::expm1(e.b * closure); },
+      },
+      law);
 }
 
 double normal_tangent_stiffness(const NormalLaw& law, double closure) {
   if (std::isnan(closure)) return closure;
   if (closure < 0.0) return 0.0;
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) return lin->stiffness;
-  const auto& e = std::get<ExponentialNormal>(law);
-  return e.a * e.b * std::exp(e.b * closure);
+  return std::visit(
+      Overloaded{
+          [](const LinearNormal& l) { return l.stiffness; },
+          [closure](const ExponentialNormal& e) { return e.a * e.b * std::exp(e.b * closure); },
+      },
+      law);
 }
 
 double normal_stress_integral(const NormalLaw& law, double closure) {
   if (closure <= 0.0) return 0.0;
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) {
-    return 0.5 * lin->stiffness * closure * closure;
-  }
-  const auto& e = std::get<ExponentialNormal>(law);
-  return e.a / e.b * exp_remainder(2, e.b * closure);
+  return std::visit(
+      Overloaded{
+          [closure](const LinearNormal& l) { return 0.5 * l.stiffness * closure * closure; },
+          [closure](const ExponentialNormal& e) {
+            return e.a / e.b * exp_remainder(2, e.b * closure);
+          },
+      },
+      law);
 }
 
 double normal_stress_second_integral(const NormalLaw& law, double closure) {
   if (closure <= 0.0) return 0.0;
-  if (const auto* lin = std::get_if<LinearNormal>(&law)) {
-    return lin->stiffness * closure * closure * closure / 6.0;
+  return std::visit(Overloaded{
+                        [closure](const LinearNormal& l) {
+                          return l.stiffness * closure * closure * closure / 6.0;
+                        },
+                        [closure](const ExponentialNormal& e) {
+                          return e.a / (e.b * e.b) * exp_remainder(3, e.b * closure);
+                        },
+                    },
+                    law);
+}
+
+double bonded_normal_stress(const NormalLaw& law, const JointStrength& strength, ShearState& state,
+                            double closure) {
+  if (closure > 0.0 || std::isnan(closure)) return normal_stress(law, closure);
+  if (!strength.can_break() || state.bond != BondState::intact) return 0.0;
+  // Tension branch: the zero-closure stiffness k_n(0) carried to negative closure.
+  const double stress = normal_tangent_stiffness(law, 0.0) * closure;
+  if (strength.tension_limit_reached(stress)) {
+    state.bond = BondState::broken_in_tension;
+    return 0.0;
   }
-  const auto& e = std::get<ExponentialNormal>(law);
-  return e.a / (e.b * e.b) * exp_remainder(3, e.b * closure);
+  return stress;
 }
 
 NormalLaw normal_law_from_params(std::string_view law, const std::map<std::string, double>& params,
                                  std::string_view preset) {
-  if (law == "linear") {
-    if (!preset.empty()) {
-      throw std::invalid_argument(law_error_prefix("normal", law) + "has no presets, got preset '" +
-                                  std::string(preset) + "'");
-    }
-    check_known_params("normal", law, params, {"stiffness"});
-    LinearNormal lin;
-    lin.stiffness = param_or(params, "stiffness", lin.stiffness);
-    lin.validate();
-    return lin;
-  }
-  if (law == "exponential") {
-    check_known_params("normal", law, params, {"a", "b", "k0", "c"});
+  if (law == LawTraits<ExponentialNormal>::name) {
+    // Besides its table's keys (a, b), the exponential law takes eq 1's k0 and c, or a preset.
+    std::vector<std::string_view> keys = law_keys<ExponentialNormal>();
+    keys.insert(keys.end(), {"k0", "c"});
+    check_known_params("normal", law, params, keys);
     if (!preset.empty()) {
       if (!params.empty()) {
         throw std::invalid_argument(
@@ -155,20 +157,18 @@ NormalLaw normal_law_from_params(std::string_view law, const std::map<std::strin
       throw std::invalid_argument(law_error_prefix("normal", law) +
                                   "give either (a, b) or (k0, c), not both");
     }
-    if (has_ab) {
-      require_pair("normal", law, params, "a", "b");
-      ExponentialNormal e{params.at("a"), params.at("b")};
-      e.validate();
-      return e;
-    }
+    if (has_ab) require_pair("normal", law, params, "a", "b");
     if (has_k0c) {
       require_pair("normal", law, params, "k0", "c");
       return ExponentialNormal::from_tangent(params.at("k0"), params.at("c"));
     }
-    return ExponentialNormal{};
+    return law_from_params<ExponentialNormal>(params);
   }
-  throw std::invalid_argument("unknown normal law '" + std::string(law) +
-                              "' (known: linear, exponential)");
+  if (!preset.empty() && law == LawTraits<LinearNormal>::name) {
+    throw std::invalid_argument(law_error_prefix("normal", law) + "has no presets, got preset '" +
+                                std::string(preset) + "'");
+  }
+  return variant_from_params<NormalLaw>("normal", law, params);
 }
 
 }  // namespace blockdem

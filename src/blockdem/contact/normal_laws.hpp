@@ -7,6 +7,9 @@
 #include <string_view>
 #include <variant>
 
+#include "blockdem/contact/joint_strength.hpp"
+#include "blockdem/contact/shear_state.hpp"
+
 namespace blockdem {
 
 /// Linear normal law sigma_n = k_n u_n for u_n > 0, zero otherwise (the paper's Table 2).
@@ -74,6 +77,14 @@ double normal_stress_integral(const NormalLaw& law, double closure);
 /// integrate_normal_stress_over_polygon (normal_integral.hpp), which avoids the cancellation these
 /// differences suffer when u1 - u0 is small.
 double normal_stress_second_integral(const NormalLaw& law, double closure);
+
+/// Normal stress of a joint that may be bonded (Pa, compression positive): normal_stress for
+/// closure > 0. For closure <= 0 an intact joint that can break (JointStrength::can_break) carries
+/// tension with the zero-closure stiffness, sigma_n = k_n(0) u_n (the linear tension branch of the
+/// Coulomb slip model with tension cut-off), until sigma_n <= -sigma_t: then it breaks for good
+/// (state.bond = broken_in_tension) and, like every open joint, returns 0.
+double bonded_normal_stress(const NormalLaw& law, const JointStrength& strength, ShearState& state,
+                            double closure);
 
 /// Builds a normal law from a scenario table's named parameters (all values SI):
 ///   "linear":      stiffness (Pa/m)

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "blockdem/contact/joint_strength.hpp"
+
 namespace blockdem {
 
 /// Conventions. A contact joins a first body A and a second body B; the unit normal n points from A
@@ -20,6 +22,11 @@ struct ShearState {
   /// beta: accumulated magnitude of plastic slip, sum |du_p| (eqs 11-12) (m). The friction of the
   /// continuously-yielding law hardens with it; the other laws accumulate it for reporting.
   double plastic_slip = 0.0;
+  /// Whether the joint's bond (cohesion, tensile strength) still holds; once broken it stays
+  /// broken and the joint has the residual strength. Stays intact for a joint that cannot break.
+  BondState bond = BondState::intact;
+
+  bool broken() const { return bond != BondState::intact; }  ///< a limit has been reached
 };
 
 /// What the world measured at a contact during one time step.
@@ -40,6 +47,7 @@ struct ShearResult {
   double plastic_multiplier = 0.0;  ///< Lambda of eqs 13-15, continuously-yielding law (m/N)
   double slip_increment = 0.0;      ///< |du_p|, plastic slip in this step (m)
   double plastic_work = 0.0;        ///< energy dissipated by slip in this step, -F . du_p (J)
+  bool broke = false;               ///< the bond broke in this step (see ShearState::bond)
 };
 
 /// Rotates `force` (a vector in the plane normal to old_normal) by the smallest rotation that takes

@@ -3,7 +3,6 @@
 // continuously-yielding law of Boon, Houlsby & Utili 2015, Appendix eqs 9-16).
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "blockdem/contact/law_params.hpp"
@@ -28,8 +27,9 @@ void require_finite(const char* name, double value) {
   }
 }
 
-double tan_deg(double degrees) {
-  return std::tan(degrees * std::numbers::pi / 180.0);
+/// The Mohr-Coulomb cap c A_c + F_n tan(phi) of a closed step (N).
+double mohr_coulomb_cap(const CurrentStrength& strength, const ClosedStep& step) {
+  return strength.cohesion * step.area + step.normal_force * strength.friction_coefficient;
 }
 
 /// Mohr-Coulomb radial return: the trial force F_t (N) is scaled back onto |F| = cap (N) if it
@@ -53,17 +53,19 @@ ShearResult cap_mohr_coulomb(ShearState& state, const Eigen::Vector3d& trial, do
   return result;
 }
 
-ShearResult update(const LinearShear& law, ShearState& state, const ClosedStep& step) {
+ShearResult update(const LinearShear& law, ShearState& state, const ClosedStep& step,
+                   const CurrentStrength& strength) {
   const double stiffness = law.stiffness * step.area;
   return cap_mohr_coulomb(state, state.force - stiffness * step.du, stiffness,
-                          step.normal_force * tan_deg(law.friction_deg));
+                          mohr_coulomb_cap(strength, step));
 }
 
-ShearResult update(const StressLinearShear& law, ShearState& state, const ClosedStep& step) {
+ShearResult update(const StressLinearShear& law, ShearState& state, const ClosedStep& step,
+                   const CurrentStrength& strength) {
   // Eq 2 at the step's normal stress.
   const double stiffness = law.stiffness(step.normal_stress) * step.area;
   return cap_mohr_coulomb(state, state.force - stiffness * step.du, stiffness,
-                          step.normal_force * tan_deg(law.friction_deg));
+                          mohr_coulomb_cap(strength, step));
 }
 
 /// U scaled back onto the ball |U| <= radius.
@@ -98,14 +100,15 @@ double mean_degradation_factor(const Eigen::Vector3d& u0, const Eigen::Vector3d&
   return (t_out - t_in) * factor(0.5 * (t_in + t_out));
 }
 
-ShearResult update(const DegradingShear& law, ShearState& state, const ClosedStep& step) {
+ShearResult update(const DegradingShear& law, ShearState& state, const ClosedStep& step,
+                   const CurrentStrength& strength) {
   const double peak = law.power_laws.peak_displacement(step.normal_stress);
   const double initial = law.power_laws.initial_stiffness(step.normal_stress) * step.area;
   const Eigen::Vector3d u0 = state.elastic_displacement;
   // Eq 5 integrated along the step: dF = -k_s,initial A_c (1 - |U_e|/u_peak)_+ dU_e.
   const double stiffness = initial * mean_degradation_factor(u0, step.du, peak);
   const Eigen::Vector3d trial = state.force - stiffness * step.du;
-  const double cap = step.normal_force * tan_deg(law.friction_deg);
+  const double cap = mohr_coulomb_cap(strength, step);
 
   ShearResult result;
   result.stiffness = stiffness;
@@ -140,8 +143,11 @@ ShearResult update(const DegradingShear& law, ShearState& state, const ClosedSte
 /// beta is the current step's (implicit, backward Euler); for monotonic loading in a fixed
 /// direction at constant F_n and area this reproduces the exact solution u = beta + mu(beta) F_n /
 /// k at any step size.
-ShearResult update(const ContinuouslyYieldingShear& law, ShearState& state,
-                   const ClosedStep& step) {
+/// With cohesion c the yield surface is |F| <= c A_c + mu(beta) F_n and g(s) gains -c A_c: the
+/// bracket and the uniqueness argument are unchanged. mu0 is the current tan(phi) (peak or
+/// residual).
+ShearResult update(const ContinuouslyYieldingShear& law, ShearState& state, const ClosedStep& step,
+                   const CurrentStrength& strength) {
   const double peak = law.power_laws.peak_displacement(step.normal_stress);
   const double stiffness = law.power_laws.initial_stiffness(step.normal_stress) * step.area;
   const Eigen::Vector3d trial = state.force - stiffness * step.du;
@@ -150,15 +156,19 @@ ShearResult update(const ContinuouslyYieldingShear& law, ShearState& state,
 
   ShearResult result;
   result.stiffness = stiffness;
-  const double residual_elastic =
-      trial_magnitude - law.friction_coefficient(beta0, peak) * step.normal_force;
+  const double cohesion_force = strength.cohesion * step.area;
+  // Eq 8 with mu0 = the current tan(phi), expm1 for small beta.
+  const auto mu = [&](double beta) {
+    return -strength.friction_coefficient * std::expm1(-beta / peak);
+  };
+  const double residual_elastic = trial_magnitude - cohesion_force - mu(beta0) * step.normal_force;
   if (residual_elastic <= 0.0) {
     state.force = trial;
     return result;
   }
   const auto residual = [&](double s) {
     const double beta = beta0 + (trial_magnitude - s) / stiffness;
-    return s - law.friction_coefficient(beta, peak) * step.normal_force;
+    return s - cohesion_force - mu(beta) * step.normal_force;
   };
   const double s = find_root_bracketed(residual, 0.0, trial_magnitude, residual(0.0),
                                        residual_elastic, 1e-12, 0.0);
@@ -186,7 +196,19 @@ ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncr
   require_finite("normal_stress", increment.normal_stress);
   require_finite("contact_area", increment.contact_area);
 
-  if (!(increment.normal_force > 0.0 && increment.normal_stress > 0.0)) {
+  const JointStrength& strength = strength_of(law);
+  const bool bonded = strength.can_break() && state.bond == BondState::intact;
+  ShearResult broke;
+  broke.broke = true;
+  if (bonded && strength.tension_limit_reached(increment.normal_stress)) {
+    // Tension cut-off: the bond breaks and the joint opens.
+    state.bond = BondState::broken_in_tension;
+    state.force.setZero();
+    state.elastic_displacement.setZero();
+    return broke;
+  }
+  const bool closed = increment.normal_force > 0.0 && increment.normal_stress > 0.0;
+  if (!closed && !bonded) {
     // Open joint: no normal force, hence no friction and no stored shear force.
     state.force.setZero();
     state.elastic_displacement.setZero();
@@ -194,13 +216,44 @@ ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncr
   }
   if (!(increment.contact_area > 0.0)) {
     throw std::invalid_argument(
-        "update_shear: increment.contact_area must be positive on a closed joint (F_n = " +
+        "update_shear: increment.contact_area must be positive on a closed or bonded joint (F_n "
+        "= " +
         format_value(increment.normal_force) + " N), got " + format_value(increment.contact_area));
   }
   const Eigen::Vector3d du = increment.displacement - increment.displacement.dot(n) * n;
+  if (!closed) {
+    // Intact bond in tension: the stiffness at zero normal stress, and the cap c A_c + F_n tan(phi)
+    // (F_n <= 0). Beyond it the bond breaks in shear and, broken in tension, the joint opens.
+    ShearResult result;
+    result.stiffness = shear_stiffness_estimate(law, 0.0) * increment.contact_area;
+    const Eigen::Vector3d trial = state.force - result.stiffness * du;
+    const double cap = strength.cohesion * increment.contact_area +
+                       increment.normal_force * strength.friction_coefficient;
+    if (trial.norm() <= cap) {
+      state.force = trial;
+      return result;
+    }
+    state.bond = BondState::broken_in_shear;
+    state.force.setZero();
+    state.elastic_displacement.setZero();
+    return broke;
+  }
   const ClosedStep step{du, increment.normal_force, increment.normal_stress,
                         increment.contact_area};
-  return std::visit([&](const auto& l) { return update(l, state, step); }, law);
+  const auto run = [&](const CurrentStrength& current) {
+    return std::visit([&](const auto& l) { return update(l, state, step, current); }, law);
+  };
+  if (!bonded) return run(current_strength(strength, state.bond));
+  // Intact bond: a step that leaves the intact yield surface breaks it, and is taken again from
+  // the same start with the residual strength.
+  const ShearState start = state;
+  const ShearResult intact = run(current_strength(strength, BondState::intact));
+  if (!intact.sliding) return intact;
+  state = start;
+  state.bond = BondState::broken_in_shear;
+  ShearResult result = run(current_strength(strength, state.bond));
+  result.broke = true;
+  return result;
 }
 
 }  // namespace blockdem

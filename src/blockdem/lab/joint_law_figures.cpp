@@ -79,7 +79,7 @@ std::vector<std::filesystem::path> write_joint_law_figure_data(const std::filesy
                          "peak_displacement_m"});
     const DegradingShear law;
     DegradingShear uncapped;
-    uncapped.friction_deg = 89.9;
+    uncapped.strength = JointStrength::from_friction_deg(89.9);
     double max_peak = 0.0;
     for (double s : def.shear_normal_stresses) {
       max_peak = std::max(max_peak, law.power_laws.peak_displacement(s));

@@ -115,7 +115,7 @@ TEST(CliCalibrate, ShearAndCyPrintShearLawsAScenarioAccepts) {
       parse_toml_law(line_after(cy.out, "joint law (TOML): "), "shear");
   EXPECT_EQ(cy_name, "continuously_yielding");
   const auto c = std::get<ContinuouslyYieldingShear>(shear_law_from_params(cy_name, cy_params));
-  EXPECT_LT(relative_error(c.friction_deg, 40.0), 1e-6);
+  EXPECT_LT(relative_error(c.strength.friction_deg(), 40.0), 1e-6);
   EXPECT_LT(relative_error(c.power_laws.peak_coefficient, 2e-6), 1e-6);
   EXPECT_EQ(c.power_laws.stiffness_exponent, 0.7);
 }

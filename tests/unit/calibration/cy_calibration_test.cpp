@@ -48,7 +48,7 @@ TEST(SimulateMonotonicShear, KernelMatchesTheClosedFormAtAnyStepSize) {
 
 TEST(CyCalibration, RecoversFrictionAndEq6ExactlyFromKernelCurves) {
   ContinuouslyYieldingShear law;
-  law.friction_deg = 35.0;
+  law.strength = JointStrength::from_friction_deg(35.0);
   law.power_laws.peak_coefficient = 3e-6;
   law.power_laws.peak_exponent = 0.15;
   DirectShearData data;
@@ -64,7 +64,7 @@ TEST(CyCalibration, RecoversFrictionAndEq6ExactlyFromKernelCurves) {
     data.curves.push_back(c);
   }
   const CyCalibration cal = calibrate_continuously_yielding(data, CyStiffnessDef{1.9e6, 0.7});
-  EXPECT_LT(relative_error(cal.law.friction_deg, 35.0), 1e-8);
+  EXPECT_LT(relative_error(cal.law.strength.friction_deg(), 35.0), 1e-8);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_coefficient, 3e-6), 1e-7);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_exponent, 0.15), 1e-8);
   EXPECT_EQ(cal.law.power_laws.stiffness_coefficient, 1.9e6);
@@ -77,7 +77,7 @@ TEST(CyCalibration, RecoversTheScriptsNoiseFreeDataTo1e6) {
   const DirectShearData data =
       read_direct_shear(test::synthetic_data("shear --model cy", "cy_exact.csv"));
   const CyCalibration cal = calibrate_continuously_yielding(data, CyStiffnessDef{1.9e6, 0.7});
-  EXPECT_LT(relative_error(cal.law.friction_deg, 40.0), 1e-6);
+  EXPECT_LT(relative_error(cal.law.strength.friction_deg(), 40.0), 1e-6);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_coefficient, 2e-6), 1e-6);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_exponent, 0.213), 1e-6);
 }
@@ -90,7 +90,7 @@ TEST(CyCalibration, RecoversParametersWithin5PercentFrom2PercentNoiseAndRoundTri
   const DirectShearData noisy =
       read_direct_shear(test::synthetic_data(design + " --noise 0.02 --seed 3", "cy_noisy.csv"));
   const CyCalibration cal = calibrate_continuously_yielding(noisy, CyStiffnessDef{1.9e6, 0.7});
-  EXPECT_LT(relative_error(cal.law.friction_deg, 40.0), 0.05);
+  EXPECT_LT(relative_error(cal.law.strength.friction_deg(), 40.0), 0.05);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_coefficient, 2e-6), 0.05);
   EXPECT_LT(relative_error(cal.law.power_laws.peak_exponent, 0.213), 0.05);
 

@@ -70,7 +70,7 @@ TEST(ShearCalibration, RecoversEqs6And7ExactlyFromClosedFormCurves) {
   EXPECT_GT(cal.stiffness.r_squared, 1.0 - 1e-12);
   // The cap: tan(phi) = max over the stresses of A C sigma^(B+D-1) / 2, at the lowest stress
   // since B + D < 1: 1.9 * 5000^-0.087 = 0.9049..., phi = 42.14 deg.
-  EXPECT_NEAR(std::tan(cal.law.friction_deg * M_PI / 180.0),
+  EXPECT_NEAR(std::tan(cal.law.strength.friction_deg() * M_PI / 180.0),
               0.5 * 1.9e6 * 2e-6 * std::pow(5e3, 0.7 + 0.213 - 1.0), 1e-12);
 }
 

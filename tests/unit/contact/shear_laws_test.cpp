@@ -32,7 +32,7 @@ ShearIncrement step_along(const Eigen::Vector3d& du, double stress = kStress, do
 }
 
 TEST(LinearShear, ElasticUntilTheCapThenSlidesAtExactlyFnTanPhi) {
-  const LinearShear law{1e9, 40.0};
+  const LinearShear law{1e9, JointStrength::from_friction_deg(40.0)};
   const double stiffness = law.stiffness * kArea;  // N/m
   const double cap = kStress * kArea * kTan40;     // N
   const double du = 1e-6;
@@ -65,7 +65,7 @@ TEST(LinearShear, ElasticUntilTheCapThenSlidesAtExactlyFnTanPhi) {
 }
 
 TEST(LinearShear, ReversalUnloadsElasticallyAndSlidesBackAtTheCap) {
-  const LinearShear law{1e9, 30.0};
+  const LinearShear law{1e9, JointStrength::from_friction_deg(30.0)};
   const double stiffness = law.stiffness * kArea;
   const double cap = kStress * kArea * std::tan(30.0 * std::numbers::pi / 180.0);
   ShearState state;
@@ -168,7 +168,8 @@ TEST(DegradingShear, MohrCoulombCapAtLowNormalStress) {
 }
 
 TEST(ShearLaws, StiffnessEstimates) {
-  EXPECT_EQ(shear_stiffness_estimate(LinearShear{2e9, 40.0}, 1e6), 2e9);
+  EXPECT_EQ(shear_stiffness_estimate(LinearShear{2e9, JointStrength::from_friction_deg(40.0)}, 1e6),
+            2e9);
   const ContinuouslyYieldingShear cy;
   EXPECT_DOUBLE_EQ(shear_stiffness_estimate(cy, 1e6), 1.9e6 * std::pow(1e6, 0.7));
   EXPECT_EQ(shear_stiffness_estimate(cy, 0.0), 0.0);
@@ -208,29 +209,37 @@ void expect_rejected(const ShearLaw& law, const std::string& name, const std::st
 }
 
 TEST(ShearLaws, ValidationNamesLawAndParameter) {
-  expect_rejected(LinearShear{-1e9, 40.0}, "linear", "stiffness");
+  expect_rejected(LinearShear{-1e9, JointStrength::from_friction_deg(40.0)}, "linear", "stiffness");
   for (const double angle : {0.0, 90.0, -10.0, 120.0, std::nan("")}) {
-    expect_rejected(LinearShear{1e9, angle}, "linear", "friction_deg");
-    expect_rejected(ContinuouslyYieldingShear{{}, angle}, "continuously_yielding", "friction_deg");
+    expect_rejected(LinearShear{1e9, JointStrength::from_friction_deg(angle)}, "linear",
+                    "friction_deg");
+    expect_rejected(ContinuouslyYieldingShear{{}, JointStrength::from_friction_deg(angle)},
+                    "continuously_yielding", "friction_deg");
   }
-  expect_rejected(StressLinearShear{-1.0, 9.7e4, 40.0}, "stress_linear", "k0");
-  expect_rejected(StressLinearShear{1e8, -9.7e4, 40.0}, "stress_linear", "c");
+  expect_rejected(StressLinearShear{-1.0, 9.7e4, JointStrength::from_friction_deg(40.0)},
+                  "stress_linear", "k0");
+  expect_rejected(StressLinearShear{1e8, -9.7e4, JointStrength::from_friction_deg(40.0)},
+                  "stress_linear", "c");
   ShearPowerLaws p;
   p.peak_coefficient = 0.0;  // u_peak = 0
-  expect_rejected(DegradingShear{p, 40.0}, "degrading", "peak_coefficient");
-  expect_rejected(ContinuouslyYieldingShear{p, 40.0}, "continuously_yielding", "peak_coefficient");
+  expect_rejected(DegradingShear{p, JointStrength::from_friction_deg(40.0)}, "degrading",
+                  "peak_coefficient");
+  expect_rejected(ContinuouslyYieldingShear{p, JointStrength::from_friction_deg(40.0)},
+                  "continuously_yielding", "peak_coefficient");
   p = ShearPowerLaws{};
   p.stiffness_coefficient = -1.9e6;
-  expect_rejected(ContinuouslyYieldingShear{p, 40.0}, "continuously_yielding",
-                  "stiffness_coefficient");
+  expect_rejected(ContinuouslyYieldingShear{p, JointStrength::from_friction_deg(40.0)},
+                  "continuously_yielding", "stiffness_coefficient");
   p = ShearPowerLaws{};
   p.stiffness_exponent = std::nan("");
-  expect_rejected(DegradingShear{p, 40.0}, "degrading", "stiffness_exponent");
+  expect_rejected(DegradingShear{p, JointStrength::from_friction_deg(40.0)}, "degrading",
+                  "stiffness_exponent");
   p = ShearPowerLaws{};
   p.peak_exponent = -0.2;
-  expect_rejected(DegradingShear{p, 40.0}, "degrading", "peak_exponent");
-  for (const ShearLaw law : {ShearLaw{LinearShear{}}, ShearLaw{StressLinearShear{}},
-                             ShearLaw{DegradingShear{}}, ShearLaw{ContinuouslyYieldingShear{}}}) {
+  expect_rejected(DegradingShear{p, JointStrength::from_friction_deg(40.0)}, "degrading",
+                  "peak_exponent");
+  for (const ShearLaw& law : {ShearLaw{LinearShear{}}, ShearLaw{StressLinearShear{}},
+                              ShearLaw{DegradingShear{}}, ShearLaw{ContinuouslyYieldingShear{}}}) {
     EXPECT_NO_THROW(validate(law)) << law_name(law);
   }
 }
@@ -238,7 +247,7 @@ TEST(ShearLaws, ValidationNamesLawAndParameter) {
 TEST(ShearLaws, FactoryReadsNamedParameters) {
   const auto cy = std::get<ContinuouslyYieldingShear>(
       shear_law_from_params("continuously_yielding", {{"friction_deg", 35.0}}));
-  EXPECT_EQ(cy.friction_deg, 35.0);
+  EXPECT_EQ(cy.strength.friction_coefficient, std::tan(35.0 * std::numbers::pi / 180.0));
   EXPECT_EQ(cy.power_laws.stiffness_coefficient, 1.9e6);
   EXPECT_EQ(cy.power_laws.stiffness_exponent, 0.7);
   EXPECT_EQ(cy.power_laws.peak_coefficient, 2e-6);
@@ -252,7 +261,7 @@ TEST(ShearLaws, FactoryReadsNamedParameters) {
   EXPECT_EQ(sl.c, 9.7e4);
   const auto lin = std::get<LinearShear>(shear_law_from_params("linear", {{"stiffness", 2e9}}));
   EXPECT_EQ(lin.stiffness, 2e9);
-  EXPECT_EQ(lin.friction_deg, 40.0);
+  EXPECT_EQ(lin.strength.friction_coefficient, std::tan(40.0 * std::numbers::pi / 180.0));
   for (const std::string name : {"linear", "stress_linear", "degrading", "continuously_yielding"}) {
     EXPECT_EQ(law_name(shear_law_from_params(name, {})), name);
     EXPECT_FALSE(describe(shear_law_from_params(name, {})).empty());

@@ -75,8 +75,8 @@ TEST(ShearObjectivity, RotatingTheJointRotatesTheForce) {
   const Eigen::Vector3d in_plane_axis = Eigen::Vector3d(1.0, 0.5, 0.0).normalized();
   const double angle = 0.8;  // rad
   const Eigen::Matrix3d rotation = Eigen::AngleAxisd(angle, in_plane_axis).toRotationMatrix();
-  for (const ShearLaw law : {ShearLaw{LinearShear{}}, ShearLaw{StressLinearShear{}},
-                             ShearLaw{DegradingShear{}}, ShearLaw{ContinuouslyYieldingShear{}}}) {
+  for (const ShearLaw& law : {ShearLaw{LinearShear{}}, ShearLaw{StressLinearShear{}},
+                              ShearLaw{DegradingShear{}}, ShearLaw{ContinuouslyYieldingShear{}}}) {
     const ShearState fixed = run_rotating(law, in_plane_axis, 0.0, 200);
     const ShearState turned = run_rotating(law, in_plane_axis, angle, 200);
     ASSERT_GT(fixed.force.norm(), 0.0) << law_name(law);

@@ -102,7 +102,8 @@ INSTANTIATE_TEST_SUITE_P(
     ShearLaws, DemShear,
     ::testing::Combine(
         ::testing::Values(
-            ShearCase{"linear", LinearShear{1e9, 40.0}, 0.5e6, 1e-3, 0},
+            ShearCase{"linear", LinearShear{1e9, JointStrength::from_friction_deg(40.0)}, 0.5e6,
+                      1e-3, 0},
             ShearCase{"stress_linear", StressLinearShear{}, 0.5e6, 1e-3, 0},
             ShearCase{"continuously_yielding", ContinuouslyYieldingShear{}, 20e3, 1e-4, 0},
             ShearCase{"continuously_yielding_cyclic", ContinuouslyYieldingShear{}, 20e3, 1e-4, 1}),

@@ -45,7 +45,8 @@ TEST(LawSpec, ParsesNamesAndNumbersIntoTheFactoriesLaws) {
 
   const ShearLaw cy = shear_law_from_spec("law=continuously_yielding,friction_deg=35");
   ASSERT_TRUE(std::holds_alternative<ContinuouslyYieldingShear>(cy));
-  EXPECT_EQ(std::get<ContinuouslyYieldingShear>(cy).friction_deg, 35.0);
+  EXPECT_EQ(std::get<ContinuouslyYieldingShear>(cy).strength.friction_coefficient,
+            std::tan(35.0 * std::numbers::pi / 180.0));
   EXPECT_EQ(std::get<ContinuouslyYieldingShear>(cy).power_laws.stiffness_exponent, 0.7);
 }
 
@@ -158,7 +159,7 @@ TEST(CompressionKernel, ValidateNamesTheParameter) {
 
 TEST(ShearKernel, LinearLawFollowsKUThenSlidesAtSigmaTanPhi) {
   ShearTestDef def;
-  def.law = LinearShear{1e9, 40.0};
+  def.law = LinearShear{1e9, JointStrength::from_friction_deg(40.0)};
   def.normal_stress = 0.5e6;
   def.max_displacement = 1e-3;
   def.steps = 500;
@@ -223,7 +224,7 @@ TEST(ShearKernel, DegradingStiffnessFallsLinearlyToZeroAtUPeak) {
 
 TEST(ShearKernel, CyclicPathReturnsToZeroAndReYieldsOnTheOppositeSide) {
   ShearTestDef def;
-  def.law = LinearShear{1e9, 40.0};
+  def.law = LinearShear{1e9, JointStrength::from_friction_deg(40.0)};
   def.normal_stress = 1e5;
   def.max_displacement = 1e-3;
   def.steps = 100;

@@ -2,9 +2,11 @@
 // non-zero and writes nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "blockdem/run/scene_builders.hpp"
@@ -61,6 +63,21 @@ TEST(ScenarioErrors, GoodScenarioBuilds) {
   EXPECT_NO_THROW(build_world(sc));
 }
 
+// The strength keys of a shear table reach the law: tan(phi), c, sigma_t and tan(phi_r).
+TEST(ScenarioErrors, StrengthKeysReachTheJointLaw) {
+  const Scenario sc =
+      parse_scenario(replace(kGood, "friction_deg = 30",
+                             "friction_deg = 30, cohesion = 2e5, tensile_strength = 1e5, "
+                             "residual_friction_deg = 25"),
+                     "case.toml");
+  const JointStrength& s = strength_of(sc.joint_laws.at(0).shear);
+  EXPECT_EQ(s.friction_coefficient, std::tan(30.0 * std::numbers::pi / 180.0));
+  EXPECT_EQ(s.cohesion, 2e5);
+  EXPECT_EQ(s.tensile_strength, 1e5);
+  EXPECT_EQ(s.residual_friction(), std::tan(25.0 * std::numbers::pi / 180.0));
+  EXPECT_NO_THROW(build_world(sc));
+}
+
 struct BadCase {
   const char* name;
   std::string text;
@@ -104,6 +121,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "blocks[1].motion", "must be one of"},
         BadCase{"bad_friction", replace(kGood, "friction_deg = 30", "friction_deg = 95"),
                 "joint_laws[1].shear.law", "friction"},
+        BadCase{"negative_cohesion",
+                replace(kGood, "friction_deg = 30", "friction_deg = 30, cohesion = -1e5"),
+                "joint_laws[1].shear.law", "'cohesion'"},
+        BadCase{
+            "residual_above_peak",
+            replace(kGood, "friction_deg = 30", "friction_deg = 30, residual_friction_deg = 35"),
+            "joint_laws[1].shear.law", "'residual_friction_deg'"},
         BadCase{"negative_stiffness", replace(kGood, "stiffness = 1e10", "stiffness = -1e10"),
                 "joint_laws[1].normal.law", "stiffness"},
         BadCase{"unknown_material",
