@@ -144,31 +144,31 @@ void wide_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d&
 /// (1/A) int lambda_j f(g) dA = 2 G[y_j, y_j, y_k, y_l] with G''' = f (Hermite-Genocchi).
 void compressed_triangle_moments(const NormalLaw& law, const Eigen::Vector3d& y, double& mean,
                                  Eigen::Vector3d& weights) {
-  std::visit(
-      Overloaded{
-          [&](const LinearNormal& lin) {
-            // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA =
-            // (1 + delta_ij) / 12.
-            const double sum = y.sum();
-            mean = lin.stiffness * sum / 3.0;
-            for (int j = 0; j < 3; ++j) weights[j] = lin.stiffness * (sum + y[j]) / 12.0;
-          },
-          [&](const ExponentialNormal& e) {
-            // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry the
-            // law. Close nodes: one series; nodes spread more than 1: the three exponentials.
-            const Eigen::Vector3d x = e.b * y;
-            double r3 = 0.0;
-            Eigen::Vector3d r4;
-            if (x.maxCoeff() - x.minCoeff() <= 1.0) {
-              close_node_remainders(x, r3, r4);
-            } else {
-              wide_node_remainders(x, r3, r4);
-            }
-            mean = 2.0 * e.a * r3;
-            weights = 2.0 * e.a * r4;
-          },
-      },
-      law);
+  std::visit(Overloaded{
+                 [&](const LinearNormal& lin) {
+                   // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA =
+                   // (1 + delta_ij) / 12.
+                   const double sum = y.sum();
+                   mean = lin.stiffness * sum / 3.0;
+                   for (int j = 0; j < 3; ++j) weights[j] = lin.stiffness * (sum + y[j]) / 12.0;
+                 },
+                 [&](const ExponentialNormal& e) {
+                   // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry
+                   // the law. Close nodes: one series; nodes spread more than 1: the three
+                   // exponentials.
+                   const Eigen::Vector3d x = e.b * y;
+                   double r3 = 0.0;
+                   Eigen::Vector3d r4;
+                   if (x.maxCoeff() - x.minCoeff() <= 1.0) {
+                     close_node_remainders(x, r3, r4);
+                   } else {
+                     wide_node_remainders(x, r3, r4);
+                   }
+                   mean = 2.0 * e.a * r3;
+                   weights = 2.0 * e.a * r4;
+                 },
+             },
+             law);
 }
 
 void require_finite(const char* what, double value) {

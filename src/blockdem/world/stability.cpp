@@ -19,24 +19,17 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-// tan(phi) / F as an angle in degrees.
-double reduced_friction_deg(double friction_deg, double factor) {
-  return rad_to_deg(std::atan(std::tan(deg_to_rad(friction_deg)) / factor));
-}
-
 }  // namespace
 
 JointLaw divide_strength(const JointLaw& law, double factor) {
-  if (!(factor > 0.0) || !std::isfinite(factor))
-    throw std::invalid_argument("strength reduction factor must be positive");
   JointLaw out = law;
-  std::visit([&](auto& s) { s.friction_deg = reduced_friction_deg(s.friction_deg, factor); },
-             out.shear);
+  out.shear = with_reduced_strength(law.shear, factor);
   return out;
 }
 
 bool has_strength(const JointLaw& law) {
-  return std::visit([](const auto& s) { return s.friction_deg > 0.0; }, law.shear);
+  const JointStrength& s = strength_of(law.shear);
+  return s.friction_coefficient > 0.0 || s.cohesion > 0.0 || s.tensile_strength > 0.0;
 }
 
 StabilityTrial run_trial(World& world, Stage stage, double parameter) {

@@ -56,9 +56,11 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
                                    double tolerance, const TrialFn& done = {});
 
-/// The law with its strengths divided by `factor`: tan(phi) / F for every friction angle.
+/// The law with its strengths divided by `factor` (with_reduced_strength: tan(phi)/F, c/F,
+/// sigma_t/F and the residual tan(phi_r)/F; stiffnesses unchanged).
 JointLaw divide_strength(const JointLaw& law, double factor);
-/// True when the law has a strength that strength reduction can divide (a friction angle).
+/// True when the law has a strength that strength reduction can divide (friction, cohesion or
+/// tensile strength).
 bool has_strength(const JointLaw& law);
 
 }  // namespace blockdem
