@@ -1,4 +1,5 @@
-// Boon et al. (2012) narrow phase: steps 1-5 of DESIGN section 2.
+// Boon et al. (2012) narrow phase: LP overlap, analytic centre, rounded normal, chord overlap,
+// slice area.
 #include "blockdem/collision/boon2012.hpp"
 
 #include <algorithm>

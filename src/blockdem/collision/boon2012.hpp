@@ -53,7 +53,7 @@ ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
                                            const Boon2012Settings& settings,
                                            Boon2012Cache* cache = nullptr);
 
-/// Rounded normal of one block at x (DESIGN section 2 step 3): the gradient of
+/// Rounded normal of one block at x: the gradient of
 /// f(x) = Σ_i <n_i·x - (d_i - r_round)>², i.e. 2 Σ_i <n_i·x - d_i + r_round> n_i; when x lies
 /// deeper than r_round behind every face, the gradient the nearest face would give on its own
 /// plane, 2 r_round n_nearest (the same scale as a gradient at the surface).

@@ -7,7 +7,7 @@
 
 namespace blockdem {
 
-/// Contact geometry of blocks A and B (DESIGN section 2). The normal points from A to B.
+/// Contact geometry of blocks A and B. The normal points from A to B.
 struct ContactGeometry {
   bool touching = false;                              ///< the LP found r* > tolerance
   Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< contact point x_c (m)

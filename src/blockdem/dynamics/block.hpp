@@ -18,7 +18,7 @@ enum class Motion {
   servo,       ///< translates along an axis at a speed set by a force controller (see Servo)
 };
 
-/// A servo-controlled boundary block (DESIGN section 5): its speed along `axis` is
+/// A servo-controlled boundary block: its speed along `axis` is
 /// v = gain (F_target - F_reaction), clipped to ±max_speed, where F_reaction is the component
 /// along -axis of the contact force the block receives (how hard it pushes forward).
 struct Servo {

@@ -1,4 +1,4 @@
-// Leapfrog for translation and rotation (DESIGN section 5).
+// Leapfrog for translation and rotation.
 #include "blockdem/dynamics/integrator.hpp"
 
 #include <cmath>

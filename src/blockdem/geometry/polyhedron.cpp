@@ -1,5 +1,5 @@
 // Convex polyhedron construction: vertex enumeration from planes, face ordering, hull of points,
-// and exact mass properties by signed tetrahedra (DESIGN section 1).
+// and exact mass properties by signed tetrahedra.
 #include "blockdem/geometry/polyhedron.hpp"
 
 #include <Eigen/Dense>

@@ -19,7 +19,7 @@ struct Face {
 
 /// A bounded convex polyhedron {x : n_i · x <= d_i}. Construction derives vertices and faces,
 /// drops redundant planes and computes mass properties for unit density exactly (signed
-/// tetrahedra from an interior point; DESIGN section 1). Throws GeometryError on a bad shape.
+/// tetrahedra from an interior point). Throws GeometryError on a bad shape.
 class Polyhedron {
  public:
   /// From planes (unit outward normals; redundant planes are dropped).

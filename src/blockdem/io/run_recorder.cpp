@@ -1,4 +1,4 @@
-// Run outputs (DESIGN section 9): CSV columns carry their unit in the name.
+// Run outputs: CSV columns carry their unit in the name.
 #include "blockdem/io/run_recorder.hpp"
 
 #include <Eigen/Geometry>

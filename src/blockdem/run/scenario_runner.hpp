@@ -1,4 +1,4 @@
-// Runs a scenario's stages and writes every output of a run into one folder (DESIGN section 9);
+// Runs a scenario's stages and writes every output of a run into one folder;
 // shared by `blockdem run` and `blockdem reproduce`.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Quasi-static stage runner (DESIGN section 5): step until the unbalanced-force ratio and the
+// Quasi-static stage runner: step until the unbalanced-force ratio and the
 // kinetic energy ratio fall below tolerances, or report the stage as not converged.
 #include "blockdem/world/stage.hpp"
 

@@ -22,7 +22,7 @@ namespace blockdem {
 /// How contacts are detected and turned into forces.
 enum class ContactMode {
   boon2012,  ///< point contact of Boon et al. (2012): analytic centre, slice area (the paper)
-  face_integrated,  ///< the joint law integrated over the contact (DESIGN section 3)
+  face_integrated,  ///< the joint law integrated over the contact (beyond the paper)
 };
 
 /// "boon2012" or "face_integrated".

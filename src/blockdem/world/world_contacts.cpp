@@ -1,7 +1,7 @@
 // The contact passes of a step over dense, sorted arrays: candidate pairs from the broad phase,
 // a sorted merge that keeps each pair's history, the per-pair work in parallel (each pair writes
 // only its own slot), and the loads scattered onto blocks in (a, b) order, so that results are
-// bit-identical for any number of threads. Force assembly of DESIGN sections 2-4.
+// bit-identical for any number of threads. Force assembly: normal force, then shear.
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -141,8 +141,8 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const JointLaw& law = laws_[ct.law];
   const Eigen::Vector3d& n = ct.geometry.normal;
 
-  // Normal force: σ_n(δ) A_c at x_c (DESIGN section 2 step 6), or the law integrated over
-  // the contact, acting at the centre of pressure (section 3).
+  // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
+  // contact, acting at the centre of pressure (mode face_integrated).
   ct.integrated = false;
   if (settings_.contact_mode == ContactMode::face_integrated) {
     const FaceContactGeometry fc = face_contact_geometry(
@@ -191,7 +191,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const Eigen::Vector3d& xf = ct.force_point;
 
   // Shear: carry the stored force into the new tangent plane, then add the increment from the
-  // relative velocity of the material points at x_c over the step (DESIGN section 4).
+  // relative velocity of the material points at x_c over the step.
   if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
   const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
   ShearIncrement inc;
