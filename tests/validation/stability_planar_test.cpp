@@ -1,6 +1,7 @@
 // Strength reduction against Hoek & Bray's planar sliding (Rock Slope Engineering, 3rd ed.,
 // ch. 7): a block on a plane dipping psi with friction phi and no cohesion has
-// F = W cos(psi) tan(phi) / (W sin(psi)) = tan(phi) / tan(psi). The incline is modelled by tilting
+// F = W cos(psi) tan(phi) / (W sin(psi)) = tan(phi) / tan(psi), and with cohesion c on the contact
+// area A, F = (c A + W cos(psi) tan(phi)) / (W sin(psi)). The incline is modelled by tilting
 // gravity over a flat base. Tolerance 2% (the bisection's bracket is 0.01 in F).
 #include <gtest/gtest.h>
 
@@ -56,6 +57,25 @@ INSTANTIATE_TEST_SUITE_P(HoekBray, PlanarSliding,
                            return "psi" + std::to_string(static_cast<int>(p.param.psi_deg)) +
                                   "_phi" + std::to_string(static_cast<int>(p.param.phi_deg));
                          });
+
+// With cohesion: psi = 35 degrees is steeper than phi = 30 degrees, so the block stands only by
+// its cohesion; strength reduction divides c and tan(phi) together.
+TEST(PlanarSlidingWithCohesion, FactorOfSafetyMatchesHoekBray) {
+  const double psi = deg_to_rad(35.0), phi = deg_to_rad(30.0);
+  const double b = 0.1, width = 0.1, h = 0.02, density = 2500.0, cohesion = 200.0;
+  const double weight = density * 9.81 * b * width * h;  // (N)
+  const double area = b * width;                         // (m^2)
+  const double expected =
+      (cohesion * area + weight * std::cos(psi) * std::tan(phi)) / (weight * std::sin(psi));
+  const RunResult r =
+      test::run_text(test::incline_scenario(35.0, 30.0, b, h, kStrengthReduction, 0.0, cohesion),
+                     "stab_planar_cohesion");
+  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_TRUE(r.factor_of_safety.has_value());
+  EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
+  std::printf("psi 35 phi 30 c %.0f Pa: F = %.4f (closed form %.4f)\n", cohesion,
+              *r.factor_of_safety, expected);
+}
 
 }  // namespace
 }  // namespace blockdem

@@ -15,7 +15,8 @@ namespace blockdem::test {
 /// A box `b` (along the dip) × 0.1 × `h` m on a 1 m base; gravity g (sin psi, 0, -cos psi);
 /// joint friction phi; `stages` appended as TOML.
 inline std::string incline_scenario(double psi_deg, double phi_deg, double b, double h,
-                                    const std::string& stages, double time_step = 0.0) {
+                                    const std::string& stages, double time_step = 0.0,
+                                    double cohesion = 0.0) {
   const double psi = psi_deg * 3.14159265358979323846 / 180.0;
   std::ostringstream s;
   s.precision(12);
@@ -24,7 +25,8 @@ inline std::string incline_scenario(double psi_deg, double phi_deg, double b, do
     << (time_step > 0.0 ? "time_step = " + std::to_string(time_step) + "\n" : std::string())
     << "[[materials]]\nname = \"rock\"\ndensity = 2500.0\n"
     << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
-    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = " << phi_deg << " }\n"
+    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = " << phi_deg
+    << (cohesion > 0.0 ? ", cohesion = " + std::to_string(cohesion) : std::string()) << " }\n"
     << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nsize = [1.0, 0.3, 0.05]\n"
     << "position = [0.0, 0.0, -0.025]\nmotion = \"fixed\"\n"
     << "[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [" << b << ", 0.1, " << h
