@@ -68,11 +68,13 @@ TEST_P(CohesiveInclineTest, HoldsBelowLimitEquilibriumAndSlidesAbove) {
   if (ratio < 1.0) {
     ASSERT_EQ(w.contact_count(), 1u);
     EXPECT_EQ(w.contacts().front()->shear.bond, BondState::intact);
+    EXPECT_EQ(w.broken_bond_count(), 0);
     EXPECT_LT(std::abs(block.position.x()), 2.0 * elastic);
     EXPECT_LT(block.velocity.norm(), 1e-4);
   } else {
     ASSERT_EQ(w.contact_count(), 1u);
     EXPECT_EQ(w.contacts().front()->shear.bond, BondState::broken_in_shear);
+    EXPECT_EQ(w.broken_bond_count(), 1) << "one bond, broken once, counted once";
     EXPECT_GT(block.position.x(), 100.0 * elastic);
     EXPECT_GT(block.velocity.x(), 0.0);
   }

@@ -213,6 +213,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["time_s"] = world.time();
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
+  summary["broken_bonds"] = world.broken_bond_count();
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.

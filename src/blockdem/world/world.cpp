@@ -314,6 +314,7 @@ void World::save_checkpoint() {
   }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
+  checkpoint_.broken_bonds = broken_bonds_;
   checkpoint_.valid = true;
 }
 
@@ -353,6 +354,7 @@ void World::restore_checkpoint() {
   overlap_violation_ = -1;
   time_ = checkpoint_.time;
   step_count_ = checkpoint_.step_count;
+  broken_bonds_ = checkpoint_.broken_bonds;
 }
 
 }  // namespace blockdem

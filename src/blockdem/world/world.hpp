@@ -134,6 +134,10 @@ class World {
 
   EquilibriumMeasures equilibrium() const;
 
+  /// Bonds (cohesion, tensile strength) broken since the world was built, counted in the step
+  /// they break (a bond that breaks and then separates still counts).
+  std::int64_t broken_bond_count() const { return broken_bonds_; }
+
   /// Saves / restores the block states and contact histories (the "last good state"). The
   /// snapshot is compact: block states and, per contact, its pair and shear history; a restore
   /// re-derives the contacts' geometry and normal forces at the restored pose.
@@ -146,6 +150,7 @@ class World {
   struct PairSlot {
     Contact contact;
     int group_law = -1;      ///< the group rules' law for the pair (-1: none)
+    bool broke = false;      ///< the pair's bond broke in this step
     double stiffness = 0.0;  ///< k_n A + k_s A of this step, for the time step (N/m)
     bool active = false;
   };
@@ -169,6 +174,7 @@ class World {
   int slots_rules_version_ = 0;  ///< rules_version_ when the slots' laws were looked up
   std::vector<PairSlot> slots_;  ///< candidate pairs, sorted by (a, b)
   std::size_t active_count_ = 0;
+  std::int64_t broken_bonds_ = 0;        ///< see broken_bond_count()
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
@@ -200,6 +206,7 @@ class World {
     std::vector<ContactHistory> contacts;
     double time = 0.0;
     std::int64_t step_count = 0;
+    std::int64_t broken_bonds = 0;
     bool valid = false;
   } checkpoint_;
 };

@@ -115,6 +115,7 @@ void World::evaluate_pairs(double dt, bool advance_shear, int threads) {
 void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   Contact& ct = slot.contact;
   slot.active = false;
+  slot.broke = false;
   slot.stiffness = 0.0;
   const std::vector<int>& face_laws_a = face_laws(ct.a);
   const std::vector<int>& face_laws_b = face_laws(ct.b);
@@ -203,6 +204,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   inc.normal = n;
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
+  slot.broke = sr.broke;
   ct.previous_normal = n;
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).
@@ -220,6 +222,7 @@ void World::scatter_loads() {
     const PairSlot& s = slots_[slot];
     if (!s.active) continue;
     ++active_count_;
+    if (s.broke) ++broken_bonds_;
     const Contact& ct = s.contact;
     Block& a = blocks_[ct.a];
     Block& b = blocks_[ct.b];
