@@ -51,7 +51,7 @@ bool servos_settled(const World& world) {
 }
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
-                      std::optional<MotionMonitor>* monitor) {
+                      std::optional<MotionMonitor>* monitor, const StepHook& after_step) {
   stage.validate();
   const Eigen::Vector3d gravity_before = world.settings().gravity;
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
@@ -107,6 +107,11 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
         progress(stage, k, world.equilibrium());
         last_report = now;
       }
+    }
+    if (after_step && !after_step(k)) {
+      r.stopped = true;
+      r.message = "stopped by the step hook after " + std::to_string(k) + " steps";
+      break;
     }
     if (stage.kind == Stage::Kind::steps && k >= stage.steps) {
       r.converged = true;

@@ -82,16 +82,22 @@ struct StageResult {
   std::string message;     ///< why the stage did not converge, empty otherwise
   bool mechanism = false;  ///< stopped because a mechanism formed (Kind::equilibrium)
   MotionReport motion;     ///< the motion monitor's last observation
+  bool stopped = false;    ///< ended early because the step hook asked to stop
 };
 
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
+/// Called after every step of a stage with the steps taken so far; returning false ends the
+/// stage there (StageResult::stopped). Scripts use it to record, change loads or stop.
+using StepHook = std::function<bool(std::int64_t)>;
 
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
 /// `monitor`, when given, is created at the stage start and observed at every check, so that
-/// after a DivergenceError it still holds the last observation before the blow-up.
+/// after a DivergenceError it still holds the last observation before the blow-up. `after_step`,
+/// when given, runs after every step, before the convergence checks.
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
-                      std::optional<MotionMonitor>* monitor = nullptr);
+                      std::optional<MotionMonitor>* monitor = nullptr,
+                      const StepHook& after_step = {});
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);
