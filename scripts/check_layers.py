@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Checks the library's layering: a file under src/blockdem/<folder>/ may include only from its
 own folder or from folders on lower floors, and only apps/ may start other programs (Python).
+The Python bindings (python/src/) sit on top, like apps/: they may include any folder and start
+no program.
 Standard library only. Exit 0 when clean, 1 with one line per violation."""
 import pathlib
 import re
@@ -43,6 +45,17 @@ def main() -> int:
                     problems.append(
                         f"{rel}:{number}: {folder}/ (floor {FLOORS[folder]}) includes "
                         f"{target}/ (floor {FLOORS[target]}): only lower floors may be included")
+            if LAUNCH.search(line) and not line.lstrip().startswith("//"):
+                problems.append(f"{rel}:{number}: starts a program; only apps/ may do that")
+    # The Python bindings: on top of every floor; they start no program.
+    for path in sorted((root / "python" / "src").rglob("*")):
+        if path.suffix not in (".hpp", ".cpp"):
+            continue
+        rel = path.relative_to(root)
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            m = INCLUDE.match(line)
+            if m and m.group(1) not in FLOORS:
+                problems.append(f"{rel}:{number}: includes unknown folder '{m.group(1)}'")
             if LAUNCH.search(line) and not line.lstrip().startswith("//"):
                 problems.append(f"{rel}:{number}: starts a program; only apps/ may do that")
     for p in problems:

@@ -2,7 +2,7 @@
 # Installs blockdem into a temporary prefix, moves the prefix, and checks that the moved
 # installation works without the source tree: --version, a reproduction case (its case file and
 # scripts found relative to the executable), no source path in the program, and a CMake project
-# that uses the library through find_package(blockdem).
+# that uses the library through find_package(blockdem); the Python module imports from it.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1
@@ -32,4 +32,16 @@ cmake -S "$source/tests/install/consumer" -B "$work/consumer" \
 cmake --build "$work/consumer" >/dev/null
 volume=$("$work/consumer/consumer")
 [ "$volume" = "24" ] || { echo "install_test: consumer printed '$volume', expected 24"; exit 1; }
-echo "install_test: installed, moved, reproduced T2-1, find_package(blockdem) works"
+# The Python module, when built: imported from the moved prefix by the interpreter it was built
+# for, it checks a scenario file of the moved prefix (three blocks in the example column).
+python_note=""
+if [ -d "$work/moved/lib/python3/dist-packages/blockdem" ]; then
+  python=$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+  blocks=$(cd "$work" && PYTHONPATH="$work/moved/lib/python3/dist-packages" "$python" -c "
+import blockdem, sys
+assert blockdem.__file__.startswith('$work/moved/'), blockdem.__file__
+print(len(blockdem.load('$work/moved/share/blockdem/scenarios/examples/column.toml').block_names))")
+  [ "$blocks" = "4" ] || { echo "install_test: python import printed '$blocks', expected 4"; exit 1; }
+  python_note=", the Python module imports from the moved prefix"
+fi
+echo "install_test: installed, moved, reproduced T2-1, find_package(blockdem) works$python_note"

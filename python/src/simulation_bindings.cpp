@@ -1,0 +1,211 @@
+// blockdem.Simulation: a world built from a scenario, run stage by stage or step by step, with a
+// Python callback every N steps that can record, change loads and stop the run.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "bindings.hpp"
+#include "blockdem/world/stability.hpp"
+#include "blockdem/world/stage.hpp"
+#include "simulation.hpp"
+
+namespace py = pybind11;
+
+namespace blockdem::python {
+namespace {
+
+/// The stage hook that calls `callback(sim, steps)` every `every` steps with the GIL held; a
+/// return value of False stops.
+StepHook make_hook(const py::object& self, const py::object& callback, std::int64_t every) {
+  if (callback.is_none()) return {};
+  if (every <= 0) throw py::value_error("every: must be > 0 (steps between callbacks)");
+  return [self, callback, every](std::int64_t k) {
+    if (k % every != 0) return true;
+    py::gil_scoped_acquire hold;
+    const py::object r = callback(self, k);
+    return r.ptr() != Py_False;
+  };
+}
+
+py::dict stage_dict(const StageResult& r) {
+  py::dict d;
+  d["name"] = r.name;
+  d["converged"] = r.converged;
+  d["stopped"] = r.stopped;
+  d["mechanism"] = r.mechanism;
+  d["steps"] = r.steps;
+  d["time"] = r.time;
+  d["message"] = r.message;
+  d["unbalanced_force_ratio"] = r.measures.unbalanced_force_ratio;
+  d["kinetic_energy_ratio"] = r.measures.kinetic_energy_ratio;
+  return d;
+}
+
+/// A strength-reduction stage: the factor of safety, the world left as it was (as the runner).
+py::dict reduce_strength(Simulation& sim, const Stage& stage) {
+  const World& w = sim.world;
+  std::vector<int> laws;
+  for (int i = 0; i < static_cast<int>(w.joint_laws().size()); ++i) {
+    const auto& names = stage.strength.laws;
+    if (names.empty() ||
+        std::find(names.begin(), names.end(), w.joint_laws()[i].name) != names.end())
+      laws.push_back(i);
+  }
+  StabilitySearch sr;
+  {
+    py::gil_scoped_release free;
+    sr = strength_reduction(w, stage, laws, stage.strength.lower, stage.strength.upper,
+                            stage.strength.tolerance);
+  }
+  py::dict d;
+  d["name"] = stage.name;
+  d["converged"] = true;
+  d["factor_of_safety"] = 0.5 * (sr.last_stable + sr.first_failed);
+  d["last_stable"] = sr.last_stable;
+  d["first_failed"] = sr.first_failed;
+  std::int64_t steps = 0;
+  for (const auto& t : sr.trials) steps += t.steps;
+  d["steps"] = steps;
+  return d;
+}
+
+}  // namespace
+
+int block_index(const World& world, const py::handle& block) {
+  if (py::isinstance<py::str>(block)) {
+    const std::string name = block.cast<std::string>();
+    const int i = world.find_block(name);
+    if (i < 0) throw py::key_error("no block named '" + name + "'");
+    return i;
+  }
+  const auto i = block.cast<std::int64_t>();
+  if (i < 0 || i >= static_cast<std::int64_t>(world.blocks().size()))
+    throw py::index_error("block index " + std::to_string(i) + " out of range");
+  return static_cast<int>(i);
+}
+
+void bind_simulation(py::module_& m) {
+  py::class_<Simulation> cls(m, "Simulation",
+                             "A world built from a Scenario (the same build as `blockdem run`).");
+  cls.def(py::init([](std::shared_ptr<Scenario> sc) {
+            return std::make_unique<Simulation>(std::make_shared<Scenario>(*sc));
+          }),
+          py::arg("scenario"),
+          "Builds the world (a copy of the scenario: later changes to it do not reach it). "
+          "Raises ScenarioError for deep initial overlaps or an absurd time step.")
+      .def_property_readonly("scenario", [](const Simulation& s) { return s.scenario; })
+      .def_property_readonly(
+          "next_stage", [](const Simulation& s) { return s.next_stage; },
+          "index of the stage run_stage() runs when given none")
+      .def_property_readonly("stage_count",
+                             [](const Simulation& s) { return s.scenario->stages.size(); })
+      .def(
+          "run_stage",
+          [](py::object self, std::optional<int> index, py::object callback, std::int64_t every) {
+            Simulation& s = self.cast<Simulation&>();
+            const int n = static_cast<int>(s.scenario->stages.size());
+            const int i = index.value_or(s.next_stage);
+            if (i < 0 || i >= n)
+              throw py::index_error("stage " + std::to_string(i) + " out of range (" +
+                                    std::to_string(n) + " stages)");
+            const Stage& stage = s.scenario->stages[i];
+            s.next_stage = i + 1;
+            if (stage.kind == Stage::Kind::strength_reduction) return reduce_strength(s, stage);
+            const StepHook hook = make_hook(self, callback, every);
+            StageResult r;
+            {
+              py::gil_scoped_release free;
+              r = run_stage(s.world, stage, {}, nullptr, hook);
+            }
+            return stage_dict(r);
+          },
+          py::arg("index") = py::none(), py::arg("callback") = py::none(), py::arg("every") = 100,
+          "Runs stage `index` (default: the next one) as `blockdem run` does; callback(sim, "
+          "steps) every `every` steps, returning False stops the stage. Returns a dict (name, "
+          "converged, stopped, mechanism, steps, time, message, unbalanced_force_ratio, "
+          "kinetic_energy_ratio); a strength_reduction stage returns factor_of_safety, "
+          "last_stable, first_failed and leaves the world unchanged.")
+      .def(
+          "step",
+          [](py::object self, std::int64_t n, py::object callback, std::int64_t every) {
+            Simulation& s = self.cast<Simulation&>();
+            if (n < 0) throw py::value_error("n: must be >= 0");
+            const StepHook hook = make_hook(self, callback, every);
+            std::int64_t k = 0;
+            py::gil_scoped_release free;
+            while (k < n) {
+              s.world.step();
+              ++k;
+              if (hook && !hook(k)) break;
+            }
+            return k;
+          },
+          py::arg("n") = 1, py::arg("callback") = py::none(), py::arg("every") = 100,
+          "Advances n time steps with the current loads; callback(sim, steps) every `every` "
+          "steps, returning False stops. Returns the steps taken.")
+      .def_property_readonly(
+          "time", [](const Simulation& s) { return s.world.time(); }, "simulated time (s)")
+      .def_property_readonly("step_count", [](const Simulation& s) { return s.world.step_count(); })
+      .def_property_readonly(
+          "time_step", [](const Simulation& s) { return s.world.last_time_step(); },
+          "the last step's time step (s)")
+      .def_property_readonly("contact_count",
+                             [](const Simulation& s) { return s.world.contact_count(); })
+      .def_property_readonly("broken_bonds",
+                             [](const Simulation& s) { return s.world.broken_bond_count(); })
+      .def_property(
+          "gravity",
+          [](const Simulation& s) -> Eigen::Vector3d { return s.world.settings().gravity; },
+          [](Simulation& s, const Eigen::Vector3d& g) { s.world.settings().gravity = g; },
+          "gravity (m/s^2); a stage with a gravity ramp overwrites it at every step of the ramp")
+      .def_property(
+          "damping", [](const Simulation& s) { return s.world.settings().damping; },
+          [](Simulation& s, double a) {
+            if (!(a >= 0.0 && a < 1.0)) throw py::value_error("damping: must be in [0, 1)");
+            s.world.settings().damping = a;
+          },
+          "Cundall local damping coefficient (-)")
+      .def(
+          "equilibrium",
+          [](const Simulation& s) {
+            const EquilibriumMeasures e = s.world.equilibrium();
+            py::dict d;
+            d["unbalanced_force_ratio"] = e.unbalanced_force_ratio;
+            d["kinetic_energy"] = e.kinetic_energy;
+            d["kinetic_energy_ratio"] = e.kinetic_energy_ratio;
+            d["mean_contact_force"] = e.mean_contact_force;
+            return d;
+          },
+          "unbalanced_force_ratio (-), kinetic_energy (J), kinetic_energy_ratio (-), "
+          "mean_contact_force (N)")
+      .def(
+          "block_index",
+          [](const Simulation& s, const py::handle& block) { return block_index(s.world, block); },
+          py::arg("block"))
+      .def(
+          "set_external_force",
+          [](Simulation& s, const py::handle& block, const Eigen::Vector3d& f) {
+            s.world.blocks()[block_index(s.world, block)].external_force = f;
+          },
+          py::arg("block"), py::arg("force"),
+          "Constant force on a free block from now on, world frame, at its centroid (N).")
+      .def(
+          "set_external_torque",
+          [](Simulation& s, const py::handle& block, const Eigen::Vector3d& t) {
+            s.world.blocks()[block_index(s.world, block)].external_torque = t;
+          },
+          py::arg("block"), py::arg("torque"), "Constant torque on a free block (N m).")
+      .def(
+          "set_velocity",
+          [](Simulation& s, const py::handle& block, const Eigen::Vector3d& v) {
+            s.world.blocks()[block_index(s.world, block)].velocity = v;
+          },
+          py::arg("block"), py::arg("velocity"),
+          "Sets a block's velocity (m/s): the motion of a prescribed block, or a kick to a free "
+          "one.");
+  bind_state(cls);
+}
+
+}  // namespace blockdem::python

@@ -1,0 +1,153 @@
+"""Simulation: stages, steps, callbacks and the state arrays, checked against closed forms
+(free fall, Newton's second law, the closure of a loaded linear joint) and equilibrium."""
+import numpy as np
+import pytest
+
+import blockdem as bd
+from conftest import column_scene
+
+G = 9.81
+RHO = 1207.0
+EDGE = 0.046
+K_N = 10e9  # normal stiffness of the column's joints (Pa/m)
+
+
+def free_block(gravity=(0.0, 0.0, 0.0), dt=1e-4):
+    scene = bd.Scene()
+    scene.settings(gravity=list(gravity), time_step=dt)
+    scene.joint_law("j", normal={"law": "linear", "stiffness": 1e9},
+                    shear={"law": "linear", "stiffness": 1e8})
+    scene.box("cube", size=[1, 1, 1], density=1000.0, position=[0, 0, 10])
+    scene.stage("fly", kind="steps", steps=1000)
+    return scene.simulation()
+
+
+def test_free_fall_closed_form():
+    # z(t) = z0 - g t^2 / 2. Leapfrog with velocities at half steps advances x by (v + g dt) dt
+    # from rest: after n steps z = z0 - g dt^2 n (n + 1) / 2, exact up to rounding (1e-12 m).
+    dt, n = 1e-4, 500
+    sim = free_block(gravity=(0.0, 0.0, -G), dt=dt)
+    assert sim.step(n) == n
+    assert sim.step_count == n and sim.time == pytest.approx(n * dt, rel=1e-12)
+    z = sim.positions[0, 2]
+    assert z == pytest.approx(10.0 - G * dt**2 * n * (n + 1) / 2, abs=1e-12)
+    assert abs(z - (10.0 - G * (n * dt) ** 2 / 2)) <= G * n * dt * dt  # O(dt) from the closed form
+    np.testing.assert_allclose(sim.displacements[0], [0, 0, z - 10.0], atol=1e-15)
+
+
+def test_callback_every_n_steps_changes_the_load_and_stops():
+    # No gravity; from step 200 a force F pushes the 1000 kg cube along x. Newton: after k more
+    # steps v = F k dt / m exactly (constant acceleration, no damping).
+    dt, m, F = 1e-4, 1000.0, 50.0
+    sim = free_block(dt=dt)
+    seen = []
+
+    def callback(s, k):
+        seen.append(k)
+        if k == 200:
+            s.set_external_force("cube", [F, 0.0, 0.0])
+        if k == 700:
+            return False  # stop
+        return None
+
+    r = sim.run_stage(callback=callback, every=100)
+    assert seen == [100, 200, 300, 400, 500, 600, 700]
+    assert r["stopped"] and not r["converged"] and r["steps"] == 700
+    assert "stopped" in r["message"]
+    assert sim.velocities[0, 0] == pytest.approx(F / m * 500 * dt, rel=1e-9)
+    assert sim.next_stage == 1
+
+
+def test_step_callback_and_errors():
+    sim = free_block()
+    calls = []
+    assert sim.step(350, callback=lambda s, k: calls.append((k, s.step_count)), every=100) == 350
+    assert calls == [(100, 100), (200, 200), (300, 300)]
+    assert sim.step(100, callback=lambda s, k: False, every=10) == 10
+    with pytest.raises(ValueError):
+        sim.step(10, callback=lambda s, k: None, every=0)
+
+    def broken(s, k):
+        raise RuntimeError("from the callback")
+    with pytest.raises(RuntimeError, match="from the callback"):
+        sim.step(20, callback=broken, every=5)
+    with pytest.raises(KeyError):
+        sim.set_external_force("nobody", [0, 0, 0])
+    with pytest.raises(IndexError):
+        sim.run_stage(5)
+
+
+def test_column_settles_with_the_closed_form_closures():
+    # Equilibrium: the joint under block i carries the weight above it, (4 - i) W with
+    # W = rho g a^3; a linear joint closes by F / (k_n A), A = a^2 (docs: column.toml).
+    sim = column_scene(bd).simulation()
+    r = sim.run_stage(0)
+    assert r["converged"]
+    c = sim.contacts()
+    n = sim.contact_count
+    assert n == 3
+    assert c["blocks"].shape == (n, 2) and c["point"].shape == (n, 3)
+    assert c["normal"].shape == (n, 3) and c["shear_force"].shape == (n, 3)
+    for key in ["normal_force", "closure", "area", "normal_stress", "sliding", "broken"]:
+        assert c[key].shape == (n,)
+    W = RHO * G * EDGE**3
+    names = sim.block_names
+    for (a, b), fn, closure, area in zip(c["blocks"], c["normal_force"], c["closure"], c["area"]):
+        above = 4 - max(a, b)  # blocks at and above the upper one: b1 is index 1
+        assert names[min(a, b)] in ("base", "b1", "b2")
+        assert fn == pytest.approx(above * W, rel=1e-3)
+        assert area == pytest.approx(EDGE**2, rel=1e-6)
+        assert closure == pytest.approx(above * W / (K_N * EDGE**2), rel=1e-2)
+    np.testing.assert_allclose(np.linalg.norm(c["normal"], axis=1), 1.0, rtol=1e-12)
+    # Every free block is at rest in equilibrium: contact forces balance the weights.
+    m = sim.masses
+    np.testing.assert_allclose(sim.contact_forces[1:, 2], m[1:] * G, rtol=1e-3)
+    q = sim.orientations
+    assert q.shape == (4, 4)
+    np.testing.assert_allclose(np.linalg.norm(q, axis=1), 1.0, rtol=1e-12)
+    assert sim.rotations.shape == (4, 3) and sim.angular_velocities.shape == (4, 3)
+    assert np.abs(sim.velocities).max() < 1e-4
+    # The arrays are copies: writing to one does not move the block.
+    p = sim.positions
+    p[:] = 0.0
+    assert sim.positions[1, 2] == pytest.approx(0.023, abs=1e-4)
+    # Gravity from Python.
+    sim.gravity = [0.0, 0.0, -2 * G]
+    np.testing.assert_allclose(sim.gravity, [0.0, 0.0, -2 * G])
+    sim.step(1)
+    # One step later the joints still carry about one weight each while gravity pulls two: the
+    # net force on each block is about its weight, of the order of the mean contact force.
+    assert sim.equilibrium()["unbalanced_force_ratio"] > 0.1
+
+
+@pytest.mark.parametrize("normal", [{"law": "linear", "stiffness": 10e9},
+                                    {"law": "exponential", "preset": "eq4"}])
+@pytest.mark.parametrize("shear", [{"law": "linear", "stiffness": 1e9, "friction_deg": 40},
+                                   {"law": "stress_linear", "friction_deg": 40},
+                                   {"law": "degrading"},
+                                   {"law": "continuously_yielding", "friction_deg": 40}])
+def test_every_joint_law_holds_a_block_in_equilibrium(normal, shear):
+    # One cube on a fixed base: at equilibrium the contact carries its weight (Newton).
+    scene = bd.Scene()
+    scene.settings(damping=0.7)
+    scene.joint_law("j", normal=normal, shear=shear)
+    scene.box("base", size=[0.2, 0.2, 0.05], position=[0, 0, -0.025], density=RHO, motion="fixed")
+    scene.box("cube", size=[EDGE] * 3, position=[0, 0, EDGE / 2], density=RHO)
+    scene.stage("settle", gravity=[0, 0, -G])
+    sim = scene.simulation()
+    assert sim.run_stage()["converged"]
+    assert sim.contacts()["normal_force"].sum() == pytest.approx(RHO * G * EDGE**3, rel=1e-3)
+
+
+def test_strength_reduction_stage(source_dir):
+    # Planar sliding, Hoek & Bray: F = tan 40 / tan 30 = 1.453 (scenarios/examples).
+    sc = bd.load(source_dir / "scenarios/examples/planar_sliding.toml")
+    sim = bd.Simulation(sc)
+    sim.run_stage()
+    sim.run_stage()
+    before = sim.positions
+    r = sim.run_stage()
+    assert r["factor_of_safety"] == pytest.approx(np.tan(np.radians(40)) / np.tan(np.radians(30)),
+                                                  abs=0.03)
+    assert r["last_stable"] < r["first_failed"]
+    np.testing.assert_array_equal(sim.positions, before)
