@@ -42,6 +42,7 @@ def main():
                         e["unbalanced_force_ratio"]))
 
     r = sim.run_stage(callback=record, every=20)
+    record(sim, r["steps"])  # the settled state
     print(f"settled: {r['converged']} after {r['steps']} steps ({r['time'] * 1e3:.2f} ms)")
     with open(args.out / "column_history.csv", "w", newline="") as f:
         w = csv.writer(f)
