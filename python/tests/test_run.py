@@ -45,3 +45,19 @@ def test_a_run_without_stages_is_an_input_error(tmp_path):
     else:
         raise AssertionError("no error")
     assert not (tmp_path / "out").exists()
+
+
+def test_rock_mass_from_a_scene_matches_the_program(tmp_path, cli, source_dir):
+    # The tunnel (joint sets, an excavation) read into a Scene, capped at 200 steps a stage like
+    # `blockdem run --max-steps 200`: the same outputs, bit for bit (a stage cut short is
+    # reported as not converged by both).
+    toml_file = source_dir / "scenarios/examples/tunnel.toml"
+    cli_out, py_out = tmp_path / "cli", tmp_path / "python"
+    done = subprocess.run([str(cli), "run", str(toml_file), "--out", str(cli_out), "--quiet",
+                           "--no-figures", "--max-steps", "200"])
+    scenario = bd.Scene.from_toml(toml_file).build()
+    scenario.limit_steps(200)
+    r = bd.run(scenario, py_out)
+    assert r["exit_code"] == done.returncode == 3 and r["status"] == "not_converged"
+    for name in ["history.csv", "blocks.csv", "contacts.csv"]:
+        assert (py_out / name).read_bytes() == (cli_out / name).read_bytes(), name
