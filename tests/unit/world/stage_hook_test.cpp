@@ -1,0 +1,47 @@
+// The step hook of run_stage: called after every step with the steps taken, and a false return
+// ends the stage there (what the Python module's callbacks stand on).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "blockdem/world/stage.hpp"
+#include "validation/scenes.hpp"
+
+namespace blockdem::test {
+namespace {
+
+// A free cube in zero gravity pushed by a constant force F from step 1: Newton's second law with
+// leapfrog velocities, v after k steps = k F dt / m exactly (tolerance: round-off, 1e-12).
+TEST(StageHook, CalledEveryStepAndStopsTheStage) {
+  WorldSettings s;
+  s.time_step = 1e-4;
+  World w = linear_world(1e9, 1e8, 40.0, s);
+  Block cube = box_block(Eigen::Vector3d::Ones(), {0, 0, 0}, 1000.0);
+  cube.external_force = Eigen::Vector3d(50.0, 0.0, 0.0);
+  w.add_block(cube);
+  Stage stage;
+  stage.kind = Stage::Kind::steps;
+  stage.steps = 1000;
+  std::vector<std::int64_t> seen;
+  const StageResult r = run_stage(w, stage, {}, nullptr, [&](std::int64_t k) {
+    seen.push_back(k);
+    return k < 250;
+  });
+  ASSERT_EQ(seen.size(), 250u);
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    EXPECT_EQ(seen[i], static_cast<std::int64_t>(i + 1));
+  EXPECT_TRUE(r.stopped);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.steps, 250);
+  EXPECT_EQ(w.step_count(), 250);
+  EXPECT_NEAR(w.blocks()[0].velocity.x(), 250 * 50.0 * 1e-4 / 1000.0, 1e-12);
+
+  // Without a hook (or one that never stops) the stage runs to its end.
+  const StageResult full = run_stage(w, stage, {}, nullptr, [](std::int64_t) { return true; });
+  EXPECT_FALSE(full.stopped);
+  EXPECT_TRUE(full.converged);
+  EXPECT_EQ(full.steps, 1000);
+}
+
+}  // namespace
+}  // namespace blockdem::test
