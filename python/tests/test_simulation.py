@@ -151,3 +151,61 @@ def test_strength_reduction_stage(source_dir):
                                                   abs=0.03)
     assert r["last_stable"] < r["first_failed"]
     np.testing.assert_array_equal(sim.positions, before)
+
+
+def test_torque_velocity_and_settings_bindings():
+    # A free 1 m cube of 1000 kg in zero gravity: I = m a^2 / 6 about any axis. A torque T for
+    # k steps gives omega = T k dt / I; a velocity v moves it by v t (closed forms, round-off).
+    dt, m = 1e-4, 1000.0
+    sim = free_block(dt=dt)
+    assert sim.time_step == 0.0 and sim.broken_bonds == 0
+    sim.set_external_torque(0, [0.0, 0.0, 10.0])
+    sim.step(100)
+    assert sim.time_step == dt
+    assert sim.angular_velocities[0, 2] == pytest.approx(10.0 * 100 * dt / (m / 6), rel=1e-9)
+    sim.set_external_torque("cube", [0.0, 0.0, 0.0])
+    x0 = sim.positions[0, 0]
+    sim.set_velocity("cube", [2.0, 0.0, 0.0])
+    sim.step(50)
+    assert sim.positions[0, 0] - x0 == pytest.approx(2.0 * 50 * dt, rel=1e-9)
+    sim.damping = 0.5
+    assert sim.damping == 0.5
+    with pytest.raises(ValueError):
+        sim.damping = 1.0
+    with pytest.raises(IndexError):
+        sim.set_velocity(3, [0, 0, 0])
+
+
+def test_divergence_raises_and_restores_the_last_good_state():
+    # Faster than settings.max_speed (100 m/s) is divergence: the world goes back to its last
+    # checkpoint (taken at the stage start) and DivergenceError reaches Python.
+    sim = free_block()
+    start = sim.positions
+    sim.set_velocity("cube", [0.0, 1.0, 0.0])
+    sim.run_stage(callback=lambda s, k: False, every=10)  # checkpoint at the stage start
+    assert sim.step_count == 10
+    sim.set_velocity("cube", [500.0, 0.0, 0.0])
+    with pytest.raises(bd.DivergenceError, match="moves at 500 m/s"):
+        sim.step(5)
+    assert sim.step_count == 0
+    np.testing.assert_array_equal(sim.positions, start)
+    np.testing.assert_array_equal(sim.velocities, [[0.0, 1.0, 0.0]])
+
+
+def test_results_do_not_depend_on_threads():
+    # The step is deterministic for any thread count (docs/architecture.md): bit-identical.
+    states = []
+    for threads in (1, 2):
+        sc = column_scene(bd).build()
+        sc.threads = threads
+        assert sc.threads == threads
+        sim = bd.Simulation(sc)
+        sim.run_stage(0)
+        states.append((sim.positions, sim.orientations, sim.contacts()["normal_force"]))
+    for a, b in zip(*states):
+        np.testing.assert_array_equal(a, b)
+    sc = column_scene(bd).build()
+    with pytest.raises(ValueError):
+        sc.threads = -1
+    with pytest.raises(ValueError):
+        sc.limit_steps(0)
