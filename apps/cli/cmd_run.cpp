@@ -1,10 +1,14 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/rockmass/scene.hpp"
+#include "blockdem/run/run_files.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/voussoir/scene.hpp"
@@ -22,7 +26,32 @@ struct RunOptions {
   bool figures = true;
   std::int64_t max_steps = 0;  ///< > 0: every stage stops after at most this many steps
   int threads = 0;             // 0: OMP_NUM_THREADS, else every core
+  std::int64_t checkpoint_every = 0;
+  double checkpoint_seconds = 0.0;
+  std::string restart;
+  bool resume = false;
 };
+
+// The signal that asked the run to stop (SIGINT, SIGTERM), or 0. A second signal ends the
+// program at once, as if it had no handler.
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  if (stop_signal != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  stop_signal = sig;
+}
+
+void install_stop_handlers() {
+  struct sigaction action = {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
 
 int run(const RunOptions& opt) {
   Progress progress(!opt.quiet);
@@ -37,15 +66,17 @@ int run(const RunOptions& opt) {
   // Some input errors show only while running (strength-reduction bounds that do not bracket
   // the failure): then what the run wrote is removed, so that nothing is left.
   const bool existed = std::filesystem::exists(opt.out);
+  const bool restarting = !opt.restart.empty() || opt.resume;
   auto remove_outputs = [&] {
     std::error_code ec;
+    if (restarting) return;  // the folder holds the run being continued: leave it as it is
     if (!existed) {
       std::filesystem::remove_all(opt.out, ec);
       return;
     }
     for (const char* f : {"history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
                           "summary.json", "strength_reduction.csv", "mechanism.csv",
-                          "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
+                          "collapse_search.csv", "collapse_mechanism.csv", "manifest.json", "vtk"})
       std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
   };
   try {
@@ -58,13 +89,26 @@ int run(const RunOptions& opt) {
       }
     }
     if (opt.threads > 0) sc.settings.threads = opt.threads;
+    RunControl control;
+    control.checkpoint_every = opt.checkpoint_every;
+    control.checkpoint_seconds = opt.checkpoint_seconds;
+    if (!opt.restart.empty()) control.restart = opt.restart;
+    if (opt.resume) control.restart = std::filesystem::path(opt.out) / kCheckpointName;
+    // The scenario's bytes and the options that change results (not --threads).
+    control.scenario_hash = fnv1a64("max_steps=" + std::to_string(opt.max_steps),
+                                    fnv1a64(read_file_bytes(opt.scenario)));
+    install_stop_handlers();
+    control.stop = [] { return stop_signal != 0; };
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : sc.warnings)
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     rock_mass = rock_mass_scene(sc) != nullptr;
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
-    r = run_scenario(sc, opt.out, cb);
+    r = run_scenario(sc, opt.out, cb, control);
+  } catch (const CheckpointError& e) {
+    std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 2;
   } catch (const ScenarioError& e) {
     remove_outputs();
     std::cerr << "blockdem: error: " << e.what() << "\n";
@@ -74,6 +118,13 @@ int run(const RunOptions& opt) {
     std::cerr << "blockdem: error: " << opt.scenario << ": " << e.what() << "\n";
     return 2;
   }
+  if (r.interrupted) {
+    // 128 + the signal, as a shell reports a program ended by it (130 SIGINT, 143 SIGTERM).
+    std::cerr << "blockdem: " << r.message << "\n";
+    return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGINT);
+  }
+  const bool draws =
+      opt.figures && ((beam && !r.levels.empty()) || rock_mass || r.factor_of_safety);
   if (beam && opt.figures && !r.levels.empty()) {
     std::string why;
     if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
@@ -102,6 +153,8 @@ int run(const RunOptions& opt) {
     if (!run_plot_script("plot_mechanism.py", {opt.out}, why))
       std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
   }
+  // The figures are part of the run: the record, written last, lists them too.
+  if (draws) write_manifest(opt.out, r.foreign_files, r.status);
   if (r.factor_of_safety)
     std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
   if (r.collapse) {
@@ -138,6 +191,20 @@ void register_run(CLI::App& app) {
                   "Threads for the step (default: OMP_NUM_THREADS, else every core); results are "
                   "bit-identical for any number")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--checkpoint-every", opt->checkpoint_every,
+                  "Write OUT/checkpoint.bdck every N steps and at every stage end (the one "
+                  "before is kept as checkpoint.bdck.prev)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--checkpoint-seconds", opt->checkpoint_seconds,
+                  "Write a checkpoint every S seconds of wall time (and at every stage end)")
+      ->check(CLI::PositiveNumber);
+  auto* restart = cmd->add_option("--restart", opt->restart,
+                                  "Continue the run saved in this checkpoint (same scenario and "
+                                  "--max-steps; any --threads): bit-identical to a run never "
+                                  "stopped")
+                      ->check(CLI::ExistingFile);
+  cmd->add_flag("--resume", opt->resume, "Continue from OUT/checkpoint.bdck (see --restart)")
+      ->excludes(restart);
   cmd->add_flag("!--no-figures", opt->figures,
                 "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });

@@ -1,5 +1,6 @@
 // blockdem.Simulation: a world built from a scenario, run stage by stage or step by step, with a
 // Python callback every N steps that can record, change loads and stop the run.
+#include <functional>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -15,6 +16,9 @@ namespace py = pybind11;
 
 namespace blockdem::python {
 namespace {
+
+/// Called with the steps taken so far; returning false stops.
+using StepHook = std::function<bool(std::int64_t)>;
 
 /// The stage hook that calls `callback(sim, steps)` every `every` steps with the GIL held; a
 /// return value of False stops.
@@ -33,7 +37,7 @@ py::dict stage_dict(const StageResult& r) {
   py::dict d;
   d["name"] = r.name;
   d["converged"] = r.converged;
-  d["stopped"] = r.stopped;
+  d["stopped"] = r.interrupted;
   d["mechanism"] = r.mechanism;
   d["steps"] = r.steps;
   d["time"] = r.time;
@@ -117,7 +121,9 @@ void bind_simulation(py::module_& m) {
             StageResult r;
             {
               py::gil_scoped_release free;
-              r = run_stage(s.world, stage, {}, nullptr, hook);
+              AfterStepFn after;
+              if (hook) after = [&hook](const StageResume& at) { return !hook(at.steps_done); };
+              r = run_stage(s.world, stage, {}, nullptr, after);
             }
             return stage_dict(r);
           },

@@ -6,10 +6,12 @@
 
 namespace blockdem {
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)
-    : path_(path), out_(path), columns_(columns.size()) {
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                     bool append)
+    : path_(path), out_(path, append ? std::ios::app : std::ios::trunc), columns_(columns.size()) {
   if (!out_) throw std::runtime_error("cannot write " + path.string());
   out_.precision(12);
+  if (append) return;
   for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
   out_ << "\n";
 }

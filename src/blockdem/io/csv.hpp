@@ -10,8 +10,10 @@ namespace blockdem {
 
 class CsvWriter {
  public:
-  /// Creates (truncates) the file and writes the header. Throws std::runtime_error on failure.
-  CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns);
+  /// Creates (truncates) the file and writes the header; with `append`, adds rows to the end of
+  /// an existing file that has the header (a restarted run). Throws std::runtime_error on failure.
+  CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+            bool append = false);
 
   /// One row: values in column order. Numbers print with 12 significant digits.
   CsvWriter& cell(double value);

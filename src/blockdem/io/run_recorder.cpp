@@ -12,7 +12,7 @@ namespace blockdem {
 
 namespace {}  // namespace
 
-RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables)
+RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables, bool append)
     : dir_(dir), vtk_(vtk) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
@@ -26,28 +26,30 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                  "gravity_x_m_s2", "gravity_y_m_s2", "gravity_z_m_s2", "g_level",
                                  "unbalanced_force_ratio", "kinetic_energy_J",
                                  "kinetic_energy_ratio", "contacts", "mean_contact_force_N",
-                                 "max_overlap_mm"});
-    blocks_ =
-        std::make_unique<CsvWriter>(dir_ / "blocks.csv", std::vector<std::string>{"level",
-                                                                                  "stage",
-                                                                                  "block",
-                                                                                  "group",
-                                                                                  "x_m",
-                                                                                  "y_m",
-                                                                                  "z_m",
-                                                                                  "ux_mm",
-                                                                                  "uy_mm",
-                                                                                  "uz_mm",
-                                                                                  "rotation_deg",
-                                                                                  "rotation_x_deg",
-                                                                                  "rotation_y_deg",
-                                                                                  "rotation_z_deg",
-                                                                                  "vx_m_s",
-                                                                                  "vy_m_s",
-                                                                                  "vz_m_s",
-                                                                                  "contact_fx_N",
-                                                                                  "contact_fy_N",
-                                                                                  "contact_fz_N"});
+                                 "max_overlap_mm"},
+        append);
+    blocks_ = std::make_unique<CsvWriter>(dir_ / "blocks.csv",
+                                          std::vector<std::string>{"level",
+                                                                   "stage",
+                                                                   "block",
+                                                                   "group",
+                                                                   "x_m",
+                                                                   "y_m",
+                                                                   "z_m",
+                                                                   "ux_mm",
+                                                                   "uy_mm",
+                                                                   "uz_mm",
+                                                                   "rotation_deg",
+                                                                   "rotation_x_deg",
+                                                                   "rotation_y_deg",
+                                                                   "rotation_z_deg",
+                                                                   "vx_m_s",
+                                                                   "vy_m_s",
+                                                                   "vz_m_s",
+                                                                   "contact_fx_N",
+                                                                   "contact_fy_N",
+                                                                   "contact_fz_N"},
+                                          append);
   }
   contacts_ = std::make_unique<CsvWriter>(dir_ / "contacts.csv",
                                           std::vector<std::string>{"level",
@@ -76,7 +78,8 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                                                    "force_point_z_m",
                                                                    "compressed_area_mm2",
                                                                    "peak_stress_MPa",
-                                                                   "peak_closure_mm"});
+                                                                   "peak_closure_mm"},
+                                          append);
 }
 
 void RunRecorder::record(const World& world, const StageResult& stage, int level) {

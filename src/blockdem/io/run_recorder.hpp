@@ -16,7 +16,8 @@ class RunRecorder {
  public:
   /// Creates `dir` if needed. Throws std::runtime_error when it cannot be written.
   /// `tables`: write history.csv and blocks.csv (a voussoir run writes its own instead).
-  RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables = true);
+  /// `append`: the files exist with the rows of a run being restarted; add to them.
+  RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables = true, bool append = false);
 
   /// Records the world at the end of stage `level` (0-based).
   void record(const World& world, const StageResult& stage, int level);

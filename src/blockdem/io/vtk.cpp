@@ -1,23 +1,17 @@
 // Legacy VTK POLYDATA writer.
 #include "blockdem/io/vtk.hpp"
 
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "blockdem/io/atomic_file.hpp"
+
 namespace blockdem {
-namespace {
-
-std::ofstream open(const std::filesystem::path& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-  out.precision(10);
-  return out;
-}
-
-}  // namespace
 
 void write_vtk_blocks(const std::filesystem::path& path, const World& world) {
-  std::ofstream out = open(path);
+  // Built in memory and written atomically: a reader never sees half a file.
+  std::ostringstream out;
+  out.precision(10);
   std::size_t points = 0, polys = 0, poly_ints = 0;
   for (const auto& b : world.blocks()) {
     points += b.shape.vertices().size();
@@ -57,10 +51,13 @@ void write_vtk_blocks(const std::filesystem::path& path, const World& world) {
     for (std::size_t f = 0; f < b.shape.faces().size(); ++f)
       out << b.velocity.x() << " " << b.velocity.y() << " " << b.velocity.z() << "\n";
   }
+  write_file_atomically(path, out.str());
 }
 
 void write_vtk_contacts(const std::filesystem::path& path, const World& world) {
-  std::ofstream out = open(path);
+  // Built in memory and written atomically: a reader never sees half a file.
+  std::ostringstream out;
+  out.precision(10);
   const auto contacts = world.contacts();
   out << "# vtk DataFile Version 3.0\nblockdem contacts\nASCII\nDATASET POLYDATA\n";
   out << "POINTS " << contacts.size() << " double\n";
@@ -87,6 +84,7 @@ void write_vtk_contacts(const std::filesystem::path& path, const World& world) {
   for (const Contact* c : contacts) out << c->geometry.overlap << "\n";
   out << "SCALARS area_m2 double 1\nLOOKUP_TABLE default\n";
   for (const Contact* c : contacts) out << c->geometry.area << "\n";
+  write_file_atomically(path, out.str());
 }
 
 }  // namespace blockdem

@@ -7,8 +7,12 @@
 #include <fstream>
 #include <optional>
 
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/run_checkpoint.hpp"
+#include "blockdem/run/run_files.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/voussoir/recorder.hpp"
 #include "blockdem/voussoir/scene.hpp"
@@ -23,17 +27,79 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+std::string state_bytes(const World& world) {
+  StateWriter w;
+  world.save_state(w);
+  return std::string(w.bytes().begin(), w.bytes().end());
+}
+
+void load_bytes(World& world, const std::string& bytes) {
+  StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  world.load_state(r);
+  if (!r.done()) throw StateError("saved world state is corrupt (bytes left over)");
+}
+
+bool is_checkpoint(const std::string& rel) {
+  return rel == kCheckpointName || rel == kPreviousCheckpointName;
+}
+
 }  // namespace
 
-RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
-                       const RunCallbacks& cb) {
+RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, const RunCallbacks& cb,
+                       const RunControl& control) {
   const auto wall0 = std::chrono::steady_clock::now();
-  World world = build_world(sc);  // may throw ScenarioError: nothing written yet
-  check_time_step(sc, world);
-  RunResult res;
   const VoussoirScene* voussoir = voussoir_scene(sc);
   const bool beam = voussoir != nullptr;
-  RunRecorder recorder(out, sc.output.vtk, !beam);
+  const int n = static_cast<int>(sc.stages.size());
+  const bool checkpoints = control.checkpoint_every > 0 || control.checkpoint_seconds > 0.0;
+  if (beam && (checkpoints || !control.restart.empty()))
+    throw std::invalid_argument(
+        "checkpoints and restarts are not available for voussoir beam scenarios yet");
+  // Everything is read and checked before anything is written: the restart file first.
+  std::optional<RunPoint> resume;
+  if (!control.restart.empty()) {
+    const std::string payload = read_checkpoint_file(control.restart, control.scenario_hash);
+    try {
+      resume = decode_run_point(payload);
+    } catch (const StateError& e) {
+      throw CheckpointError(control.restart, e.what());
+    }
+    if (resume->level >= n) throw CheckpointError(control.restart, "saved stage index is corrupt");
+  }
+  World world = build_world(sc);  // may throw ScenarioError: nothing written yet
+  check_time_step(sc, world);
+  std::optional<MotionMonitor> resumed_monitor;
+  std::optional<World> resumed_before;
+  if (resume) {
+    const Stage& at = sc.stages[resume->level];
+    const bool search = at.find_collapse && at.kind == Stage::Kind::equilibrium;
+    try {
+      load_bytes(world, resume->world);
+      if (resume->in_stage) {
+        if (at.kind == Stage::Kind::strength_reduction || search != !resume->before.empty())
+          throw StateError("saved stage state does not fit the scenario's stage");
+        StateReader r(reinterpret_cast<const std::uint8_t*>(resume->monitor.data()),
+                      resume->monitor.size());
+        resumed_monitor.emplace(r);
+        if (search) load_bytes(resumed_before.emplace(build_world(sc)), resume->before);
+      }
+    } catch (const StateError& e) {
+      throw CheckpointError(control.restart, e.what());
+    }
+  }
+  RunResult res;
+  // The folder: what an earlier run left goes; a restart puts back the files written so far.
+  clear_earlier_run(out, resume.has_value());
+  for (const std::string& rel : list_run_folder(out)) {
+    if (!is_checkpoint(rel)) res.foreign_files.insert(rel);
+  }
+  if (resume) {
+    for (const auto& [rel, content] : resume->files) {
+      std::filesystem::create_directories((out / rel).parent_path());
+      write_file_atomically(out / rel, content);
+    }
+  }
+  RunRecorder recorder(out, sc.output.vtk, !beam, resume.has_value());
   std::unique_ptr<VoussoirRecorder> beam_recorder;
   VoussoirReference reference;
   if (beam) beam_recorder = std::make_unique<VoussoirRecorder>(out, world);
@@ -56,14 +122,71 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
       "Cundall P.A. (1987) Distinct element models of rock and soil structure. In: Analytical and "
       "Computational Methods in Engineering Rock Mechanics, ch. 4 (local non-viscous damping)."};
   nlohmann::json stages = nlohmann::json::array();
-  const int n = static_cast<int>(sc.stages.size());
-  for (int level = 0; level < n; ++level) {
+  if (resume) {
+    summary = nlohmann::json::parse(resume->summary);
+    summary["threads"] = world.thread_count();
+    stages = nlohmann::json::parse(resume->stages);
+    res.steps_per_stage = resume->steps_per_stage;
+    res.factor_of_safety = resume->factor_of_safety;
+  }
+  // A checkpoint: the world, where the run stands, and the files written so far.
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  auto write_checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
+                              const World* before) {
+    RunPoint p;
+    p.level = level;
+    p.in_stage = at != nullptr;
+    if (at) p.stage = *at;
+    if (monitor) {
+      StateWriter w;
+      monitor->save_state(w);
+      p.monitor.assign(w.bytes().begin(), w.bytes().end());
+    }
+    p.world = state_bytes(world);
+    if (before) p.before = state_bytes(*before);
+    p.summary = summary.dump();
+    p.stages = stages.dump();
+    p.steps_per_stage = res.steps_per_stage;
+    p.factor_of_safety = res.factor_of_safety;
+    for (const std::string& rel : list_run_folder(out)) {
+      if (is_checkpoint(rel) || res.foreign_files.count(rel)) continue;
+      p.files.emplace_back(rel, read_file_bytes(out / rel));
+    }
+    write_checkpoint_file(out / kCheckpointName, control.scenario_hash, encode_run_point(p));
+    last_checkpoint = std::chrono::steady_clock::now();
+  };
+  auto stop_requested = [&] { return control.stop && control.stop(); };
+  auto interrupt = [&](const std::string& where) {
+    res.interrupted = true;
+    res.status = "interrupted";
+    res.exit_code = 130;
+    res.message = "interrupted " + where +
+                  (beam ? "; no checkpoint (voussoir beam scenarios have none yet)"
+                        : "; continue with --restart " + (out / kCheckpointName).string());
+  };
+  const int first = resume ? resume->level : 0;
+  for (int level = first; level < n; ++level) {
     const Stage& stage = sc.stages[level];
     const bool search_collapse = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
     const bool reduce = stage.kind == Stage::Kind::strength_reduction;
+    const bool resuming = resume && level == first && resume->in_stage;
+    if (!resuming) {
+      // A stage boundary (the end of the previous stage): checkpoint, and stop if asked.
+      const bool stop = stop_requested();
+      if ((checkpoints || stop) && !beam && !(resume && level == first))
+        write_checkpoint(level, nullptr, nullptr, nullptr);
+      if (stop) {
+        interrupt("before stage '" + stage.name + "'");
+        break;
+      }
+    }
     // The state before the stage, from which every trial of a search starts.
     std::optional<World> before;
-    if (search_collapse || reduce) before.emplace(world);
+    if (resuming && resumed_before) {
+      before = std::move(resumed_before);
+    } else if (!resuming && (search_collapse || reduce)) {
+      before.emplace(world);
+    }
     auto progress = [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
       if (cb.progress) {
         cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
@@ -132,8 +255,22 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     StageResult result;
     bool diverged = false;
     std::optional<MotionMonitor> monitor;
+    if (resuming) monitor = std::move(resumed_monitor);
+    // After every step: a checkpoint when one is due or a stop is asked for.
+    const AfterStepFn after_step = [&](const StageResume& at) {
+      const bool stop = stop_requested();
+      const bool due =
+          stop ||
+          (control.checkpoint_every > 0 && world.step_count() % control.checkpoint_every == 0) ||
+          (control.checkpoint_seconds > 0.0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
+                   .count() >= control.checkpoint_seconds);
+      if (due && !beam) write_checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
+      return stop;
+    };
     try {
-      result = run_stage(world, stage, progress, &monitor);
+      result = run_stage(world, stage, progress, &monitor, after_step,
+                         resuming ? &resume->stage : nullptr);
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
@@ -143,6 +280,16 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
       result.motion = monitor->report();
     }
     res.steps_per_stage.push_back(result.steps);
+    if (result.interrupted) {
+      stages.push_back({{"name", stage.name},
+                        {"converged", false},
+                        {"status", "interrupted"},
+                        {"steps", result.steps},
+                        {"time_s", world.time()},
+                        {"message", result.message}});
+      interrupt("in stage '" + stage.name + "' after " + std::to_string(result.steps) + " steps");
+      break;
+    }
     const bool failed = diverged || !result.converged;
     const FailureKind kind =
         failed ? classify_failure(*monitor, diverged) : FailureKind::not_converged;
@@ -223,9 +370,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     }
     summary["lost_equilibrium"] = res.status != "completed";
   }
-  std::ofstream f(out / "summary.json");
-  f << summary.dump(2) << "\n";
-  if (!f) throw std::runtime_error("cannot write " + (out / "summary.json").string());
+  write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
+  write_manifest(out, res.foreign_files, res.status);
   return res;
 }
 

@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,12 +18,17 @@ namespace blockdem {
 
 struct RunResult {
   /// "completed", "collapsed" (physical: a mechanism formed), "diverged" (numerical blow-up),
-  /// "not_converged" (no equilibrium and no mechanism within the step limit).
+  /// "not_converged" (no equilibrium and no mechanism within the step limit), "interrupted"
+  /// (RunControl::stop asked the run to stop).
   std::string status = "completed";
   std::string message;
   /// 0 completed, or collapsed with a collapse search asked for (the search found it);
-  /// 3 otherwise.
+  /// 130 interrupted (the caller maps it to its signal); 3 otherwise.
   int exit_code = 0;
+  bool interrupted = false;
+  /// Files in the output folder that the run did not write (there before it): not in
+  /// manifest.json.
+  std::set<std::string> foreign_files;
   std::optional<std::pair<double, double>> collapse;  ///< last stable, first failed (g)
   std::optional<double> factor_of_safety;             ///< of the last strength_reduction stage
   nlohmann::json summary;                             ///< what summary.json holds
@@ -39,12 +45,27 @@ struct RunCallbacks {
   std::function<void(const std::string&)> stage_done;
 };
 
+/// Checkpoints, restarts and stopping (docs/restart.md).
+struct RunControl {
+  std::int64_t checkpoint_every = 0;  ///< world steps between checkpoints (0: none)
+  double checkpoint_seconds = 0.0;    ///< wall time between checkpoints (s); 0: none
+  /// Continue the run saved in this checkpoint (empty: a fresh run).
+  std::filesystem::path restart;
+  /// Identifies the scenario file and the options that change results; a checkpoint written
+  /// under another hash is refused.
+  std::uint64_t scenario_hash = 0;
+  /// Polled after every step of a stage and between stages: true stops the run there with a
+  /// checkpoint, the outputs so far and summary.json status "interrupted".
+  std::function<bool()> stop;
+};
+
 /// Builds the world, runs every stage, and writes history.csv, blocks.csv, contacts.csv (and
 /// joints.csv for a voussoir beam), summary.json and vtk/ into `out`. A stage that does not
 /// converge or diverges ends the run: the outputs up to the last good state are kept and
-/// summary.json says what happened. Throws ScenarioError for input errors found while building
-/// (before anything is written).
+/// summary.json says what happened; manifest.json, written last, lists the run's files. Throws
+/// ScenarioError for input errors found while building, CheckpointError for an unusable restart
+/// file (both before anything is written).
 RunResult run_scenario(const Scenario& scenario, const std::filesystem::path& out,
-                       const RunCallbacks& callbacks = {});
+                       const RunCallbacks& callbacks = {}, const RunControl& control = {});
 
 }  // namespace blockdem

@@ -69,6 +69,38 @@ void MotionMonitor::observe(const World& world, bool ramping) {
   if (past_limit || accelerating) r.mechanism = true;
 }
 
+MotionMonitor::MotionMonitor(StateReader& in) {
+  in.pod(criteria_.displacement_limit);
+  in.pod(criteria_.growth_checks);
+  start_.resize(in.size());
+  for (auto& p : start_) p = in.vec();
+  MotionReport& r = report_;
+  for (double* x : {&r.max_displacement, &r.displacement_limit, &r.max_speed, &r.kinetic_energy,
+                    &r.load_work, &r.elastic_energy_start, &r.time_step_ratio})
+    in.pod(*x);
+  r.growing_checks = in.pod<std::int32_t>();
+  r.moving_blocks.resize(in.size());
+  for (int& b : r.moving_blocks) b = in.pod<std::int32_t>();
+  r.mechanism = in.pod<std::uint8_t>() != 0;
+  in.pod(previous_speed_);
+}
+
+void MotionMonitor::save_state(StateWriter& out) const {
+  out.pod(criteria_.displacement_limit);
+  out.pod(criteria_.growth_checks);
+  out.size(start_.size());
+  for (const auto& p : start_) out.vec(p);
+  const MotionReport& r = report_;
+  for (double x : {r.max_displacement, r.displacement_limit, r.max_speed, r.kinetic_energy,
+                   r.load_work, r.elastic_energy_start, r.time_step_ratio})
+    out.pod(x);
+  out.pod(static_cast<std::int32_t>(r.growing_checks));
+  out.size(r.moving_blocks.size());
+  for (int b : r.moving_blocks) out.pod(static_cast<std::int32_t>(b));
+  out.pod(static_cast<std::uint8_t>(r.mechanism));
+  out.pod(previous_speed_);
+}
+
 bool MotionMonitor::energy_created() const {
   const double available = std::max(report_.load_work, 0.0) + report_.elastic_energy_start;
   return report_.kinetic_energy > 1.1 * available + 1e-12;

@@ -45,6 +45,9 @@ struct MotionReport {
 class MotionMonitor {
  public:
   MotionMonitor(const World& world, const MechanismCriteria& criteria);
+  /// A monitor read back from save_state's bytes (restart files).
+  explicit MotionMonitor(StateReader& in);
+  void save_state(StateWriter& out) const;
 
   /// Updates the report from the world's state; `ramping` while a load is still being raised
   /// (speeds then grow for a stable model too).

@@ -50,10 +50,11 @@ bool servos_settled(const World& world) {
   return true;
 }
 
-StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
-                      std::optional<MotionMonitor>* monitor, const StepHook& after_step) {
-  stage.validate();
-  const Eigen::Vector3d gravity_before = world.settings().gravity;
+namespace {
+
+/// The stage's start: new settings, servo commands, removals, the divergence checkpoint and a
+/// fresh motion monitor.
+void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>& watch) {
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
   if (stage.damping) world.settings().damping = *stage.damping;
   for (const auto& cmd : stage.servos) {
@@ -83,15 +84,26 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     world.remove_blocks(gone);
   }
   world.save_checkpoint();
+  watch.emplace(world, stage.mechanism);
+}
+
+}  // namespace
+
+StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
+                      std::optional<MotionMonitor>* monitor, const AfterStepFn& after_step,
+                      const StageResume* resume) {
+  stage.validate();
+  if (resume && !(monitor && monitor->has_value()))
+    throw std::logic_error("run_stage: resuming a stage needs its motion monitor");
+  const Eigen::Vector3d gravity_before = resume ? resume->gravity_before : world.settings().gravity;
   std::optional<MotionMonitor> own_monitor;
   std::optional<MotionMonitor>& watch = monitor ? *monitor : own_monitor;
-  watch.emplace(world, stage.mechanism);
-
+  if (!resume) start_stage(world, stage, watch);
   StageResult r;
   r.name = stage.name;
-  const double t0 = world.time();
+  const double t0 = resume ? resume->start_time : world.time();
   auto last_report = std::chrono::steady_clock::now();
-  for (std::int64_t k = 1;; ++k) {
+  for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
     const bool ramping = stage.gravity && k <= stage.ramp_steps;
     if (ramping) {
       const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
@@ -107,11 +119,6 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
         progress(stage, k, world.equilibrium());
         last_report = now;
       }
-    }
-    if (after_step && !after_step(k)) {
-      r.stopped = true;
-      r.message = "stopped by the step hook after " + std::to_string(k) + " steps";
-      break;
     }
     if (stage.kind == Stage::Kind::steps && k >= stage.steps) {
       r.converged = true;
@@ -145,8 +152,13 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
                   (servos_settled(world) ? "" : ", a servo has not reached its target force");
       break;
     }
+    if (after_step && after_step(StageResume{k, gravity_before, t0})) {
+      r.interrupted = true;
+      r.message = "interrupted after " + std::to_string(k) + " steps of the stage";
+      break;
+    }
   }
-  if (stage.hold_servos_after) {
+  if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.servo.hold = true;
     }

@@ -79,25 +79,35 @@ struct StageResult {
   std::int64_t steps = 0;  ///< steps taken in the stage
   double time = 0.0;       ///< world time at the end (s)
   EquilibriumMeasures measures;
-  std::string message;     ///< why the stage did not converge, empty otherwise
-  bool mechanism = false;  ///< stopped because a mechanism formed (Kind::equilibrium)
-  MotionReport motion;     ///< the motion monitor's last observation
-  bool stopped = false;    ///< ended early because the step hook asked to stop
+  std::string message;       ///< why the stage did not converge, empty otherwise
+  bool mechanism = false;    ///< stopped because a mechanism formed (Kind::equilibrium)
+  MotionReport motion;       ///< the motion monitor's last observation
+  bool interrupted = false;  ///< stopped by the caller's after-step hook (the run was stopped)
 };
+
+/// Where a stage stands between two steps: what run_stage needs to continue it later (a restart
+/// file holds it, with the world and the motion monitor).
+struct StageResume {
+  std::int64_t steps_done = 0;                               ///< steps taken in the stage
+  Eigen::Vector3d gravity_before = Eigen::Vector3d::Zero();  ///< gravity before the ramp (m/s^2)
+  double start_time = 0.0;                                   ///< world time at the start (s)
+};
+
+/// Called after every step that does not end the stage; returning true stops the stage there
+/// (StageResult::interrupted).
+using AfterStepFn = std::function<bool(const StageResume&)>;
 
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
-/// Called after every step of a stage with the steps taken so far; returning false ends the
-/// stage there (StageResult::stopped). Scripts use it to record, change loads or stop.
-using StepHook = std::function<bool(std::int64_t)>;
 
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
 /// `monitor`, when given, is created at the stage start and observed at every check, so that
-/// after a DivergenceError it still holds the last observation before the blow-up. `after_step`,
-/// when given, runs after every step, before the convergence checks.
+/// after a DivergenceError it still holds the last observation before the blow-up.
+/// With `resume`, the stage continues from that point instead: its start (settings, servo
+/// commands, removals) is already in the world and `*monitor` must hold the monitor of then.
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
                       std::optional<MotionMonitor>* monitor = nullptr,
-                      const StepHook& after_step = {});
+                      const AfterStepFn& after_step = {}, const StageResume* resume = nullptr);
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

@@ -16,6 +16,7 @@
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/world/contact.hpp"
+#include "blockdem/world/state_stream.hpp"
 
 namespace blockdem {
 
@@ -143,6 +144,14 @@ class World {
   /// re-derives the contacts' geometry and normal forces at the restored pose.
   void save_checkpoint();
   void restore_checkpoint();
+
+  /// The complete dynamic state (block states, every pair slot with its history and warm
+  /// start, counters, the divergence checkpoint) as bytes, for restart files (world_state.cpp).
+  void save_state(StateWriter& out) const;
+  /// Loads save_state's bytes into a world built from the same scenario (blocks removed since
+  /// are removed again, matched by name); the run then continues bit-identically. Throws
+  /// StateError when the state does not fit this world.
+  void load_state(StateReader& in);
 
  private:
   /// One candidate pair: its contact (active when the blocks touch and a force acts) or, for a

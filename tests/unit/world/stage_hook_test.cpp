@@ -1,5 +1,5 @@
-// The step hook of run_stage: called after every step with the steps taken, and a false return
-// ends the stage there (what the Python module's callbacks stand on).
+// The after-step hook of run_stage: called after every step that does not end the stage, with the
+// steps taken; a true return ends the stage there (what the Python module's callbacks stand on).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -23,22 +23,23 @@ TEST(StageHook, CalledEveryStepAndStopsTheStage) {
   stage.kind = Stage::Kind::steps;
   stage.steps = 1000;
   std::vector<std::int64_t> seen;
-  const StageResult r = run_stage(w, stage, {}, nullptr, [&](std::int64_t k) {
-    seen.push_back(k);
-    return k < 250;
+  const StageResult r = run_stage(w, stage, {}, nullptr, [&](const StageResume& at) {
+    seen.push_back(at.steps_done);
+    return at.steps_done >= 250;
   });
   ASSERT_EQ(seen.size(), 250u);
   for (std::size_t i = 0; i < seen.size(); ++i)
     EXPECT_EQ(seen[i], static_cast<std::int64_t>(i + 1));
-  EXPECT_TRUE(r.stopped);
+  EXPECT_TRUE(r.interrupted);
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.steps, 250);
   EXPECT_EQ(w.step_count(), 250);
   EXPECT_NEAR(w.blocks()[0].velocity.x(), 250 * 50.0 * 1e-4 / 1000.0, 1e-12);
 
   // Without a hook (or one that never stops) the stage runs to its end.
-  const StageResult full = run_stage(w, stage, {}, nullptr, [](std::int64_t) { return true; });
-  EXPECT_FALSE(full.stopped);
+  const StageResult full =
+      run_stage(w, stage, {}, nullptr, [](const StageResume&) { return false; });
+  EXPECT_FALSE(full.interrupted);
   EXPECT_TRUE(full.converged);
   EXPECT_EQ(full.steps, 1000);
 }

@@ -1,0 +1,62 @@
+// RunPoint as bytes: fields in a fixed order through the world's state streams.
+#include "blockdem/run/run_checkpoint.hpp"
+
+#include "blockdem/world/state_stream.hpp"
+
+namespace blockdem {
+
+std::string encode_run_point(const RunPoint& p) {
+  StateWriter w;
+  w.pod(static_cast<std::int32_t>(p.level));
+  w.pod(static_cast<std::uint8_t>(p.in_stage));
+  w.pod(p.stage.steps_done);
+  w.vec(p.stage.gravity_before);
+  w.pod(p.stage.start_time);
+  w.str(p.monitor);
+  w.str(p.world);
+  w.str(p.before);
+  w.str(p.summary);
+  w.str(p.stages);
+  w.size(p.steps_per_stage.size());
+  for (std::int64_t s : p.steps_per_stage) w.pod(s);
+  w.pod(static_cast<std::uint8_t>(p.factor_of_safety.has_value()));
+  w.pod(p.factor_of_safety.value_or(0.0));
+  w.size(p.files.size());
+  for (const auto& [path, content] : p.files) {
+    w.str(path);
+    w.str(content);
+  }
+  return std::string(w.bytes().begin(), w.bytes().end());
+}
+
+RunPoint decode_run_point(const std::string& bytes) {
+  StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  RunPoint p;
+  p.level = r.pod<std::int32_t>();
+  p.in_stage = r.pod<std::uint8_t>() != 0;
+  r.pod(p.stage.steps_done);
+  p.stage.gravity_before = r.vec();
+  r.pod(p.stage.start_time);
+  p.monitor = r.str();
+  p.world = r.str();
+  p.before = r.str();
+  p.summary = r.str();
+  p.stages = r.str();
+  p.steps_per_stage.resize(r.size());
+  for (std::int64_t& s : p.steps_per_stage) r.pod(s);
+  const bool has_fos = r.pod<std::uint8_t>() != 0;
+  const double fos = r.pod<double>();
+  if (has_fos) p.factor_of_safety = fos;
+  p.files.resize(r.size());
+  for (auto& [path, content] : p.files) {
+    path = r.str();
+    content = r.str();
+    if (path.empty() || path.find("..") != std::string::npos || path.front() == '/')
+      throw StateError("saved state is corrupt (a file path leaves the output folder)");
+  }
+  if (!r.done()) throw StateError("saved state is corrupt (bytes left over)");
+  if (p.level < 0 || p.stage.steps_done < 0) throw StateError("saved state is corrupt");
+  return p;
+}
+
+}  // namespace blockdem

@@ -1,0 +1,36 @@
+// What a restart file holds beyond its envelope: where the run stands (stage, steps into it,
+// the stage's motion monitor), the world's state, the summary so far and the files written so
+// far, byte for byte (docs/restart.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "blockdem/world/stage.hpp"
+
+namespace blockdem {
+
+struct RunPoint {
+  int level = 0;          ///< the stage to run or continue (0-based)
+  bool in_stage = false;  ///< the stage has started: continue it from `stage`
+  StageResume stage;
+  std::string monitor;  ///< the stage's MotionMonitor::save_state bytes (in_stage)
+  std::string world;    ///< World::save_state bytes
+  /// A collapse-search stage's starting state (World::save_state bytes), empty when none.
+  std::string before;
+  std::string summary;  ///< summary.json so far (JSON text)
+  std::string stages;   ///< the stages' entries so far (JSON text)
+  std::vector<std::int64_t> steps_per_stage;
+  std::optional<double> factor_of_safety;
+  /// The run's files so far: path relative to the output folder, content.
+  std::vector<std::pair<std::string, std::string>> files;
+};
+
+std::string encode_run_point(const RunPoint& point);
+/// Throws StateError for bytes that are not a RunPoint.
+RunPoint decode_run_point(const std::string& bytes);
+
+}  // namespace blockdem

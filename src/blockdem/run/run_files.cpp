@@ -1,0 +1,72 @@
+// The run's files: clearing an earlier run, listing, and manifest.json.
+#include "blockdem/run/run_files.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "blockdem/io/atomic_file.hpp"
+
+namespace blockdem {
+
+void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(out, ec)) return;
+  // The files the earlier run recorded (figures too), when it got that far.
+  const fs::path manifest = out / "manifest.json";
+  if (fs::exists(manifest, ec)) {
+    try {
+      const auto j = nlohmann::json::parse(read_file_bytes(manifest));
+      for (const auto& f : j.at("files")) {
+        const std::string rel = f.at("path").get<std::string>();
+        if (rel.find("..") != std::string::npos || fs::path(rel).is_absolute()) continue;
+        if (keep_checkpoints && (rel == kCheckpointName || rel == kPreviousCheckpointName))
+          continue;
+        fs::remove(out / rel, ec);
+      }
+    } catch (const std::exception&) {
+      // An unreadable record: the standard names below still go.
+    }
+  }
+  for (const char* name : {"manifest.json", "summary.json", "history.csv", "blocks.csv",
+                           "contacts.csv", "joints.csv", "levels.csv", "strength_reduction.csv",
+                           "mechanism.csv", "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
+    fs::remove_all(out / name, ec);
+  if (!keep_checkpoints) {
+    fs::remove(out / kCheckpointName, ec);
+    fs::remove(out / kPreviousCheckpointName, ec);
+  }
+}
+
+std::vector<std::string> list_run_folder(const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  std::error_code ec;
+  if (!fs::is_directory(out, ec)) return files;
+  for (auto it = fs::recursive_directory_iterator(out, ec); !ec && it != fs::end(it);
+       it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const std::string name = it->path().filename().string();
+    if (name.size() > 4 && name.front() == '.' && name.ends_with(".tmp")) continue;
+    files.push_back(fs::relative(it->path(), out, ec).generic_string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+void write_manifest(const std::filesystem::path& out, const std::set<std::string>& foreign,
+                    const std::string& status) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const std::string& rel : list_run_folder(out)) {
+    if (rel == "manifest.json" || foreign.count(rel)) continue;
+    const std::string bytes = read_file_bytes(out / rel);
+    files.push_back({{"path", rel}, {"bytes", bytes.size()}, {"fnv1a64", hex64(fnv1a64(bytes))}});
+  }
+  const nlohmann::json manifest = {{"program", "blockdem"},
+                                   {"status", status},
+                                   {"checksum", "FNV-1a 64-bit, hex"},
+                                   {"files", files}};
+  write_file_atomically(out / "manifest.json", manifest.dump(2) + "\n");
+}
+
+}  // namespace blockdem

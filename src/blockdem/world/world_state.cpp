@@ -1,0 +1,355 @@
+// The world's complete dynamic state as bytes (for restart files): everything a step reads that
+// the scenario does not give, so that a world built from the scenario and loaded with this state
+// continues bit-identically. Unlike the compact divergence checkpoint, nothing is re-derived.
+#include <algorithm>
+#include <string>
+
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+namespace {
+
+void write_servo(StateWriter& w, const Servo& s) {
+  w.vec(s.axis);
+  w.pod(s.target_force);
+  w.pod(s.gain);
+  w.pod(s.max_speed);
+  w.pod(s.tolerance);
+  w.pod(static_cast<std::uint8_t>(s.hold));
+}
+
+Servo read_servo(StateReader& r) {
+  Servo s;
+  s.axis = r.vec();
+  r.pod(s.target_force);
+  r.pod(s.gain);
+  r.pod(s.max_speed);
+  r.pod(s.tolerance);
+  s.hold = r.pod<std::uint8_t>() != 0;
+  return s;
+}
+
+void write_shear(StateWriter& w, const ShearState& s) {
+  w.vec(s.force);
+  w.vec(s.elastic_displacement);
+  w.pod(s.plastic_slip);
+  w.pod(static_cast<std::int32_t>(s.bond));
+}
+
+ShearState read_shear(StateReader& r) {
+  ShearState s;
+  s.force = r.vec();
+  s.elastic_displacement = r.vec();
+  r.pod(s.plastic_slip);
+  s.bond = static_cast<BondState>(r.pod<std::int32_t>());
+  return s;
+}
+
+void write_motion(StateWriter& w, Motion m) {
+  w.pod(static_cast<std::int32_t>(m));
+}
+Motion read_motion(StateReader& r) {
+  return static_cast<Motion>(r.pod<std::int32_t>());
+}
+
+void write_cache(StateWriter& w, const Boon2012Cache& c) {
+  w.pod(static_cast<std::int32_t>(c.planes_a));
+  w.pod(static_cast<std::int32_t>(c.planes_b));
+  w.pod(c.ball.radius);
+  w.vec(c.ball.center);
+  w.pod(static_cast<std::uint8_t>(c.ball.bounded));
+  w.pod(static_cast<std::int32_t>(c.ball.iterations));
+  for (int i : c.ball.active) w.pod(static_cast<std::int32_t>(i));
+  w.pod(static_cast<std::int32_t>(c.ball.num_active));
+  w.pod(static_cast<std::uint8_t>(c.has_ball));
+  w.vec(c.last_point);
+  w.pod(static_cast<std::uint8_t>(c.has_point));
+  for (int i : c.slice.edge_planes) w.pod(static_cast<std::int32_t>(i));
+  w.size(c.slice.count);
+}
+
+Boon2012Cache read_cache(StateReader& r) {
+  Boon2012Cache c;
+  c.planes_a = r.pod<std::int32_t>();
+  c.planes_b = r.pod<std::int32_t>();
+  r.pod(c.ball.radius);
+  c.ball.center = r.vec();
+  c.ball.bounded = r.pod<std::uint8_t>() != 0;
+  c.ball.iterations = r.pod<std::int32_t>();
+  for (int& i : c.ball.active) i = r.pod<std::int32_t>();
+  c.ball.num_active = r.pod<std::int32_t>();
+  c.has_ball = r.pod<std::uint8_t>() != 0;
+  c.last_point = r.vec();
+  c.has_point = r.pod<std::uint8_t>() != 0;
+  for (int& i : c.slice.edge_planes) i = r.pod<std::int32_t>();
+  c.slice.count = static_cast<std::size_t>(r.pod<std::uint64_t>());
+  if (c.slice.count > c.slice.edge_planes.size()) throw StateError("saved contact is corrupt");
+  return c;
+}
+
+void write_contact(StateWriter& w, const Contact& c) {
+  w.pod(static_cast<std::int32_t>(c.a));
+  w.pod(static_cast<std::int32_t>(c.b));
+  w.pod(static_cast<std::int32_t>(c.law));
+  const ContactGeometryRecord& g = c.geometry;
+  w.pod(static_cast<std::uint8_t>(g.touching));
+  w.vec(g.point);
+  w.vec(g.normal);
+  w.pod(g.overlap);
+  w.pod(g.area);
+  w.pod(g.inscribed_radius);
+  w.vec(g.inscribed_centre);
+  write_shear(w, c.shear);
+  w.pod(static_cast<std::uint8_t>(c.has_history));
+  w.vec(c.previous_normal);
+  w.pod(c.normal_stress);
+  w.vec(c.force_point);
+  w.pod(static_cast<std::uint8_t>(c.integrated));
+  w.pod(c.compressed_area);
+  w.pod(c.peak_stress);
+  w.pod(c.peak_closure);
+  w.pod(c.normal_force);
+  w.pod(static_cast<std::uint8_t>(c.sliding));
+  write_cache(w, c.narrow_cache);
+}
+
+Contact read_contact(StateReader& r) {
+  Contact c;
+  c.a = r.pod<std::int32_t>();
+  c.b = r.pod<std::int32_t>();
+  c.law = r.pod<std::int32_t>();
+  ContactGeometryRecord& g = c.geometry;
+  g.touching = r.pod<std::uint8_t>() != 0;
+  g.point = r.vec();
+  g.normal = r.vec();
+  r.pod(g.overlap);
+  r.pod(g.area);
+  r.pod(g.inscribed_radius);
+  g.inscribed_centre = r.vec();
+  c.shear = read_shear(r);
+  c.has_history = r.pod<std::uint8_t>() != 0;
+  c.previous_normal = r.vec();
+  r.pod(c.normal_stress);
+  c.force_point = r.vec();
+  c.integrated = r.pod<std::uint8_t>() != 0;
+  r.pod(c.compressed_area);
+  r.pod(c.peak_stress);
+  r.pod(c.peak_closure);
+  r.pod(c.normal_force);
+  c.sliding = r.pod<std::uint8_t>() != 0;
+  c.narrow_cache = read_cache(r);
+  return c;
+}
+
+void write_doubles(StateWriter& w, const std::vector<double>& v) {
+  w.size(v.size());
+  for (double x : v) w.pod(x);
+}
+
+std::vector<double> read_doubles(StateReader& r) {
+  std::vector<double> v(r.size());
+  for (double& x : v) r.pod(x);
+  return v;
+}
+
+}  // namespace
+
+void World::save_state(StateWriter& w) const {
+  // Settings a stage changes.
+  w.vec(settings_.gravity);
+  w.pod(settings_.damping);
+  w.size(laws_.size());
+  w.size(blocks_.size());
+  for (const Block& b : blocks_) {
+    w.str(b.name);
+    w.vec(b.position);
+    w.quat(b.orientation);
+    w.vec(b.velocity);
+    w.vec(b.angular_velocity);
+    w.vec(b.angular_momentum);
+    write_motion(w, b.motion);
+    write_servo(w, b.servo);
+    w.vec(b.force);
+    w.vec(b.torque);
+    w.vec(b.contact_force);
+    // World planes and box as the last step left them (a restart does not refresh them).
+    w.size(b.world_planes.size());
+    for (const Halfspace& h : b.world_planes) {
+      w.vec(h.normal);
+      w.pod(h.offset);
+    }
+    w.vec(b.aabb_min);
+    w.vec(b.aabb_max);
+  }
+  write_doubles(w, stiffness_);
+  write_doubles(w, rotational_stiffness_);
+  w.pod(contact_dt_);
+  w.pod(time_);
+  w.pod(step_count_);
+  w.pod(last_dt_);
+  w.pod(broken_bonds_);
+  w.pod(overlap_violation_);
+  w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
+  w.size(pairs_.size());
+  for (const auto& [a, b] : pairs_) {
+    w.pod(static_cast<std::int32_t>(a));
+    w.pod(static_cast<std::int32_t>(b));
+  }
+  w.size(slots_.size());
+  for (const PairSlot& s : slots_) {
+    write_contact(w, s.contact);
+    w.pod(static_cast<std::int32_t>(s.group_law));
+    w.pod(static_cast<std::uint8_t>(s.broke));
+    w.pod(s.stiffness);
+    w.pod(static_cast<std::uint8_t>(s.active));
+  }
+  // The divergence checkpoint, so that a blow-up after a restart rolls back to the same state.
+  w.pod(static_cast<std::uint8_t>(checkpoint_.valid));
+  w.pod(checkpoint_.time);
+  w.pod(checkpoint_.step_count);
+  w.pod(checkpoint_.broken_bonds);
+  w.size(checkpoint_.blocks.size());
+  for (const BlockState& s : checkpoint_.blocks) {
+    w.vec(s.position);
+    w.vec(s.velocity);
+    w.vec(s.angular_velocity);
+    w.vec(s.angular_momentum);
+    w.quat(s.orientation);
+    write_motion(w, s.motion);
+    write_servo(w, s.servo);
+  }
+  w.size(checkpoint_.contacts.size());
+  for (const ContactHistory& h : checkpoint_.contacts) {
+    w.pod(static_cast<std::int32_t>(h.a));
+    w.pod(static_cast<std::int32_t>(h.b));
+    write_shear(w, h.shear);
+    w.vec(h.previous_normal);
+  }
+}
+
+void World::load_state(StateReader& r) {
+  settings_.gravity = r.vec();
+  r.pod(settings_.damping);
+  if (r.size() != laws_.size())
+    throw StateError("the saved state has another number of joint laws than the scenario");
+  // Blocks removed by earlier stages (an excavation) are removed here too, matched by name.
+  const std::size_t n = r.size();
+  std::vector<Block> saved(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Block& b = saved[i];
+    b.name = r.str();
+    b.position = r.vec();
+    b.orientation = r.quat();
+    b.velocity = r.vec();
+    b.angular_velocity = r.vec();
+    b.angular_momentum = r.vec();
+    b.motion = read_motion(r);
+    b.servo = read_servo(r);
+    b.force = r.vec();
+    b.torque = r.vec();
+    b.contact_force = r.vec();
+    b.world_planes.resize(r.size());
+    for (Halfspace& h : b.world_planes) {
+      h.normal = r.vec();
+      r.pod(h.offset);
+    }
+    b.aabb_min = r.vec();
+    b.aabb_max = r.vec();
+  }
+  if (n != blocks_.size()) {
+    std::vector<int> gone;
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      if (j < n && blocks_[i].name == saved[j].name) {
+        ++j;
+      } else {
+        gone.push_back(static_cast<int>(i));
+      }
+    }
+    if (j != n || n > blocks_.size())
+      throw StateError("the saved blocks are not the scenario's blocks");
+    remove_blocks(gone);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Block& b = blocks_[i];
+    Block& s = saved[i];
+    if (b.name != s.name) throw StateError("the saved blocks are not the scenario's blocks");
+    if (s.world_planes.size() != b.shape.planes().size())
+      throw StateError("block '" + b.name + "' has another shape than in the saved state");
+    b.position = s.position;
+    b.orientation = s.orientation;
+    b.velocity = s.velocity;
+    b.angular_velocity = s.angular_velocity;
+    b.angular_momentum = s.angular_momentum;
+    b.motion = s.motion;
+    b.servo = s.servo;
+    b.force = s.force;
+    b.torque = s.torque;
+    b.contact_force = s.contact_force;
+    b.world_planes = std::move(s.world_planes);
+    b.aabb_min = s.aabb_min;
+    b.aabb_max = s.aabb_max;
+  }
+  stiffness_ = read_doubles(r);
+  rotational_stiffness_ = read_doubles(r);
+  if (stiffness_.size() > n || rotational_stiffness_.size() > n)
+    throw StateError("saved state is corrupt (stiffness per block)");
+  r.pod(contact_dt_);
+  r.pod(time_);
+  r.pod(step_count_);
+  r.pod(last_dt_);
+  r.pod(broken_bonds_);
+  r.pod(overlap_violation_);
+  const bool rules_current = r.pod<std::uint8_t>() != 0;
+  slots_rules_version_ = rules_current ? rules_version_ : rules_version_ - 1;
+  const int block_count = static_cast<int>(blocks_.size());
+  const int law_count = static_cast<int>(laws_.size());
+  auto check_pair = [&](int a, int b) {
+    if (a < 0 || b <= a || b >= block_count) throw StateError("saved contact is corrupt");
+  };
+  pairs_.resize(r.size());
+  for (auto& [a, b] : pairs_) {
+    a = r.pod<std::int32_t>();
+    b = r.pod<std::int32_t>();
+    check_pair(a, b);
+  }
+  slots_.clear();
+  slots_.resize(r.size());
+  active_count_ = 0;
+  for (PairSlot& s : slots_) {
+    s.contact = read_contact(r);
+    check_pair(s.contact.a, s.contact.b);
+    if (s.contact.law < -1 || s.contact.law >= law_count)
+      throw StateError("saved contact is corrupt");
+    s.group_law = r.pod<std::int32_t>();
+    if (s.group_law < -1 || s.group_law >= law_count) throw StateError("saved contact is corrupt");
+    s.broke = r.pod<std::uint8_t>() != 0;
+    r.pod(s.stiffness);
+    s.active = r.pod<std::uint8_t>() != 0;
+    active_count_ += s.active ? 1 : 0;
+  }
+  checkpoint_.valid = r.pod<std::uint8_t>() != 0;
+  r.pod(checkpoint_.time);
+  r.pod(checkpoint_.step_count);
+  r.pod(checkpoint_.broken_bonds);
+  checkpoint_.blocks.resize(r.size());
+  for (BlockState& s : checkpoint_.blocks) {
+    s.position = r.vec();
+    s.velocity = r.vec();
+    s.angular_velocity = r.vec();
+    s.angular_momentum = r.vec();
+    s.orientation = r.quat();
+    s.motion = read_motion(r);
+    s.servo = read_servo(r);
+  }
+  checkpoint_.contacts.resize(r.size());
+  for (ContactHistory& h : checkpoint_.contacts) {
+    h.a = r.pod<std::int32_t>();
+    h.b = r.pod<std::int32_t>();
+    check_pair(h.a, h.b);
+    h.shear = read_shear(r);
+    h.previous_normal = r.vec();
+  }
+}
+
+}  // namespace blockdem

@@ -1,0 +1,164 @@
+// Checkpoint and restart through the program: a run continued from any of its checkpoints, with
+// 1 or 2 threads, ends with byte-identical outputs to the run that was never stopped; unusable
+// checkpoints are refused (exit 2, nothing touched); the run record lists what the run wrote.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "blockdem/io/atomic_file.hpp"
+#include "restart_support.hpp"
+#include "support/cli_runner.hpp"
+
+namespace blockdem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The reference: a run with checkpoints every 450 steps (at 450, 900, ... and at the stage
+// ends 400 and 1000), which keeps the last two.
+class Restart : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scenario_ = write_restart_scenario("restart_reference", 0);
+    reference_ = fresh_dir("restart_reference_out");
+    const CommandOutput r =
+        run_cli("run '" + scenario_.string() + "' --out '" + reference_.string() +
+                "' --quiet --no-figures --threads 1 --checkpoint-every 450");
+    reference_exit_ = r.exit_code;
+    ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.err;
+    kept_ = fresh_dir("restart_kept");
+    fs::create_directories(kept_);
+    fs::copy_file(reference_ / "checkpoint.bdck", kept_ / "last.bdck");
+    fs::copy_file(reference_ / "checkpoint.bdck.prev", kept_ / "previous.bdck");
+  }
+  static inline fs::path scenario_, reference_, kept_;
+  static inline int reference_exit_ = -1;
+};
+
+// Reference: the uninterrupted run. Tolerance: none (byte-identical CSV, VTK and summary.json
+// but for the wall time and thread count).
+TEST_F(Restart, ContinuingFromEitherKeptCheckpointWithOneOrTwoThreadsIsBitIdentical) {
+  for (const char* which : {"last.bdck", "previous.bdck"}) {
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE(std::string(which) + ", threads " + std::to_string(threads));
+      const fs::path out = fresh_dir("restart_continued");
+      const CommandOutput r =
+          run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                  "' --quiet --no-figures --threads " + std::to_string(threads) + " --restart '" +
+                  (kept_ / which).string() + "'");
+      EXPECT_EQ(r.exit_code, reference_exit_) << r.err;
+      expect_same_outputs(reference_, out);
+    }
+  }
+}
+
+TEST_F(Restart, CheckpointsDoNotChangeTheRun) {
+  const fs::path out = fresh_dir("restart_plain");
+  const CommandOutput r = run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                                  "' --quiet --no-figures --threads 2");
+  EXPECT_EQ(r.exit_code, reference_exit_) << r.err;
+  expect_same_outputs(reference_, out);
+  EXPECT_FALSE(fs::exists(out / "checkpoint.bdck")) << "no checkpoint unless asked";
+}
+
+// The record: every file the run wrote, with its size and checksum, and nothing else.
+TEST_F(Restart, ManifestListsEveryFileWithSizeAndChecksum) {
+  const auto manifest = nlohmann::json::parse(read_file_bytes(reference_ / "manifest.json"));
+  std::map<std::string, bool> listed;
+  for (const auto& f : manifest.at("files")) {
+    const std::string rel = f.at("path");
+    const std::string bytes = read_file_bytes(reference_ / rel);
+    EXPECT_EQ(f.at("bytes").get<std::size_t>(), bytes.size()) << rel;
+    EXPECT_EQ(f.at("fnv1a64").get<std::string>(), hex64(fnv1a64(bytes))) << rel;
+    listed[rel] = true;
+  }
+  for (const char* rel : {"summary.json", "history.csv", "blocks.csv", "contacts.csv",
+                          "checkpoint.bdck", "vtk/blocks_0000.vtk"})
+    EXPECT_TRUE(listed.count(rel)) << rel;
+  EXPECT_FALSE(listed.count("manifest.json"));
+  EXPECT_EQ(manifest.at("status"),
+            nlohmann::json::parse(read_file_bytes(reference_ / "summary.json")).at("status"));
+}
+
+// A new run in a used folder: the earlier run's files go (also those its manifest lists), the
+// user's own files stay and are not claimed by the record.
+TEST_F(Restart, ANewRunClearsTheEarlierRunButNotOtherFiles) {
+  const fs::path out = fresh_dir("restart_reused");
+  fs::copy(reference_, out, fs::copy_options::recursive);
+  {
+    std::ofstream(out / "notes.txt") << "mine\n";
+    std::ofstream(out / "vtk" / "blocks_0099.vtk") << "stale\n";
+  }
+  const CommandOutput r = run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                                  "' --quiet --no-figures --threads 1");
+  EXPECT_EQ(r.exit_code, reference_exit_) << r.err;
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+  EXPECT_FALSE(fs::exists(out / "vtk" / "blocks_0099.vtk"));
+  EXPECT_FALSE(fs::exists(out / "checkpoint.bdck")) << "the earlier run's checkpoint";
+  const auto manifest = nlohmann::json::parse(read_file_bytes(out / "manifest.json"));
+  for (const auto& f : manifest.at("files")) EXPECT_NE(f.at("path"), "notes.txt");
+}
+
+struct BadCheckpoint {
+  const char* name;
+  const char* reason;  // expected in the message
+};
+
+// Unusable checkpoints: exit 2, a message naming the file and the reason, and the folder of the
+// run being continued left exactly as it was.
+TEST_F(Restart, UnusableCheckpointsAreRefusedAndNothingIsTouched) {
+  const std::string good = read_file_bytes(kept_ / "last.bdck");
+  const std::map<std::string, std::string> variants = {
+      {"truncated", good.substr(0, good.size() - 100)},
+      {"corrupt",
+       [&] {
+         std::string s = good;
+         s[s.size() / 2] = static_cast<char>(s[s.size() / 2] ^ 0x5a);
+         return s;
+       }()},
+      {"wrong_version",
+       [&] {
+         std::string s = good;
+         s[12] = 99;  // the format version field
+         return s;
+       }()},
+      {"foreign", std::string("PK\x03\x04 not a checkpoint at all, but long enough to read")},
+  };
+  const std::map<std::string, std::string> reasons = {{"truncated", "truncated"},
+                                                      {"corrupt", "checksum"},
+                                                      {"wrong_version", "format version 99"},
+                                                      {"foreign", "magic"}};
+  const fs::path out = fresh_dir("restart_refused");
+  fs::copy(reference_, out, fs::copy_options::recursive);
+  const auto before = folder_digest(out);
+  for (const auto& [name, bytes] : variants) {
+    SCOPED_TRACE(name);
+    const fs::path bad = kept_ / (name + ".bdck");
+    std::ofstream(bad, std::ios::binary) << bytes;
+    const CommandOutput r = run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                                    "' --quiet --no-figures --restart '" + bad.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(reasons.at(name)), std::string::npos) << r.err;
+    EXPECT_EQ(folder_digest(out), before) << "a refused restart must not touch the folder";
+  }
+  // Another scenario (one more step in a stage), and other result-changing options.
+  const fs::path other = write_restart_scenario("restart_other", 1);
+  for (const std::string& command :
+       {"run '" + other.string() + "'", "run '" + scenario_.string() + "' --max-steps 5000"}) {
+    SCOPED_TRACE(command);
+    const CommandOutput r =
+        run_cli(command + " --out '" + out.string() + "' --quiet --no-figures --restart '" +
+                (kept_ / "last.bdck").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("another scenario"), std::string::npos) << r.err;
+    EXPECT_EQ(folder_digest(out), before);
+  }
+}
+
+}  // namespace
+}  // namespace blockdem::test
