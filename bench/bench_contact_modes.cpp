@@ -11,6 +11,7 @@
 #include "blockdem/collision/face_contact.hpp"
 #include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/geometry/polyhedron.hpp"
+#include "blockdem/world/contact_twist.hpp"
 
 namespace blockdem {
 namespace {
@@ -65,9 +66,37 @@ void BM_ContactFaceIntegrated(benchmark::State& state) {
   }
 }
 
+// The same with the twisting resistance (issue 14): the compressed area's J and ∫ σ_n r dA over
+// the cells, and one step of the torsional spring.
+void BM_ContactFaceIntegratedTwist(benchmark::State& state) {
+  const Joint j = beam_joint(static_cast<double>(state.range(0)) * 1e-4);
+  const NormalLaw& law = law_of(static_cast<int>(state.range(1)));
+  const ShearLaw shear = LinearShear{};
+  Boon2012Cache cache;
+  if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching)
+    state.SkipWithError("no contact");
+  TwistState twist;
+  for (auto _ : state) {
+    const ContactGeometry g = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}, &cache);
+    const FaceContactGeometry fc = face_contact_geometry(j.a, j.b, g.point, g.normal, 0.2);
+    double force = 0.0, area = 0.0;
+    for (const auto& cell : fc.cells) {
+      const PolygonStressResultant r =
+          integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
+      force += r.force;
+      area += r.compressed_area;
+    }
+    const TwistGeometry tg = face_twist_geometry(fc.cells, law);
+    benchmark::DoNotOptimize(
+        advance_contact_twist(twist, shear, ShearState{}, force / area, tg, 1e-9));
+    benchmark::DoNotOptimize(force);
+  }
+}
+
 // Arguments: tilt in 1e-4 rad (0: closed joint; 5: partly open), law (0 linear, 1 exponential).
 BENCHMARK(BM_ContactPoint)->ArgsProduct({{0, 5}, {0, 1}});
 BENCHMARK(BM_ContactFaceIntegrated)->ArgsProduct({{0, 5}, {0, 1}});
+BENCHMARK(BM_ContactFaceIntegratedTwist)->ArgsProduct({{0, 5}, {0, 1}});
 
 }  // namespace
 }  // namespace blockdem

@@ -42,6 +42,8 @@ void read_settings(const CheckedTable& t, WorldSettings& s) {
   s.boon2012.rounding_distance = t.positive("rounding_distance", s.boon2012.rounding_distance);
   s.boon2012.overlap_tolerance =
       t.positive("overlap_tolerance", s.boon2012.overlap_tolerance, true);
+  // Twisting resistance of the joints: default on in face_integrated, off in boon2012.
+  if (t.has("twist")) s.twist = t.boolean("twist", s.twist_enabled());
   s.max_speed = t.positive("max_speed", s.max_speed);
   s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
   t.finish();

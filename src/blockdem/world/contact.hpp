@@ -6,6 +6,7 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/contact_geometry.hpp"
 #include "blockdem/contact/shear_state.hpp"
+#include "blockdem/contact/twist.hpp"
 
 namespace blockdem {
 
@@ -38,6 +39,7 @@ struct Contact {
 
   ContactGeometryRecord geometry;  ///< this step's geometry
   ShearState shear;                ///< shear history (force on b, plastic slip)
+  TwistState twist;                ///< twisting moment about the normal (on b)
   bool has_history = false;        ///< false on the step the contact forms
   Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
 

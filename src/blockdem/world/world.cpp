@@ -310,7 +310,7 @@ void World::save_checkpoint() {
   for (const auto& s : slots_) {
     if (!s.active) continue;
     checkpoint_.contacts.push_back(
-        {s.contact.a, s.contact.b, s.contact.shear, s.contact.previous_normal});
+        {s.contact.a, s.contact.b, s.contact.shear, s.contact.twist, s.contact.previous_normal});
   }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
@@ -343,6 +343,7 @@ void World::restore_checkpoint() {
     s.group_law = law_for(h.a, h.b);
     s.contact.law = s.group_law;
     s.contact.shear = h.shear;
+    s.contact.twist = h.twist;
     s.contact.previous_normal = h.previous_normal;
     s.contact.has_history = true;
     slots_.push_back(std::move(s));

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -52,6 +53,10 @@ struct WorldSettings {
   ContactMode contact_mode = ContactMode::face_integrated;
   Boon2012Settings boon2012;
   FaceContactSettings face_contact;
+  /// Twisting resistance of the joints about their normals (a torsional spring k_s J with a
+  /// Coulomb cap, and the stored shear force turned with the contact's spin). Empty: on in mode
+  /// face_integrated, off in mode boon2012 (the paper carries no twisting moment).
+  std::optional<bool> twist;
   /// A run stops as diverged when a block moves faster than this (m/s).
   double max_speed = 100.0;
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).
@@ -59,6 +64,11 @@ struct WorldSettings {
   /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core).
   /// Results are bit-identical for every thread count.
   int threads = 0;
+
+  /// Whether contacts carry a twisting moment (`twist`, else the mode's default).
+  bool twist_enabled() const {
+    return twist.value_or(contact_mode == ContactMode::face_integrated);
+  }
 
   /// Throws std::invalid_argument naming the setting if a value is unusable.
   void validate() const;
@@ -158,9 +168,10 @@ class World {
   /// near pair, only the narrow-phase warm start kept in contact.narrow_cache.
   struct PairSlot {
     Contact contact;
-    int group_law = -1;      ///< the group rules' law for the pair (-1: none)
-    bool broke = false;      ///< the pair's bond broke in this step
-    double stiffness = 0.0;  ///< k_n A + k_s A of this step, for the time step (N/m)
+    int group_law = -1;            ///< the group rules' law for the pair (-1: none)
+    bool broke = false;            ///< the pair's bond broke in this step
+    double stiffness = 0.0;        ///< k_n A + k_s A of this step, for the time step (N/m)
+    double twist_stiffness = 0.0;  ///< k_s J of this step, for the time step (N m/rad)
     bool active = false;
   };
 
@@ -208,6 +219,7 @@ class World {
   struct ContactHistory {
     int a = -1, b = -1;
     ShearState shear;
+    TwistState twist;
     Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
   };
   struct Checkpoint {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "blockdem/contact/normal_integral.hpp"
+#include "blockdem/world/contact_twist.hpp"
 #include "blockdem/world/face_laws.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -117,6 +118,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   slot.active = false;
   slot.broke = false;
   slot.stiffness = 0.0;
+  slot.twist_stiffness = 0.0;
   const std::vector<int>& face_laws_a = face_laws(ct.a);
   const std::vector<int>& face_laws_b = face_laws(ct.b);
   if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) {
@@ -145,6 +147,8 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
   // contact, acting at the centre of pressure (mode face_integrated).
   ct.integrated = false;
+  const bool twist = settings_.twist_enabled();
+  TwistGeometry twist_geometry;
   if (settings_.contact_mode == ContactMode::face_integrated) {
     const FaceContactGeometry fc = face_contact_geometry(
         a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
@@ -172,6 +176,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
       ct.peak_stress = peak;
       ct.peak_closure = closure;
       ct.force_point = moment / force;
+      if (twist && advance_shear) twist_geometry = face_twist_geometry(fc.cells, law.normal);
     }
   }
   if (!ct.integrated) {
@@ -181,6 +186,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
     ct.compressed_area = ct.geometry.area;
     ct.peak_stress = ct.normal_stress;
     ct.peak_closure = ct.geometry.overlap;
+    if (twist && advance_shear) twist_geometry = slice_twist_geometry(g.slice, ct.normal_stress);
   }
   slot.active = true;
   const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
@@ -194,6 +200,9 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   // Shear: carry the stored force into the new tangent plane, then add the increment from the
   // relative velocity of the material points at x_c over the step.
   if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
+  // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
+  if (twist && ct.has_history)
+    spin_shear_state(ct.shear, n, 0.5 * (a.angular_velocity + b.angular_velocity).dot(n) * dt);
   const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
   ShearIncrement inc;
   inc.displacement =
@@ -205,6 +214,18 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
+  // Twist: B's spin relative to A about n turns the torsional spring; the moment is reset with
+  // the shear force when the joint carries no compression.
+  if (twist) {
+    if (ct.normal_force > 0.0 && ct.normal_stress > 0.0) {
+      const double spin =
+          ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
+      slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
+                                                   twist_geometry, spin);
+    } else {
+      ct.twist = TwistState{};
+    }
+  }
   ct.previous_normal = n;
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).
@@ -236,6 +257,12 @@ void World::scatter_loads() {
     a.force -= f;
     a.contact_force -= f;
     a.torque -= (xf - a.position).cross(f);
+    // The twisting moment about the normal, a couple: M n on b, -M n on a.
+    if (ct.twist.moment != 0.0) {
+      const Eigen::Vector3d m = ct.twist.moment * ct.geometry.normal;
+      b.torque += m;
+      a.torque -= m;
+    }
 
     // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
     // the rocking stiffness of a spread face.
@@ -245,6 +272,8 @@ void World::scatter_loads() {
     stiffness_[ct.b] += k;
     rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
     rotational_stiffness_[ct.b] += k * ((xf - b.position).squaredNorm() + spread);
+    rotational_stiffness_[ct.a] += s.twist_stiffness;
+    rotational_stiffness_[ct.b] += s.twist_stiffness;
 
     if (overlap_violation_ < 0) {
       const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
