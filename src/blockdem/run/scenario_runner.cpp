@@ -9,6 +9,7 @@
 
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/voussoir/recorder.hpp"
 #include "blockdem/voussoir/scene.hpp"
@@ -56,6 +57,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
       "Cundall P.A. (1987) Distinct element models of rock and soil structure. In: Analytical and "
       "Computational Methods in Engineering Rock Mechanics, ch. 4 (local non-viscous damping)."};
   nlohmann::json stages = nlohmann::json::array();
+  nlohmann::json excavated_key_blocks = nlohmann::json::array();
+  bool any_excavation = false;
   const int n = static_cast<int>(sc.stages.size());
   for (int level = 0; level < n; ++level) {
     const Stage& stage = sc.stages[level];
@@ -132,6 +135,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     StageResult result;
     bool diverged = false;
     std::optional<MotionMonitor> monitor;
+    const auto start_positions =
+        stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {
       result = run_stage(world, stage, progress, &monitor);
     } catch (const DivergenceError& e) {
@@ -156,6 +161,17 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
                       {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
                       {"contacts", world.contact_count()},
                       {"message", result.message}});
+    if (!stage.remove.empty()) {
+      // An excavation: the blocks that fell or slid into the opening.
+      stages.back()["removed_blocks"] = stage.remove.size();
+      const nlohmann::json kb = key_blocks(world, start_positions);
+      stages.back()["key_blocks"] = kb;
+      for (nlohmann::json e : kb) {
+        e["stage"] = stage.name;
+        excavated_key_blocks.push_back(std::move(e));
+      }
+      any_excavation = true;
+    }
     // Outputs of this level. A level that did not converge is written flagged converged = 0; a
     // diverged one is not written (the rows so far end with the last good state).
     if (!diverged) recorder.record(world, result, level);
@@ -214,6 +230,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
+  if (any_excavation) summary["key_blocks"] = excavated_key_blocks;
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.
