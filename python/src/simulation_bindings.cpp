@@ -1,9 +1,9 @@
 // blockdem.Simulation: a world built from a scenario, run stage by stage or step by step, with a
 // Python callback every N steps that can record, change loads and stop the run.
-#include <functional>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <functional>
 
 #include <string>
 

@@ -58,6 +58,8 @@ const char* to_string(BondState state) {
       return "broken_in_tension";
     case BondState::broken_in_shear:
       return "broken_in_shear";
+    case BondState::unbonded:
+      return "unbonded";
   }
   throw std::logic_error("to_string(BondState): value out of range");
 }

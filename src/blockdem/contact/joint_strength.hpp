@@ -83,6 +83,9 @@ enum class BondState {
   intact,             ///< no limit reached yet (or the joint cannot break)
   broken_in_tension,  ///< sigma_n reached -sigma_t
   broken_in_shear,    ///< |tau| reached c + sigma_n tan(phi)
+  /// Never bonded: a contact that formed after the start, between blocks that were not joined
+  /// then (no rock bridge); it has the residual strength from the first step.
+  unbonded,
 };
 
 /// "intact", "broken_in_tension" or "broken_in_shear".

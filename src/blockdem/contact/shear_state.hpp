@@ -26,7 +26,8 @@ struct ShearState {
   /// broken and the joint has the residual strength. Stays intact for a joint that cannot break.
   BondState bond = BondState::intact;
 
-  bool broken() const { return bond != BondState::intact; }  ///< a limit has been reached
+  /// Not intact: a limit has been reached, or the contact was never bonded.
+  bool broken() const { return bond != BondState::intact; }
 };
 
 /// What the world measured at a contact during one time step.

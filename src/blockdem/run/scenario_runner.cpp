@@ -11,6 +11,7 @@
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/stability_outputs.hpp"
@@ -268,6 +269,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       if (due && !beam) write_checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
       return stop;
     };
+    const auto start_positions =
+        stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {
       result = run_stage(world, stage, progress, &monitor, after_step,
                          resuming ? &resume->stage : nullptr);
@@ -303,6 +306,11 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
                       {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
                       {"contacts", world.contact_count()},
                       {"message", result.message}});
+    if (!stage.remove.empty()) {
+      // An excavation: the blocks that fell or slid into the opening.
+      stages.back()["removed_blocks"] = stage.remove.size();
+      stages.back()["key_blocks"] = key_blocks(world, start_positions);
+    }
     // Outputs of this level. A level that did not converge is written flagged converged = 0; a
     // diverged one is not written (the rows so far end with the last good state).
     if (!diverged) recorder.record(world, result, level);
@@ -361,6 +369,18 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
+  // Every excavation stage's key blocks (from `stages`, which a restart carries on).
+  nlohmann::json all_key_blocks = nlohmann::json::array();
+  bool any_excavation = false;
+  for (const auto& st : stages) {
+    if (!st.contains("key_blocks")) continue;
+    any_excavation = true;
+    for (nlohmann::json e : st["key_blocks"]) {
+      e["stage"] = st["name"];
+      all_key_blocks.push_back(std::move(e));
+    }
+  }
+  if (any_excavation) summary["key_blocks"] = all_key_blocks;
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.

@@ -305,12 +305,16 @@ void World::save_checkpoint() {
         b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation,
         b.motion,   b.servo};
   }
+  // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
+  // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
   checkpoint_.contacts.clear();
   checkpoint_.contacts.reserve(active_count_);
   for (const auto& s : slots_) {
-    if (!s.active) continue;
-    checkpoint_.contacts.push_back(
-        {s.contact.a, s.contact.b, s.contact.shear, s.contact.twist, s.contact.previous_normal});
+    const Contact& c = s.contact;
+    if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
+    checkpoint_.contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist,
+                                    c.previous_normal, c.force_point, c.geometry.overlap,
+                                    c.compressed_area});
   }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
@@ -341,11 +345,15 @@ void World::restore_checkpoint() {
     s.contact.a = h.a;
     s.contact.b = h.b;
     s.group_law = law_for(h.a, h.b);
-    s.contact.law = s.group_law;
+    s.contact.law = h.has_history ? h.law : s.group_law;
     s.contact.shear = h.shear;
     s.contact.twist = h.twist;
     s.contact.previous_normal = h.previous_normal;
-    s.contact.has_history = true;
+    s.contact.has_history = h.has_history;
+    s.contact.force_point = h.point;
+    s.contact.geometry.point = h.point;
+    s.contact.geometry.overlap = h.closure;
+    s.contact.compressed_area = h.area;
     slots_.push_back(std::move(s));
   }
   slots_rules_version_ = rules_version_;

@@ -177,8 +177,10 @@ class World {
 
   void update_geometry(int threads);
   void compute_contacts(double dt, int threads);
+  void keep_open_bonds();
   void merge_pairs();
   void evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const;
+  bool evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const;
   void evaluate_pairs(double dt, bool advance_shear, int threads);
   void scatter_loads();
   void apply_servos(double dt);
@@ -218,9 +220,15 @@ class World {
   /// What a contact needs to go on after a restore (its geometry is re-derived).
   struct ContactHistory {
     int a = -1, b = -1;
+    int law = -1;
+    bool has_history = false;
     ShearState shear;
     TwistState twist;
     Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
+    // An open bond's state, which no geometry re-derives: its point, closure and area.
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    double closure = 0.0;
+    double area = 0.0;
   };
   struct Checkpoint {
     std::vector<BlockState> blocks;

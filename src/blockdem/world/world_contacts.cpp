@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <limits>
 
 #include "blockdem/contact/normal_integral.hpp"
@@ -19,7 +20,9 @@ bool less_pair(int a1, int b1, int a2, int b2) {
   return a1 < a2 || (a1 == a2 && b1 < b2);
 }
 
-/// Back to a fresh contact (no history), keeping the pair and its narrow-phase warm start.
+/// Back to a fresh contact (no history), keeping the pair, its narrow-phase warm start and its
+/// bond state: a bond that broke stays broken, and an intact one stays intact, while the pair
+/// remains a candidate.
 void forget_history(Contact& c) {
   if (!c.has_history) return;
   Contact fresh;
@@ -27,6 +30,7 @@ void forget_history(Contact& c) {
   fresh.b = c.b;
   fresh.law = c.law;
   fresh.narrow_cache = c.narrow_cache;
+  fresh.shear.bond = c.shear.bond;
   c = fresh;
 }
 
@@ -41,9 +45,24 @@ void World::compute_contacts(double dt, int threads) {
                (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
       },
       pairs_, threads);
+  keep_open_bonds();
   merge_pairs();
   evaluate_pairs(dt, true, threads);
   scatter_loads();
+}
+
+void World::keep_open_bonds() {
+  // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
+  // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
+  std::vector<std::pair<int, int>> open;
+  for (const auto& s : slots_) {
+    if (s.active && !s.contact.geometry.touching) open.emplace_back(s.contact.a, s.contact.b);
+  }
+  if (open.empty()) return;
+  std::vector<std::pair<int, int>> all;
+  all.reserve(pairs_.size() + open.size());
+  std::set_union(pairs_.begin(), pairs_.end(), open.begin(), open.end(), std::back_inserter(all));
+  pairs_.swap(all);
 }
 
 void World::merge_pairs() {
@@ -81,6 +100,9 @@ void World::merge_pairs() {
         fresh.contact.b = b;
         fresh.group_law = law_for(a, b);
         fresh.contact.law = fresh.group_law;
+        // Bonds (rock bridges) join only blocks that were candidates at the start: a pair that
+        // becomes one later has never been bonded and gets the residual strength.
+        if (step_count_ > 0) fresh.contact.shear.bond = BondState::unbonded;
         slots_[w] = std::move(fresh);
       }
     }
@@ -131,7 +153,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent,
                                              settings_.boon2012, &ct.narrow_cache);
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
-    forget_history(ct);
+    if (!evaluate_open_bond(slot, dt, advance_shear)) forget_history(ct);
     return;
   }
   // The joint law of the faces in contact (a joint set's), else the group rules'.
@@ -165,8 +187,9 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
         for (double gc : cell.closures) closure = std::max(closure, gc);
       }
       if (!(force > 0.0)) {
-        // Touching, but no closure anywhere to integrate: no force this step.
-        forget_history(ct);
+        // Touching, but no closure anywhere to integrate: no force this step, unless a bond
+        // holds the faces together.
+        if (!evaluate_open_bond(slot, dt, advance_shear)) forget_history(ct);
         return;
       }
       ct.integrated = true;
@@ -241,9 +264,9 @@ void World::scatter_loads() {
   overlap_violation_ = -1;
   for (std::size_t slot = 0; slot < slots_.size(); ++slot) {
     const PairSlot& s = slots_[slot];
+    if (s.broke) ++broken_bonds_;  // a bond that broke in tension leaves its slot inactive
     if (!s.active) continue;
     ++active_count_;
-    if (s.broke) ++broken_bonds_;
     const Contact& ct = s.contact;
     Block& a = blocks_[ct.a];
     Block& b = blocks_[ct.b];

@@ -41,7 +41,10 @@ ShearState read_shear(StateReader& r) {
   s.force = r.vec();
   s.elastic_displacement = r.vec();
   r.pod(s.plastic_slip);
-  s.bond = static_cast<BondState>(r.pod<std::int32_t>());
+  const auto bond = r.pod<std::int32_t>();
+  if (bond < 0 || bond > static_cast<std::int32_t>(BondState::unbonded))
+    throw StateError("saved bond state is corrupt");
+  s.bond = static_cast<BondState>(bond);
   return s;
 }
 
@@ -110,6 +113,7 @@ void write_contact(StateWriter& w, const Contact& c) {
   w.pod(c.peak_closure);
   w.pod(c.normal_force);
   w.pod(static_cast<std::uint8_t>(c.sliding));
+  w.pod(c.twist.moment);
   write_cache(w, c.narrow_cache);
 }
 
@@ -137,6 +141,7 @@ Contact read_contact(StateReader& r) {
   r.pod(c.peak_closure);
   r.pod(c.normal_force);
   c.sliding = r.pod<std::uint8_t>() != 0;
+  r.pod(c.twist.moment);
   c.narrow_cache = read_cache(r);
   return c;
 }
@@ -201,6 +206,7 @@ void World::save_state(StateWriter& w) const {
     w.pod(static_cast<std::int32_t>(s.group_law));
     w.pod(static_cast<std::uint8_t>(s.broke));
     w.pod(s.stiffness);
+    w.pod(s.twist_stiffness);
     w.pod(static_cast<std::uint8_t>(s.active));
   }
   // The divergence checkpoint, so that a blow-up after a restart rolls back to the same state.
@@ -222,8 +228,14 @@ void World::save_state(StateWriter& w) const {
   for (const ContactHistory& h : checkpoint_.contacts) {
     w.pod(static_cast<std::int32_t>(h.a));
     w.pod(static_cast<std::int32_t>(h.b));
+    w.pod(static_cast<std::int32_t>(h.law));
+    w.pod(static_cast<std::uint8_t>(h.has_history));
     write_shear(w, h.shear);
+    w.pod(h.twist.moment);
     w.vec(h.previous_normal);
+    w.vec(h.point);
+    w.pod(h.closure);
+    w.pod(h.area);
   }
 }
 
@@ -325,6 +337,7 @@ void World::load_state(StateReader& r) {
     if (s.group_law < -1 || s.group_law >= law_count) throw StateError("saved contact is corrupt");
     s.broke = r.pod<std::uint8_t>() != 0;
     r.pod(s.stiffness);
+    r.pod(s.twist_stiffness);
     s.active = r.pod<std::uint8_t>() != 0;
     active_count_ += s.active ? 1 : 0;
   }
@@ -347,8 +360,15 @@ void World::load_state(StateReader& r) {
     h.a = r.pod<std::int32_t>();
     h.b = r.pod<std::int32_t>();
     check_pair(h.a, h.b);
+    h.law = r.pod<std::int32_t>();
+    if (h.law < -1 || h.law >= law_count) throw StateError("saved checkpoint contact is corrupt");
+    h.has_history = r.pod<std::uint8_t>() != 0;
     h.shear = read_shear(r);
+    r.pod(h.twist.moment);
     h.previous_normal = r.vec();
+    h.point = r.vec();
+    r.pod(h.closure);
+    r.pod(h.area);
   }
 }
 

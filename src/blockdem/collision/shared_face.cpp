@@ -1,0 +1,59 @@
+// Shared faces of two blocks: A's face polygon clipped (Sutherland-Hodgman, one half-space at a
+// time) by B's planes other than the coincident one.
+#include "blockdem/collision/shared_face.hpp"
+
+#include <vector>
+
+#include "blockdem/geometry/polygon_moments.hpp"
+
+namespace blockdem {
+namespace {
+
+/// Keeps the part of the convex polygon `poly` with n·x <= d + tolerance.
+std::vector<Eigen::Vector3d> clip(const std::vector<Eigen::Vector3d>& poly, const Halfspace& h,
+                                  double tolerance) {
+  std::vector<Eigen::Vector3d> out;
+  const std::size_t n = poly.size();
+  out.reserve(n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = poly[i];
+    const Eigen::Vector3d& q = poly[(i + 1) % n];
+    const double sp = h.signed_distance(p) - tolerance;
+    const double sq = h.signed_distance(q) - tolerance;
+    if (sp <= 0.0) out.push_back(p);
+    if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
+      out.push_back(p + (sp / (sp - sq)) * (q - p));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
+                                      std::span<const Eigen::Vector3d> vertices_a,
+                                      std::span<const Halfspace> planes_a,
+                                      std::span<const Halfspace> planes_b, double tolerance) {
+  std::optional<SharedFace> best;
+  for (const Face& face : shape_a.faces()) {
+    const Halfspace& pa = planes_a[static_cast<std::size_t>(face.plane)];
+    for (std::size_t j = 0; j < planes_b.size(); ++j) {
+      const Halfspace& pb = planes_b[j];
+      // Opposite normals and the same plane: n_b = -n_a and d_b = -d_a.
+      if (pa.normal.dot(pb.normal) > -1.0 + 1e-9) continue;
+      if (std::abs(pa.offset + pb.offset) > tolerance) continue;
+      std::vector<Eigen::Vector3d> poly;
+      poly.reserve(face.vertices.size());
+      for (int v : face.vertices) poly.push_back(vertices_a[static_cast<std::size_t>(v)]);
+      for (std::size_t k = 0; k < planes_b.size() && poly.size() >= 3; ++k) {
+        if (k != j) poly = clip(poly, planes_b[k], tolerance);
+      }
+      if (poly.size() < 3) continue;
+      const PolygonMoments m = polygon_moments_about_centroid(poly);
+      if (!(m.area > tolerance * tolerance) || (best && m.area <= best->area)) continue;
+      best = SharedFace{face.plane, static_cast<int>(j), pa.normal, m.centroid, m.area};
+    }
+  }
+  return best;
+}
+
+}  // namespace blockdem

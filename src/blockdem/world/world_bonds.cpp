@@ -1,0 +1,128 @@
+// Bonded joints that have opened: a rock bridge between two blocks carries tension (and shear up to
+// c + sigma_n tan(phi), sigma_n < 0) after the blocks have moved apart, until it breaks. The narrow
+// phase sees no overlap there, so the joint's closure is followed incrementally from the last
+// touching step, or from zero on a face the blocks share at the start (a rock mass's cut faces).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "blockdem/collision/shared_face.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+namespace {
+
+/// Drops a contact's geometry and forces, keeping its pair, warm start and bond state.
+void open_joint(Contact& c) {
+  Contact fresh;
+  fresh.a = c.a;
+  fresh.b = c.b;
+  fresh.law = c.law;
+  fresh.narrow_cache = c.narrow_cache;
+  fresh.shear.bond = c.shear.bond;
+  c = fresh;
+}
+
+}  // namespace
+
+bool World::evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const {
+  Contact& ct = slot.contact;
+  if (ct.shear.bond != BondState::intact) return false;
+  const Block& a = blocks_[ct.a];
+  const Block& b = blocks_[ct.b];
+  bool fresh = false;
+  if (!ct.has_history) {
+    // A bond starts only where the blocks share a face at the start of the run.
+    if (step_count_ != 0 || !advance_shear) return false;
+    std::vector<Eigen::Vector3d> vertices;
+    vertices.reserve(a.shape.vertices().size());
+    for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
+    const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+    const auto face = shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+    if (!face) return false;
+    const std::vector<int>& laws_a = face_laws(ct.a);
+    const std::vector<int>& laws_b = face_laws(ct.b);
+    int law = laws_a.empty() ? -1 : laws_a[static_cast<std::size_t>(face->plane_a)];
+    if (law < 0 && !laws_b.empty()) law = laws_b[static_cast<std::size_t>(face->plane_b)];
+    if (law < 0) law = slot.group_law;
+    if (law < 0 || !strength_of(laws_[static_cast<std::size_t>(law)].shear).can_break())
+      return false;
+    ct.law = law;
+    ct.force_point = face->centroid;
+    ct.previous_normal = face->normal;
+    ct.geometry.overlap = 0.0;
+    ct.compressed_area = face->area;
+    fresh = true;
+  }
+  if (ct.law < 0) return false;
+  const JointLaw& law = laws_[static_cast<std::size_t>(ct.law)];
+  const JointStrength& strength = strength_of(law.shear);
+  if (!strength.can_break()) return false;
+
+  // The joint's point and normal move with block A; its closure changes by the relative normal
+  // velocity of the material points there (compression positive).
+  Eigen::Vector3d x = ct.force_point;
+  Eigen::Vector3d n = ct.previous_normal;
+  double closure = ct.geometry.overlap;
+  Eigen::Vector3d v_rel = Eigen::Vector3d::Zero();
+  if (advance_shear && !fresh) {
+    v_rel = b.point_velocity(x) - a.point_velocity(x);
+    closure -= v_rel.dot(n) * dt;
+    x += a.point_velocity(x) * dt;
+    const Eigen::Vector3d turned = (n + a.angular_velocity.cross(n) * dt).normalized();
+    rotate_into_plane(ct.shear, n, turned);
+    n = turned;
+  }
+  const double area = ct.compressed_area;
+  // Zero closure is not tension: a joint with sigma_t = 0 breaks only once it opens.
+  const double sigma = closure >= 0.0
+                           ? normal_stress(law.normal, closure)
+                           : bonded_normal_stress(law.normal, strength, ct.shear, closure);
+  if (ct.shear.bond != BondState::intact) {
+    // The tension cut-off: the bond breaks for good and the joint opens.
+    slot.broke = advance_shear;
+    open_joint(ct);
+    return true;
+  }
+  ct.geometry.touching = false;
+  ct.geometry.point = x;
+  ct.geometry.normal = n;
+  ct.geometry.overlap = closure;
+  ct.geometry.area = area;
+  ct.integrated = false;
+  ct.normal_stress = sigma;
+  ct.normal_force = sigma * area;
+  ct.force_point = x;
+  ct.compressed_area = area;
+  ct.peak_stress = sigma;
+  ct.peak_closure = closure;
+  ct.previous_normal = n;
+  ct.has_history = true;
+  slot.active = true;
+  const double kn = normal_tangent_stiffness(law.normal, std::max(closure, 0.0)) * area;
+  // At exactly zero stress (the step a shared face is found) there is nothing to update: the
+  // tension cut-off sigma_n <= -sigma_t must not fire at sigma_n = 0 for sigma_t = 0.
+  if (!advance_shear || sigma == 0.0) {
+    slot.stiffness = kn;
+    return true;
+  }
+  ShearIncrement inc;
+  inc.displacement = Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt);
+  inc.normal_force = ct.normal_force;
+  inc.normal_stress = sigma;
+  inc.contact_area = area;
+  inc.normal = n;
+  const ShearResult sr = update_shear(law.shear, ct.shear, inc);
+  ct.sliding = sr.sliding;
+  if (sr.broke) {
+    // Broken in shear while open: the joint has no strength left and no normal force.
+    slot.broke = true;
+    slot.active = false;
+    open_joint(ct);
+    return true;
+  }
+  slot.stiffness = kn + sr.stiffness;
+  return true;
+}
+
+}  // namespace blockdem
