@@ -66,29 +66,36 @@ void BM_ContactFaceIntegrated(benchmark::State& state) {
   }
 }
 
-// The same with the twisting resistance (issue 14): the compressed area's J and ∫ σ_n r dA over
-// the cells, and one step of the torsional spring.
+// The same with the twisting resistance (issue 14): the compressed area's J and the lower bound
+// of ∫ σ_n r dA over the cells, one step of the torsional spring, and the exact ∫ σ_n r dA when
+// the bound does not certify the step (a turn that slips).
 void BM_ContactFaceIntegratedTwist(benchmark::State& state) {
   const Joint j = beam_joint(static_cast<double>(state.range(0)) * 1e-4);
   const NormalLaw& law = law_of(static_cast<int>(state.range(1)));
+  const double spin = state.range(2) == 0 ? 1e-9 : 1.0;  // rad: elastic, or far beyond slip
   const ShearLaw shear = LinearShear{};
   Boon2012Cache cache;
   if (!boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}).touching)
     state.SkipWithError("no contact");
-  TwistState twist;
   for (auto _ : state) {
     const ContactGeometry g = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}, &cache);
     const FaceContactGeometry fc = face_contact_geometry(j.a, j.b, g.point, g.normal, 0.2);
     double force = 0.0, area = 0.0;
+    Eigen::Vector3d pressure = Eigen::Vector3d::Zero();
     for (const auto& cell : fc.cells) {
       const PolygonStressResultant r =
           integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
       force += r.force;
       area += r.compressed_area;
+      if (r.centre_of_pressure) pressure += r.force * *r.centre_of_pressure;
     }
-    const TwistGeometry tg = face_twist_geometry(fc.cells, law);
-    benchmark::DoNotOptimize(
-        advance_contact_twist(twist, shear, ShearState{}, force / area, tg, 1e-9));
+    const TwistGeometry tg = face_twist_geometry(fc.cells, g.normal, force, pressure / force);
+    TwistState twist;
+    benchmark::DoNotOptimize(advance_contact_twist(
+        twist, shear, ShearState{}, force / area, tg, spin,
+        [&] { return face_radial_normal_bound(fc.cells, law, tg); },
+        [&] { return face_radial_normal_moment(fc.cells, law, tg.centre); }));
+    benchmark::DoNotOptimize(twist.moment);
     benchmark::DoNotOptimize(force);
   }
 }
@@ -96,7 +103,8 @@ void BM_ContactFaceIntegratedTwist(benchmark::State& state) {
 // Arguments: tilt in 1e-4 rad (0: closed joint; 5: partly open), law (0 linear, 1 exponential).
 BENCHMARK(BM_ContactPoint)->ArgsProduct({{0, 5}, {0, 1}});
 BENCHMARK(BM_ContactFaceIntegrated)->ArgsProduct({{0, 5}, {0, 1}});
-BENCHMARK(BM_ContactFaceIntegratedTwist)->ArgsProduct({{0, 5}, {0, 1}});
+// Third argument: 0 an elastic turn (the bound suffices), 1 a turn that slips (exact moment).
+BENCHMARK(BM_ContactFaceIntegratedTwist)->ArgsProduct({{0, 5}, {0, 1}, {0, 1}});
 
 }  // namespace
 }  // namespace blockdem

@@ -97,6 +97,13 @@ void BM_World_WallFaceIntegrated(benchmark::State& state) {
   run(state, wall(static_cast<int>(state.range(0)), ContactMode::face_integrated));
 }
 
+// The same wall without the joints' twisting resistance (issue 14: its cost in a whole step).
+void BM_World_WallFaceIntegratedNoTwist(benchmark::State& state) {
+  World w = wall(static_cast<int>(state.range(0)), ContactMode::face_integrated);
+  w.settings().twist = false;
+  run(state, std::move(w));
+}
+
 BENCHMARK(BM_World_Column)
     ->Arg(10)
     ->Arg(100)
@@ -110,6 +117,12 @@ BENCHMARK(BM_World_Wall)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 BENCHMARK(BM_World_WallFaceIntegrated)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_World_WallFaceIntegratedNoTwist)
     ->Arg(10)
     ->Arg(100)
     ->Arg(1000)

@@ -59,6 +59,28 @@ double radial_stress_moment(const Node& a, const Node& b, const Node& c, const N
 
 }  // namespace
 
+ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cells,
+                                               const Eigen::Vector3d& centre) {
+  ClosurePolarMoments m;
+  for (const ClosureCell& cell : cells) {
+    const auto& v = cell.vertices;
+    const auto& g = cell.closures;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+      const double area = 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
+      double r2 = 0.0, gr2 = 0.0;
+      for (const auto& w : kRule) {
+        const Node y = mix({v[0], g[0]}, {v[k], g[k]}, {v[k + 1], g[k + 1]}, w.l0, w.l1, w.l2);
+        const double rr = (y.x - centre).squaredNorm();
+        r2 += w.weight * rr;
+        gr2 += w.weight * y.g * rr;
+      }
+      m.polar_moment += r2 * area;
+      m.closure_polar_moment += gr2 * area;
+    }
+  }
+  return m;
+}
+
 FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const NormalLaw& law,
                                     const Eigen::Vector3d& centre) {
   FaceTwistMoments m;

@@ -40,7 +40,9 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
     first += area * (p + q) / 3.0;
     const Eigen::Vector3d edge = q - p;
     const double length = edge.norm();
-    if (length == 0.0 || area == 0.0) continue;
+    // A sliver (pole on or within round-off of the edge's line) adds at most |area| r_max², below
+    // round-off of the sum; skipping it keeps tan ψ = along·p / h finite.
+    if (length == 0.0 || std::abs(area) <= 1e-14 * length * length) continue;
     // Distance h from the pole to the edge's line and the tangents of the edge ends' angles
     // measured from the foot of the perpendicular.
     const Eigen::Vector3d along = edge / length;

@@ -2,32 +2,65 @@
 #include "blockdem/world/contact_twist.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <vector>
 
 #include "blockdem/collision/face_twist.hpp"
-#include "blockdem/contact/twist_law.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
 
 namespace blockdem {
 
-TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const NormalLaw& law) {
-  // The centroid of the cells: area-weighted centroids of each (exact, polygon_moments).
-  double area = 0.0;
+TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eigen::Vector3d& normal,
+                                  double force, const Eigen::Vector3d& pressure_centre) {
+  const Eigen::Vector3d& p = pressure_centre;  // inside the contact: no cancellation
+  double area = 0.0, polar = 0.0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   for (const ClosureCell& cell : cells) {
-    const std::span<const Eigen::Vector3d> v(cell.vertices.data(), cell.vertices.size());
-    if (v.empty()) continue;
-    const PolygonMoments pm = polygon_moments(v, v[0]);
-    area += pm.area;
-    first += pm.area * pm.centroid;
+    const auto& v = cell.vertices;
+    const std::size_t m = v.size();
+    double a = 0.0, j = 0.0;
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < m; ++i) {
+      const Eigen::Vector3d u = v[i] - p, w = v[(i + 1) % m] - p;
+      const double signed_area = 0.5 * u.cross(w).dot(normal);
+      a += signed_area;
+      f += signed_area * (u + w) / 3.0;
+      j += signed_area * (u.squaredNorm() + w.squaredNorm() + u.dot(w)) / 6.0;
+    }
+    const double orientation = a < 0.0 ? -1.0 : 1.0;  // a cell's vertices may run either way
+    area += orientation * a;
+    first += orientation * f;
+    polar += orientation * j;
   }
   TwistGeometry g;
+  g.exact = false;
   if (!(area > 0.0)) return g;
-  const FaceTwistMoments m = face_twist_moments(cells, law, first / area);
-  g.polar_moment = m.polar_moment;
-  g.radial_normal_moment = m.radial_normal_moment;
+  const Eigen::Vector3d offset = first / area;  // c - p
+  g.centre = p + offset;
+  g.polar_moment = std::max(0.0, polar - area * offset.squaredNorm());
+  for (const ClosureCell& cell : cells)
+    for (const auto& x : cell.vertices)
+      g.max_radius = std::max(g.max_radius, (x - g.centre).norm());
+  g.radial_normal_moment = force * offset.norm();
   return g;
+}
+
+double face_radial_normal_bound(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                const TwistGeometry& geometry) {
+  if (!(geometry.max_radius > 0.0)) return geometry.radial_normal_moment;
+  const ClosurePolarMoments m = face_closure_polar_moments(cells, geometry.centre);
+  if (!(m.polar_moment > 0.0)) return geometry.radial_normal_moment;
+  // Jensen: σ_n is convex in g on g >= 0 (linear or exponential), so under the weight r² dA / J
+  // ∫ σ_n(g) r² dA >= J σ_n(∫ g r² dA / J); and r <= r_max gives ∫ σ_n r dA >= that / r_max.
+  const double mean_closure = m.closure_polar_moment / m.polar_moment;
+  const double bound = normal_stress(law, mean_closure) * m.polar_moment / geometry.max_radius;
+  return std::max(geometry.radial_normal_moment, bound);
+}
+
+double face_radial_normal_moment(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                 const Eigen::Vector3d& centre) {
+  return face_twist_moments(cells, law, centre).radial_normal_moment;
 }
 
 TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stress) {
@@ -44,6 +77,8 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
   TwistGeometry g;
   g.polar_moment = pm.polar_moment;
   g.radial_normal_moment = normal_stress > 0.0 ? normal_stress * pm.radial_moment : 0.0;
+  g.exact = true;
+  g.centre = pm.centroid;
   return g;
 }
 
@@ -54,9 +89,8 @@ void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double a
   state.elastic_displacement = turn * state.elastic_displacement;
 }
 
-double advance_contact_twist(TwistState& twist, const ShearLaw& law, const ShearState& shear,
-                             double normal_stress, const TwistGeometry& geometry, double spin) {
-  const TwistLawTerms terms = twist_law_terms(law, shear, normal_stress);
+double step_contact_twist(TwistState& twist, const TwistLawTerms& terms,
+                          const TwistGeometry& geometry, double spin) {
   TwistIncrement inc;
   inc.spin = spin;
   inc.shear_stiffness = terms.shear_stiffness;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <span>
 
 #include "blockdem/collision/face_contact.hpp"
@@ -11,18 +12,41 @@
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/contact/twist.hpp"
+#include "blockdem/contact/twist_law.hpp"
 
 namespace blockdem {
 
-/// The area terms of the torsional spring, about the compressed area's centroid.
+/// The area terms of the torsional spring, about the compressed area's centroid c.
 struct TwistGeometry {
-  double polar_moment = 0.0;          ///< J = ∫ r² dA (m^4)
-  double radial_normal_moment = 0.0;  ///< ∫ σ_n r dA (N m)
+  double polar_moment = 0.0;  ///< J = ∫ r² dA (m^4)
+  /// ∫ σ_n r dA (N m) when `exact`; otherwise a lower bound of it, enough to certify an elastic
+  /// step without the full quadrature.
+  double radial_normal_moment = 0.0;
+  bool exact = true;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the centroid c (m)
+  double max_radius = 0.0;                           ///< r_max: largest vertex distance from c (m)
 };
 
-/// Face-integrated contact: J and ∫ σ_n(g) r dA over the cells of linear closure
-/// (face_twist_moments), about the centroid of the cells.
-TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const NormalLaw& law);
+/// Face-integrated contact: J over the cells of linear closure about their centroid, exact and
+/// without transcendental functions (each cell fanned about a common point p of the plane,
+/// triangle (p, p + u, p + w) giving ∫ |y - p|² dA = A (|u|² + |w|² + u·w)/6, then the
+/// parallel-axis theorem). The radial moment is the free lower bound F_n |x_p - c| (x_p the
+/// centre of pressure; r >= (y - c)·e for the unit e along x_p - c); `exact` is false.
+/// `normal` is the contact normal, `force` F_n (N), `pressure_centre` x_p (m).
+TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eigen::Vector3d& normal,
+                                  double force, const Eigen::Vector3d& pressure_centre);
+
+/// A sharper lower bound of ∫ σ_n r dA over the cells (N m): r <= r_max gives
+/// ∫ σ_n r dA >= ∫ σ_n r² dA / r_max, and since σ_n is convex in the closure g (linear or
+/// exponential law), Jensen's inequality under the weight r² dA / J gives
+/// ∫ σ_n r² dA >= J σ_n(ḡ), ḡ = ∫ g r² dA / J (exact polynomial moments,
+/// face_closure_polar_moments): one stress evaluation.
+double face_radial_normal_bound(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                const TwistGeometry& geometry);
+
+/// The exact ∫ σ_n r dA over the cells about `centre` (face_twist_moments) (N m).
+double face_radial_normal_moment(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                 const Eigen::Vector3d& centre);
 
 /// Point contact (boon2012): J of the slice polygon about its centroid and σ_n ∫ r dA for the
 /// uniform stress σ_n (Pa) the point contact assumes.
@@ -33,10 +57,32 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
 /// ((ω_A + ω_B)/2 · n) dt. A rigid rotation of both blocks then carries the force with them.
 void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle);
 
-/// One step of a contact's torsional spring (update_twist) with the terms of its shear law at
-/// σ_n (twist_law_terms); `spin` is B's rotation relative to A about n (rad). Returns k_s J, the
-/// spring (N m/rad), for the rotational stiffness of the time step.
+/// One step of a contact's torsional spring (update_twist) with the shear law's terms at σ_n
+/// (twist_law_terms), the area terms `geometry` and B's rotation relative to A about n, `spin`
+/// (rad). Returns k_s J, the spring (N m/rad), for the rotational stiffness of the time step.
+double step_contact_twist(TwistState& twist, const TwistLawTerms& terms,
+                          const TwistGeometry& geometry, double spin);
+
+/// The same, sharpening the radial moment only as far as the step needs: when the geometry
+/// holds a lower bound that does not certify the elastic trial |M - k_s J dθ| <= μ bound, first
+/// `better_bound()`, then `exact_radial()` (both N m).
+template <class BetterBound, class ExactRadial>
 double advance_contact_twist(TwistState& twist, const ShearLaw& law, const ShearState& shear,
-                             double normal_stress, const TwistGeometry& geometry, double spin);
+                             double normal_stress, TwistGeometry geometry, double spin,
+                             BetterBound&& better_bound, ExactRadial&& exact_radial) {
+  const TwistLawTerms terms = twist_law_terms(law, shear, normal_stress);
+  if (!geometry.exact && terms.friction_coefficient > 0.0) {
+    const double trial =
+        std::abs(twist.moment - terms.shear_stiffness * geometry.polar_moment * spin);
+    if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+      geometry.radial_normal_moment = better_bound();
+      if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+        geometry.radial_normal_moment = exact_radial();
+        geometry.exact = true;
+      }
+    }
+  }
+  return step_contact_twist(twist, terms, geometry, spin);
+}
 
 }  // namespace blockdem

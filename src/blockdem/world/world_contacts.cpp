@@ -169,8 +169,16 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
   // contact, acting at the centre of pressure (mode face_integrated).
   ct.integrated = false;
-  const bool twist = settings_.twist_enabled();
-  TwistGeometry twist_geometry;
+  // Twist (the contact's state before this step's shear update: bond and plastic slip): B's spin
+  // relative to A about n turns the torsional spring.
+  const bool twist = settings_.twist_enabled() && advance_shear;
+  const auto advance_twist = [&](const TwistGeometry& tg, auto&& better_bound,
+                                 auto&& exact_radial) {
+    const double spin =
+        ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
+    slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
+                                                 tg, spin, better_bound, exact_radial);
+  };
   if (settings_.contact_mode == ContactMode::face_integrated) {
     const FaceContactGeometry fc = face_contact_geometry(
         a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
@@ -199,7 +207,12 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
       ct.peak_stress = peak;
       ct.peak_closure = closure;
       ct.force_point = moment / force;
-      if (twist && advance_shear) twist_geometry = face_twist_geometry(fc.cells, law.normal);
+      if (twist) {
+        const TwistGeometry tg = face_twist_geometry(fc.cells, n, force, ct.force_point);
+        advance_twist(
+            tg, [&] { return face_radial_normal_bound(fc.cells, law.normal, tg); },
+            [&] { return face_radial_normal_moment(fc.cells, law.normal, tg.centre); });
+      }
     }
   }
   if (!ct.integrated) {
@@ -209,7 +222,11 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
     ct.compressed_area = ct.geometry.area;
     ct.peak_stress = ct.normal_stress;
     ct.peak_closure = ct.geometry.overlap;
-    if (twist && advance_shear) twist_geometry = slice_twist_geometry(g.slice, ct.normal_stress);
+    if (twist) {
+      const TwistGeometry tg = slice_twist_geometry(g.slice, ct.normal_stress);
+      const auto known = [&] { return tg.radial_normal_moment; };
+      advance_twist(tg, known, known);
+    }
   }
   slot.active = true;
   const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
@@ -237,18 +254,6 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
-  // Twist: B's spin relative to A about n turns the torsional spring; the moment is reset with
-  // the shear force when the joint carries no compression.
-  if (twist) {
-    if (ct.normal_force > 0.0 && ct.normal_stress > 0.0) {
-      const double spin =
-          ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
-      slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
-                                                   twist_geometry, spin);
-    } else {
-      ct.twist = TwistState{};
-    }
-  }
   ct.previous_normal = n;
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).
