@@ -41,7 +41,9 @@ py::dict stage_dict(const StageResult& r) {
   d["mechanism"] = r.mechanism;
   d["steps"] = r.steps;
   d["time"] = r.time;
-  d["message"] = r.message;
+  d["message"] = r.interrupted
+                     ? "stopped by the callback after " + std::to_string(r.steps) + " steps"
+                     : r.message;
   d["unbalanced_force_ratio"] = r.measures.unbalanced_force_ratio;
   d["kinetic_energy_ratio"] = r.measures.kinetic_energy_ratio;
   return d;
