@@ -76,7 +76,7 @@ int run(const RunOptions& opt) {
     }
     for (const char* f : {"history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
                           "summary.json", "strength_reduction.csv", "mechanism.csv",
-                          "collapse_search.csv", "collapse_mechanism.csv", "manifest.json", "vtk"})
+                          "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
       std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
   };
   try {
@@ -154,7 +154,7 @@ int run(const RunOptions& opt) {
       std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
   }
   // The figures are part of the run: the record, written last, lists them too.
-  if (draws) write_manifest(opt.out, r.foreign_files, r.status);
+  if (draws) update_files_record(opt.out, r.foreign_files);
   if (r.factor_of_safety)
     std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
   if (r.collapse) {

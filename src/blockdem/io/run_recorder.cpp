@@ -87,6 +87,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
   double max_overlap = 0.0;
   for (const Contact* c : contacts) max_overlap = std::max(max_overlap, c->geometry.overlap);
   const Eigen::Vector3d& g = world.settings().gravity;
+  const Eigen::Vector3d& origin = world.settings().origin;  // positions out in user coordinates
   if (history_) {
     history_->cell(level)
         .cell(stage.name)
@@ -114,9 +115,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
           .cell(stage.name)
           .cell(b.name)
           .cell(b.group)
-          .cell(b.position.x())
-          .cell(b.position.y())
-          .cell(b.position.z())
+          .cell(b.position.x() + origin.x())
+          .cell(b.position.y() + origin.y())
+          .cell(b.position.z() + origin.z())
           .cell(u.x())
           .cell(u.y())
           .cell(u.z())
@@ -141,9 +142,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(stage.name)
         .cell(world.blocks()[c->a].name)
         .cell(world.blocks()[c->b].name)
-        .cell(gm.point.x())
-        .cell(gm.point.y())
-        .cell(gm.point.z())
+        .cell(gm.point.x() + origin.x())
+        .cell(gm.point.y() + origin.y())
+        .cell(gm.point.z() + origin.z())
         .cell(gm.normal.x())
         .cell(gm.normal.y())
         .cell(gm.normal.z())
@@ -158,9 +159,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(1e3 * c->shear.plastic_slip)
         .cell(c->sliding ? 1 : 0)
         .cell(c->integrated ? 1 : 0)
-        .cell(c->force_point.x())
-        .cell(c->force_point.y())
-        .cell(c->force_point.z())
+        .cell(c->force_point.x() + origin.x())
+        .cell(c->force_point.y() + origin.y())
+        .cell(c->force_point.z() + origin.z())
         .cell(1e6 * c->compressed_area)
         .cell(1e-6 * c->peak_stress)
         .cell(1e3 * c->peak_closure);

@@ -22,7 +22,7 @@ void write_vtk_blocks(const std::filesystem::path& path, const World& world) {
   out << "POINTS " << points << " double\n";
   for (const auto& b : world.blocks()) {
     for (const auto& v : b.shape.vertices()) {
-      const Eigen::Vector3d w = b.to_world(v);
+      const Eigen::Vector3d w = b.to_world(v) + world.settings().origin;  // user's coordinates
       out << w.x() << " " << w.y() << " " << w.z() << "\n";
     }
   }
@@ -62,7 +62,7 @@ void write_vtk_contacts(const std::filesystem::path& path, const World& world) {
   out << "# vtk DataFile Version 3.0\nblockdem contacts\nASCII\nDATASET POLYDATA\n";
   out << "POINTS " << contacts.size() << " double\n";
   for (const Contact* c : contacts) {
-    const auto& p = c->geometry.point;
+    const Eigen::Vector3d p = c->geometry.point + world.settings().origin;
     out << p.x() << " " << p.y() << " " << p.z() << "\n";
   }
   out << "VERTICES " << contacts.size() << " " << 2 * contacts.size() << "\n";

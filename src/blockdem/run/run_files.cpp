@@ -1,8 +1,7 @@
-// The run's files: clearing an earlier run, listing, and manifest.json.
+// The run's files: clearing an earlier run, listing, and their record in summary.json.
 #include "blockdem/run/run_files.hpp"
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 
 #include "blockdem/io/atomic_file.hpp"
 
@@ -13,10 +12,10 @@ void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints) 
   std::error_code ec;
   if (!fs::is_directory(out, ec)) return;
   // The files the earlier run recorded (figures too), when it got that far.
-  const fs::path manifest = out / "manifest.json";
-  if (fs::exists(manifest, ec)) {
+  const fs::path summary = out / "summary.json";
+  if (fs::exists(summary, ec)) {
     try {
-      const auto j = nlohmann::json::parse(read_file_bytes(manifest));
+      const auto j = nlohmann::json::parse(read_file_bytes(summary));
       for (const auto& f : j.at("files")) {
         const std::string rel = f.at("path").get<std::string>();
         if (rel.find("..") != std::string::npos || fs::path(rel).is_absolute()) continue;
@@ -54,19 +53,23 @@ std::vector<std::string> list_run_folder(const std::filesystem::path& out) {
   return files;
 }
 
-void write_manifest(const std::filesystem::path& out, const std::set<std::string>& foreign,
-                    const std::string& status) {
+nlohmann::json run_files_record(const std::filesystem::path& out,
+                                const std::set<std::string>& foreign) {
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& rel : list_run_folder(out)) {
-    if (rel == "manifest.json" || foreign.count(rel)) continue;
+    if (rel == "summary.json" || rel == kCheckpointName || rel == kPreviousCheckpointName ||
+        foreign.count(rel))
+      continue;
     const std::string bytes = read_file_bytes(out / rel);
     files.push_back({{"path", rel}, {"bytes", bytes.size()}, {"fnv1a64", hex64(fnv1a64(bytes))}});
   }
-  const nlohmann::json manifest = {{"program", "blockdem"},
-                                   {"status", status},
-                                   {"checksum", "FNV-1a 64-bit, hex"},
-                                   {"files", files}};
-  write_file_atomically(out / "manifest.json", manifest.dump(2) + "\n");
+  return files;
+}
+
+void update_files_record(const std::filesystem::path& out, const std::set<std::string>& foreign) {
+  auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  summary["files"] = run_files_record(out, foreign);
+  write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
 }
 
 }  // namespace blockdem

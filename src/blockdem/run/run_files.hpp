@@ -1,8 +1,9 @@
 // The files of one run in its output folder: clearing what an earlier run left there, listing
-// what this run wrote, and the run record (manifest.json) written last.
+// what this run wrote, and the record of them in summary.json (written last).
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -13,19 +14,23 @@ namespace blockdem {
 inline constexpr const char* kCheckpointName = "checkpoint.bdck";
 inline constexpr const char* kPreviousCheckpointName = "checkpoint.bdck.prev";
 
-/// Removes what an earlier run left in `out`: the files its manifest.json lists, the files a run
-/// writes (history.csv ... summary.json, manifest.json), vtk/, and, unless `keep_checkpoints`,
-/// its checkpoints. Other files are left alone.
+/// Removes what an earlier run left in `out`: the files its summary.json lists, the files a run
+/// writes (history.csv ... summary.json), vtk/, and, unless `keep_checkpoints`, its checkpoints.
+/// Other files are left alone.
 void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints);
 
 /// Every regular file under `out`, as paths relative to it with '/' separators, sorted;
 /// temporary files of atomic writes (".NAME.tmp") are left out.
 std::vector<std::string> list_run_folder(const std::filesystem::path& out);
 
-/// Writes manifest.json atomically: the run's status and every file under `out` except those in
-/// `foreign` (there before the run) and manifest.json itself, with its size and FNV-1a 64
-/// checksum. Written last: a folder without it holds an unfinished or a dead run.
-void write_manifest(const std::filesystem::path& out, const std::set<std::string>& foreign,
-                    const std::string& status);
+/// summary.json's "files": every file under `out` but summary.json, the checkpoints (they carry
+/// their own checksum) and those in `foreign` (there before the run), with its size and FNV-1a
+/// 64 checksum.
+nlohmann::json run_files_record(const std::filesystem::path& out,
+                                const std::set<std::string>& foreign);
+
+/// Rewrites OUT/summary.json (atomically) with "files" brought up to date, after the run wrote
+/// more (figures).
+void update_files_record(const std::filesystem::path& out, const std::set<std::string>& foreign);
 
 }  // namespace blockdem

@@ -177,6 +177,12 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       if ((checkpoints || stop) && !beam && !(resume && level == first))
         write_checkpoint(level, nullptr, nullptr, nullptr);
       if (stop) {
+        stages.push_back({{"name", stage.name},
+                          {"converged", false},
+                          {"status", "interrupted"},
+                          {"steps", 0},
+                          {"time_s", world.time()},
+                          {"message", "interrupted before the stage started"}});
         interrupt("before stage '" + stage.name + "'");
         break;
       }
@@ -390,8 +396,10 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     }
     summary["lost_equilibrium"] = res.status != "completed";
   }
+  // Written last, with the record of every other file the run wrote: a folder without it holds
+  // a run still going or one that died.
+  summary["files"] = run_files_record(out, res.foreign_files);
   write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
-  write_manifest(out, res.foreign_files, res.status);
   return res;
 }
 

@@ -27,7 +27,7 @@ struct RunResult {
   int exit_code = 0;
   bool interrupted = false;
   /// Files in the output folder that the run did not write (there before it): not in
-  /// manifest.json.
+  /// summary.json's "files".
   std::set<std::string> foreign_files;
   std::optional<std::pair<double, double>> collapse;  ///< last stable, first failed (g)
   std::optional<double> factor_of_safety;             ///< of the last strength_reduction stage
@@ -62,7 +62,7 @@ struct RunControl {
 /// Builds the world, runs every stage, and writes history.csv, blocks.csv, contacts.csv (and
 /// joints.csv for a voussoir beam), summary.json and vtk/ into `out`. A stage that does not
 /// converge or diverges ends the run: the outputs up to the last good state are kept and
-/// summary.json says what happened; manifest.json, written last, lists the run's files. Throws
+/// summary.json (written last) says what happened and lists the run's files. Throws
 /// ScenarioError for input errors found while building, CheckpointError for an unusable restart
 /// file (both before anything is written).
 RunResult run_scenario(const Scenario& scenario, const std::filesystem::path& out,

@@ -52,8 +52,8 @@ void write_mechanism(const std::filesystem::path& dir, const std::string& stem,
     const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
     csv.cell(b.name)
         .cell(moving ? 1 : 0)
-        .cell(b.position.x())
-        .cell(b.position.z())
+        .cell(b.position.x() + w.settings().origin.x())
+        .cell(b.position.z() + w.settings().origin.z())
         .cell(u.x())
         .cell(u.y())
         .cell(u.z())

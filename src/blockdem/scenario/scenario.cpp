@@ -118,8 +118,12 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     t.fail("position", "must be finite and within 1e12 m of the origin");
   Block b;
   try {
-    poly = poly.transformed(rot, pos);
+    // The mass properties come from the shape in its own coordinates, then the block is moved:
+    // its body frame does not depend on where it sits (full precision far from the origin).
+    poly = poly.transformed(rot, Eigen::Vector3d::Zero());
     b = make_block(poly, density, name, group);
+    b.position += pos;
+    b.initial_position = b.position;
   } catch (const GeometryError& e) {
     t.fail("position", "block \"" + name + "\" is degenerate once positioned: " + e.what());
   }
@@ -482,6 +486,25 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
 
   if (t.has("output")) read_output(t.table("output"), sc.output);
   t.finish();
+  // A scene at map coordinates (centre farther than 10 km from the origin) is simulated relative
+  // to its centre rounded to the metre: subtracting it is exact (Sterbenz), and contacts keep the
+  // precision they have at the origin. Outputs add it back. Scenes nearer keep origin 0.
+  if (!sc.blocks.empty()) {
+    Eigen::Vector3d lo = sc.blocks[0].position, hi = lo;
+    for (const auto& b : sc.blocks) {
+      lo = lo.cwiseMin(b.position);
+      hi = hi.cwiseMax(b.position);
+    }
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    if (centre.cwiseAbs().maxCoeff() > 1e4) {
+      sc.settings.origin = centre.array().round().matrix();
+      for (auto& b : sc.blocks) {
+        b.position -= sc.settings.origin;
+        b.initial_position -= sc.settings.origin;
+        b.update_world_geometry();
+      }
+    }
+  }
   return sc;
 }
 
@@ -533,6 +556,24 @@ World build_world(const Scenario& sc) {
     lo[i] = blocks[i].aabb_min;
     hi[i] = blocks[i].aabb_max;
   }
+  // The stress an initial overlap may carry: 100 times the weight of a column of rock as high as
+  // the model, at the largest density and gravity of the run (at least 1 g). Closing a deeper
+  // overlap would fling the blocks apart (and past a law's own bound its stress is infinite).
+  double g_max = std::max(sc.settings.gravity.norm(), kOneG);
+  for (const auto& st : sc.stages) {
+    if (st.gravity) g_max = std::max(g_max, st.gravity->norm());
+  }
+  double rho_max = 0.0, z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
+  for (const auto& b : blocks) {
+    rho_max = std::max(rho_max, b.density);
+    z_lo = std::min(z_lo, b.aabb_min.z());
+    z_hi = std::max(z_hi, b.aabb_max.z());
+  }
+  const double stress_limit = 100.0 * rho_max * g_max * std::max(z_hi - z_lo, 0.0);
+  auto initial_stress = [&](int i, int j, double overlap) {
+    const int law = w.law_for(i, j);
+    return law < 0 ? 0.0 : normal_stress(w.joint_laws()[law].normal, overlap);
+  };
   std::vector<std::pair<int, int>> pairs;
   UniformGrid broad_phase;
   const int threads = w.thread_count();
@@ -548,7 +589,9 @@ World build_world(const Scenario& sc) {
     const ContactGeometry g =
         boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
     const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-    if (g.touching && g.overlap > sc.settings.max_overlap_fraction * size) {
+    const auto [pi, pj] = pairs[static_cast<std::size_t>(k)];
+    if (g.touching && (g.overlap > sc.settings.max_overlap_fraction * size ||
+                       !(initial_stress(pi, pj, g.overlap) <= stress_limit))) {
 #pragma omp critical(blockdem_initial_overlap)
       first = std::min(first, k);
     }
@@ -561,9 +604,16 @@ World build_world(const Scenario& sc) {
     const ContactGeometry g =
         boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
     std::ostringstream s;
+    const double stress = initial_stress(i, j, g.overlap);
     s << "blocks \"" << a.name << "\" and \"" << b.name << "\" overlap by " << g.overlap
-      << " m at the start, more than " << sc.settings.max_overlap_fraction
-      << " of the smaller block's radius: check their positions and sizes";
+      << " m at the start";
+    if (!(stress <= stress_limit)) {
+      s << ": closing it would press the joint at " << stress << " Pa, more than 100 times the "
+        << "weight of a rock column as high as the model (" << stress_limit << " Pa)";
+    } else {
+      s << ", more than " << sc.settings.max_overlap_fraction << " of the smaller block's radius";
+    }
+    s << ": check their positions and sizes";
     throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
   }
   return w;

@@ -61,6 +61,9 @@ struct WorldSettings {
   double max_speed = 100.0;
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).
   double max_overlap_fraction = 0.25;
+  /// Scene origin in the user's coordinates (m): block positions inside the world are relative
+  /// to it (full precision at map coordinates); outputs add it back.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core).
   /// Results are bit-identical for every thread count.
   int threads = 0;

@@ -65,26 +65,24 @@ TEST_F(Restart, CheckpointsDoNotChangeTheRun) {
   EXPECT_FALSE(fs::exists(out / "checkpoint.bdck")) << "no checkpoint unless asked";
 }
 
-// The record: every file the run wrote, with its size and checksum, and nothing else.
-TEST_F(Restart, ManifestListsEveryFileWithSizeAndChecksum) {
-  const auto manifest = nlohmann::json::parse(read_file_bytes(reference_ / "manifest.json"));
+// The record in summary.json: every other file the run wrote, with its size and checksum, and
+// nothing else (checkpoints carry their own checksum).
+TEST_F(Restart, SummaryListsEveryFileWithSizeAndChecksum) {
+  const auto summary = nlohmann::json::parse(read_file_bytes(reference_ / "summary.json"));
   std::map<std::string, bool> listed;
-  for (const auto& f : manifest.at("files")) {
+  for (const auto& f : summary.at("files")) {
     const std::string rel = f.at("path");
     const std::string bytes = read_file_bytes(reference_ / rel);
     EXPECT_EQ(f.at("bytes").get<std::size_t>(), bytes.size()) << rel;
     EXPECT_EQ(f.at("fnv1a64").get<std::string>(), hex64(fnv1a64(bytes))) << rel;
     listed[rel] = true;
   }
-  for (const char* rel : {"summary.json", "history.csv", "blocks.csv", "contacts.csv",
-                          "checkpoint.bdck", "vtk/blocks_0000.vtk"})
+  for (const char* rel : {"history.csv", "blocks.csv", "contacts.csv", "vtk/blocks_0000.vtk"})
     EXPECT_TRUE(listed.count(rel)) << rel;
-  EXPECT_FALSE(listed.count("manifest.json"));
-  EXPECT_EQ(manifest.at("status"),
-            nlohmann::json::parse(read_file_bytes(reference_ / "summary.json")).at("status"));
+  EXPECT_EQ(listed.size(), 9u) << "three CSV files and six VTK files, nothing else";
 }
 
-// A new run in a used folder: the earlier run's files go (also those its manifest lists), the
+// A new run in a used folder: the earlier run's files go (also those its summary lists), the
 // user's own files stay and are not claimed by the record.
 TEST_F(Restart, ANewRunClearsTheEarlierRunButNotOtherFiles) {
   const fs::path out = fresh_dir("restart_reused");
@@ -99,8 +97,8 @@ TEST_F(Restart, ANewRunClearsTheEarlierRunButNotOtherFiles) {
   EXPECT_TRUE(fs::exists(out / "notes.txt"));
   EXPECT_FALSE(fs::exists(out / "vtk" / "blocks_0099.vtk"));
   EXPECT_FALSE(fs::exists(out / "checkpoint.bdck")) << "the earlier run's checkpoint";
-  const auto manifest = nlohmann::json::parse(read_file_bytes(out / "manifest.json"));
-  for (const auto& f : manifest.at("files")) EXPECT_NE(f.at("path"), "notes.txt");
+  const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  for (const auto& f : summary.at("files")) EXPECT_NE(f.at("path"), "notes.txt");
 }
 
 struct BadCheckpoint {

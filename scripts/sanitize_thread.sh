@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds the tests with ThreadSanitizer in build-tsan/ (clang and LLVM's OpenMP runtime, whose
+# Archer tool tells ThreadSanitizer about OpenMP's barriers and tasks; libgomp is not
+# instrumented and would report its own synchronisation as races) and runs the tests that step
+# a world on several threads. Any data race fails the run. Prints the time taken.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+start=$(date +%s)
+llvm=$(ls -d /usr/lib/llvm-*/lib | sort -V | tail -1)
+CXX=clang++ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLOCKDEM_BUILD_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
+cmake --build build-tsan -j "$jobs" --target blockdem_tests blockdem
+export OMP_TOOL_LIBRARIES="$llvm/libarcher.so"
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ignore_noninstrumented_modules=1"
+# The threaded tests: the step on 1, 2 and 3 threads, restarts with 2 threads, and the broad
+# phase's threaded pair search.
+build-tsan/blockdem_tests --gtest_filter='*Parallel*:*Thread*:Restart*:RestartSignals*:*UniformGrid*'
+echo "sanitize_thread: finished in $(( $(date +%s) - start )) s"
