@@ -3,6 +3,7 @@ stage or step by step with callbacks, read the state as NumPy arrays, and run th
 docs/python.md is the reference."""
 import os
 import pathlib
+import shutil
 
 from ._core import (DivergenceError, Scenario, ScenarioError, Simulation, analytic_voussoir,
                     calibrate_continuously_yielding, calibrate_normal, calibrate_shear,
@@ -29,7 +30,29 @@ def run(scenario, out, progress=None):
         scenario = scenario.build()
     elif not isinstance(scenario, Scenario):
         scenario = load(scenario)
-    return run_scenario(scenario, str(out), progress)
+    out = pathlib.Path(out)
+    existed = out.exists()
+    try:
+        return run_scenario(scenario, str(out), progress)
+    except ValueError:
+        # Some input errors show only while running (strength-reduction bounds that do not
+        # bracket the failure): as `blockdem run`, leave nothing written.
+        if not existed:
+            shutil.rmtree(out, ignore_errors=True)
+        else:
+            for name in _RUN_OUTPUTS:
+                target = out / name
+                if target.is_dir():
+                    shutil.rmtree(target, ignore_errors=True)
+                elif target.exists():
+                    target.unlink()
+        raise
+
+
+# What a run writes into its folder (removed again after an input error).
+_RUN_OUTPUTS = ["history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
+                "summary.json", "strength_reduction.csv", "mechanism.csv", "collapse_search.csv",
+                "collapse_mechanism.csv", "vtk"]
 
 
 def data_dir():

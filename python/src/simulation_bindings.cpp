@@ -5,9 +5,11 @@
 #include <pybind11/stl.h>
 #include <functional>
 
+#include <optional>
 #include <string>
 
 #include "bindings.hpp"
+#include "blockdem/numerics/units.hpp"
 #include "blockdem/world/stability.hpp"
 #include "blockdem/world/stage.hpp"
 #include "simulation.hpp"
@@ -77,6 +79,23 @@ py::dict reduce_strength(Simulation& sim, const Stage& stage) {
   return d;
 }
 
+/// The collapse load of an equilibrium stage with find_collapse that failed, bisected from the
+/// state before it as `blockdem run` does: {last_stable, first_failed, trials} in g.
+py::dict collapse_search(const World& before, const Stage& stage) {
+  const double g_stable = before.settings().gravity.norm() / kOneG;
+  const double g_failed = stage.gravity->norm() / kOneG;
+  StabilitySearch cs;
+  {
+    py::gil_scoped_release free;
+    cs = find_collapse_load(before, stage, g_stable, g_failed, stage.collapse_tolerance);
+  }
+  py::dict d;
+  d["last_stable"] = cs.last_stable;
+  d["first_failed"] = cs.first_failed;
+  d["trials"] = cs.trials.size();
+  return d;
+}
+
 }  // namespace
 
 int block_index(const World& world, const py::handle& block) {
@@ -120,6 +139,9 @@ void bind_simulation(py::module_& m) {
             s.next_stage = i + 1;
             if (stage.kind == Stage::Kind::strength_reduction) return reduce_strength(s, stage);
             const StepHook hook = make_hook(self, callback, every);
+            const bool search = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
+            std::optional<World> before;
+            if (search) before.emplace(s.world);  // every trial starts from here
             StageResult r;
             {
               py::gil_scoped_release free;
@@ -127,14 +149,18 @@ void bind_simulation(py::module_& m) {
               if (hook) after = [&hook](const StageResume& at) { return !hook(at.steps_done); };
               r = run_stage(s.world, stage, {}, nullptr, after);
             }
-            return stage_dict(r);
+            py::dict d = stage_dict(r);
+            if (search && !r.converged && !r.stopped)
+              d["collapse"] = collapse_search(*before, stage);
+            return d;
           },
           py::arg("index") = py::none(), py::arg("callback") = py::none(), py::arg("every") = 100,
           "Runs stage `index` (default: the next one) as `blockdem run` does; callback(sim, "
           "steps) every `every` steps, returning False stops the stage. Returns a dict (name, "
           "converged, stopped, mechanism, steps, time, message, unbalanced_force_ratio, "
           "kinetic_energy_ratio); a strength_reduction stage returns factor_of_safety, "
-          "last_stable, first_failed and leaves the world unchanged.")
+          "last_stable, first_failed and leaves the world unchanged; a failed stage with "
+          "find_collapse adds collapse = {last_stable, first_failed, trials} (g).")
       .def(
           "step",
           [](py::object self, std::int64_t n, py::object callback, std::int64_t every) {

@@ -3,6 +3,8 @@
 import json
 import subprocess
 
+import pytest
+
 import blockdem as bd
 from conftest import column_scene
 
@@ -61,3 +63,14 @@ def test_rock_mass_from_a_scene_matches_the_program(tmp_path, cli, source_dir):
     assert r["exit_code"] == done.returncode == 3 and r["status"] == "not_converged"
     for name in ["history.csv", "blocks.csv", "contacts.csv"]:
         assert (py_out / name).read_bytes() == (cli_out / name).read_bytes(), name
+
+
+def test_an_input_error_found_while_running_leaves_nothing(tmp_path, source_dir):
+    # Factor bounds that do not bracket the failure are found only by the search: the error
+    # names the stage's key, and the outputs written so far are removed (as `blockdem run`).
+    scene = bd.Scene.from_toml(source_dir / "scenarios/examples/planar_sliding.toml")
+    scene.data["stages"][2]["factor_bounds"] = [2.0, 3.0]  # F = 1.45 fails at both
+    with pytest.raises(bd.ScenarioError) as err:
+        bd.run(scene, tmp_path / "out")
+    assert err.value.key.startswith("stages[3]")
+    assert not (tmp_path / "out").exists()

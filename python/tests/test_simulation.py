@@ -209,3 +209,33 @@ def test_results_do_not_depend_on_threads():
         sc.threads = -1
     with pytest.raises(ValueError):
         sc.limit_steps(0)
+
+
+def test_collapse_search_of_a_cohesive_block():
+    # A 0.5 kg block on a plane, gravity tilted 30 degrees, joint friction 20 degrees and
+    # cohesion c: it slides when m g (sin 30 - cos 30 tan 20) > c A, so the collapse load is
+    # g* = c A / (m (sin 30 - cos 30 tan 20)) = 5.00 g for c = 453.2 Pa (Mohr-Coulomb). The
+    # search brackets it within 5 % (measured: 4.87-4.94 g in mode boon2012; the slice area is a
+    # little under the face's and each trial's gravity ramp adds a small dynamic overshoot).
+    th, phi, c = np.radians(30), np.radians(20), 453.2
+    m, area = 2500 * 0.1 * 0.1 * 0.02, 0.01
+    g_star = c * area / (m * (np.sin(th) - np.cos(th) * np.tan(phi))) / G
+    d = np.array([np.sin(th), 0.0, -np.cos(th)])
+    scene = bd.Scene()
+    scene.settings(damping=0.7, contact_mode="boon2012")
+    scene.joint_law("j", normal={"law": "linear", "stiffness": 1e10},
+                    shear={"law": "linear", "stiffness": 1e9, "friction_deg": 20,
+                           "cohesion": c})
+    scene.box("base", size=[1.0, 0.3, 0.05], position=[0, 0, -0.025], density=2500.0,
+              motion="fixed")
+    scene.box("block", size=[0.1, 0.1, 0.02], position=[0, 0, 0.01], density=2500.0)
+    scene.stage("settle", gravity=G * d)
+    scene.stage("load", gravity=10 * G * d, ramp_steps=2000, find_collapse=True,
+                collapse_tolerance=0.1)
+    sim = scene.simulation()
+    assert sim.run_stage()["converged"]  # 1 g < g*: the bond holds
+    r = sim.run_stage()
+    assert r["mechanism"] and not r["converged"]
+    lo, hi = r["collapse"]["last_stable"], r["collapse"]["first_failed"]
+    assert lo < hi and hi - lo <= 0.1
+    assert 0.5 * (lo + hi) == pytest.approx(g_star, rel=0.05)
