@@ -4,6 +4,7 @@
 // itself with exit code 0, 2 or 3 (no signal, no crash, no other code), and a run that exits 2
 // (an input error) must write nothing.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -176,7 +177,8 @@ class Mutator {
 };
 
 TEST(MutationFuzz, TwoThousandMutatedScenariosEndWithADefinedExitCode) {
-  const fs::path dir = fs::temp_directory_path() / "blockdem_mutation_fuzz";
+  const fs::path dir =
+      fs::temp_directory_path() / ("blockdem_mutation_fuzz_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   {
