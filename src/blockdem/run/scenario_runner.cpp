@@ -9,6 +9,7 @@
 
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/voussoir/recorder.hpp"
 #include "blockdem/voussoir/scene.hpp"
@@ -30,6 +31,13 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   const auto wall0 = std::chrono::steady_clock::now();
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
   check_time_step(sc, world);
+  const auto& distribution = world.settings().distribution;
+  const int ranks = distribution ? distribution->size() : 1;
+  if (ranks > static_cast<int>(world.blocks().size()))
+    throw ScenarioError(sc.file, "",
+                        "cannot run " + std::to_string(world.blocks().size()) + " blocks on " +
+                            std::to_string(ranks) +
+                            " processes: need at least one block per process");
   RunResult res;
   const VoussoirScene* voussoir = voussoir_scene(sc);
   const bool beam = voussoir != nullptr;
@@ -45,6 +53,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["blocks"] = world.blocks().size();
   summary["contact_mode"] = to_string(sc.settings.contact_mode);
   summary["threads"] = world.thread_count();
+  summary["ranks"] = ranks;
   summary["citations"] = {
       "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between "
       "convex "
@@ -214,6 +223,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
+  if (ranks > 1) summary["distribution"] = distribution_json(world.distribution_stats());
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.
