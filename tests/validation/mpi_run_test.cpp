@@ -127,9 +127,12 @@ TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
       write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 1000));
   const auto summaries = expect_same_outputs(dir_, scenario.string());
   for (const auto& s : summaries) {
-    // Each process evaluated a share of the pairs and saw the others' blocks as ghosts.
-    EXPECT_GT(s.at("distribution").at("pairs_per_step").get<double>(), 0.0);
-    EXPECT_GT(s.at("distribution").at("ghost_blocks_per_step").get<double>(), 0.0);
+    // Each process evaluated a share of the pairs and saw other processes' blocks as ghosts.
+    ASSERT_EQ(s.at("distribution").size(), s.at("ranks").get<std::size_t>());
+    for (const auto& rank : s.at("distribution")) {
+      EXPECT_GT(rank.at("pairs_per_step").get<double>(), 0.0);
+      EXPECT_GT(rank.at("ghost_blocks_per_step").get<double>(), 0.0);
+    }
   }
 }
 
@@ -142,8 +145,10 @@ TEST_F(MpiRun, ShakenPileRepartitionedSameOutputs) {
             BrickPile{}.toml("face_integrated", 20.0, Eigen::Vector3d(60, 25, -98.1), 400));
   const auto summaries =
       expect_same_outputs(dir_, scenario.string(), "-x BLOCKDEM_MPI_REBALANCE_STEPS=50 ");
-  for (const auto& s : summaries)
-    EXPECT_GE(s.at("distribution").at("partitions").get<int>(), 8);  // 400 steps / 50
+  for (const auto& s : summaries) {
+    for (const auto& rank : s.at("distribution"))
+      EXPECT_GE(rank.at("partitions").get<int>(), 8);  // 400 steps / 50
+  }
 }
 
 // A voussoir beam of the Boon et al. (2015) study (Table 2 case 1), its preload cut short after

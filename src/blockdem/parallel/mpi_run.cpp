@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "blockdem/parallel/rcb.hpp"
 
@@ -34,6 +36,22 @@ nlohmann::json distribution_json(const DistributionStats& s) {
           {"pair_seconds_per_step", s.pair_seconds / steps},
           {"exchange_seconds_per_step", s.exchange_seconds / steps},
           {"last_imbalance", s.last_imbalance}};
+}
+
+nlohmann::json gather_distribution_json(PairDistribution& distribution,
+                                        const DistributionStats& stats) {
+  static_assert(std::is_trivially_copyable_v<DistributionStats>);
+  std::vector<char> mine(sizeof stats);
+  std::memcpy(mine.data(), &stats, sizeof stats);
+  std::vector<std::size_t> counts;
+  const std::vector<char> all = distribution.all_gather(mine, counts);
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t r = 0; r * sizeof stats < all.size(); ++r) {
+    DistributionStats s;
+    std::memcpy(&s, all.data() + r * sizeof stats, sizeof s);
+    out.push_back(distribution_json(s));
+  }
+  return out;
 }
 
 bool launched_by_mpi_launcher() {

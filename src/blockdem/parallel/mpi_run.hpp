@@ -14,6 +14,9 @@ namespace blockdem {
 /// Per-step figures of a process's share of a distributed run (means over its steps), for
 /// summary.json: pairs, ghost blocks, bytes sent and received, pair and exchange times.
 nlohmann::json distribution_json(const DistributionStats& stats);
+/// Collective: distribution_json of every process, in rank order (an array).
+nlohmann::json gather_distribution_json(PairDistribution& distribution,
+                                        const DistributionStats& stats);
 
 /// True when the program was built with MPI (BLOCKDEM_MPI).
 bool mpi_built();

@@ -223,7 +223,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
-  if (ranks > 1) summary["distribution"] = distribution_json(world.distribution_stats());
+  if (ranks > 1)  // per process, in rank order (a collective call: every process gets here)
+    summary["distribution"] = gather_distribution_json(*distribution, world.distribution_stats());
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.
