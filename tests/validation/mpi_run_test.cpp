@@ -5,6 +5,7 @@
 // stops every process. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -103,7 +104,7 @@ class MpiRun : public ::testing::Test {
   void SetUp() override {
     if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
     dir_ = fs::temp_directory_path() /
-           ("blockdem_mpi_" +
+           ("blockdem_mpi_" + std::to_string(getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
@@ -119,7 +120,7 @@ class MpiRun : public ::testing::Test {
   fs::path dir_;
 };
 
-// A 4-layer pile of 329 cubes with small initial velocities settling under gravity on a fixed
+// A 4-layer pile of 362 cubes with small initial velocities settling under gravity on a fixed
 // plate, 1000 steps: positions (blocks.csv), contacts and the energies in summary.json (printed
 // to 17 digits) as from one process.
 TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {

@@ -1,6 +1,6 @@
-// Recursive coordinate bisection (Berger & Bokhari 1987, IEEE Trans. Computers C-36(5):570-580,
-// section II: the cut through the weighted median normal to one axis; here the longest axis of
-// the part's bounding box, and an uneven ratio for an odd number of parts).
+// Recursive coordinate bisection (Berger & Bokhari 1987, IEEE Trans. Computers C-36(5):570-580:
+// cuts through the weighted median normal to a coordinate axis; here the longest axis of the
+// part's bounding box, and the ratio floor(K/2) : ceil(K/2) for any number of parts K).
 #include "blockdem/parallel/rcb.hpp"
 
 #include <algorithm>
