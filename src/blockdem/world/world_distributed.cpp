@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "blockdem/world/world.hpp"
@@ -13,8 +14,9 @@ namespace {
 
 /// A process's part of an exchange starts with its measured pair time and its slot count.
 struct ExchangeHeader {
-  double seconds = 0.0;     ///< time in this step's own pair work (s)
-  std::uint64_t slots = 0;  ///< number of slots that follow (-)
+  double seconds = 0.0;      ///< time in this step's own pair work (s)
+  std::uint64_t slots = 0;   ///< number of slots that follow (-)
+  std::uint64_t failed = 0;  ///< 1: a pair of this process threw (its slots are not sent)
 };
 
 /// Rebalance when the slowest process's pair work exceeds the mean by this factor (-)...
@@ -86,12 +88,14 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
       }
     }
   }
-  // A failing pair is a programming error; the exchange still runs so no process waits forever.
+  // A pair that throws: the exchange still runs, and every process then stops alike.
+  if (error) mine.clear();
   const auto t1 = std::chrono::steady_clock::now();
 
   ExchangeHeader header;
   header.seconds = std::chrono::duration<double>(t1 - t0).count();
   header.slots = static_cast<std::uint64_t>(mine.size());
+  header.failed = error ? 1 : 0;
   std::vector<char> out(sizeof(ExchangeHeader) + mine.size() * sizeof(PairSlot));
   std::memcpy(out.data(), &header, sizeof header);
   for (std::size_t i = 0; i < mine.size(); ++i) {
@@ -103,6 +107,7 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
   const std::vector<char> all = dist.all_gather(out, counts);
   const auto t2 = std::chrono::steady_clock::now();
 
+  if (error) std::rethrow_exception(error);
   // Every other process's slots, in rank order; each process's slots come in slot order.
   std::vector<std::size_t> begin(counts.size() + 1, 0);
   for (std::size_t r = 0; r < counts.size(); ++r) begin[r + 1] = begin[r] + counts[r];
@@ -111,6 +116,8 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
   for (std::size_t r = 0; r < counts.size(); ++r) {
     ExchangeHeader h;
     std::memcpy(&h, all.data() + begin[r], sizeof h);
+    if (h.failed != 0)
+      throw std::runtime_error("contact evaluation failed on process " + std::to_string(r));
     if (sizeof h + h.slots * sizeof(PairSlot) != counts[r])
       throw std::logic_error("pair exchange: a process sent a malformed part");
     slowest = std::max(slowest, h.seconds);
@@ -125,7 +132,6 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
       std::memcpy(static_cast<void*>(&slots_[k]), all.data() + next[r], sizeof(PairSlot));
     next[r] += sizeof(PairSlot);
   }
-  if (error) std::rethrow_exception(error);
 
   dist_stats_.steps += 1;
   dist_stats_.owned_pairs += n;
