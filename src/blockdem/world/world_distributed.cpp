@@ -23,6 +23,9 @@ struct ExchangeHeader {
 constexpr double kImbalanceThreshold = 1.25;
 /// ... and at least this many steps have passed since the last partition (-).
 constexpr std::int64_t kMinStepsBetweenPartitions = 100;
+/// ... and the slowest process loses more than this per step against the mean (s): below it the
+/// measured times are mostly noise, and an imbalance costs nothing worth a partition.
+constexpr double kMinImbalanceSeconds = 1e-3;
 
 }  // namespace
 
@@ -145,7 +148,8 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
   dist_stats_.last_imbalance = mean > 0.0 ? slowest / mean : 1.0;
   const std::int64_t since = step_count_ + 1 - partition_step_;
   const std::int64_t every = dist.repartition_interval();
-  if ((dist_stats_.last_imbalance > kImbalanceThreshold && since >= kMinStepsBetweenPartitions) ||
+  if ((dist_stats_.last_imbalance > kImbalanceThreshold && slowest - mean > kMinImbalanceSeconds &&
+       since >= kMinStepsBetweenPartitions) ||
       (every > 0 && since >= every))
     partition_blocks();
 }
