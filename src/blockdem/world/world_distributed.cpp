@@ -26,6 +26,9 @@ constexpr std::int64_t kMinStepsBetweenPartitions = 100;
 /// ... and the slowest process loses more than this per step against the mean (s): below it the
 /// measured times are mostly noise, and an imbalance costs nothing worth a partition.
 constexpr double kMinImbalanceSeconds = 1e-3;
+/// ... and the processes' pair counts are uneven by this factor too (-): the bisection balances
+/// pair counts, so only then can a new partition help (and counts carry no timing noise).
+constexpr double kPairCountThreshold = 1.1;
 
 }  // namespace
 
@@ -115,7 +118,7 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
   std::vector<std::size_t> begin(counts.size() + 1, 0);
   for (std::size_t r = 0; r < counts.size(); ++r) begin[r + 1] = begin[r] + counts[r];
   std::vector<std::size_t> next(counts.size());
-  double slowest = 0.0, total = 0.0;
+  double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
     ExchangeHeader h;
     std::memcpy(&h, all.data() + begin[r], sizeof h);
@@ -125,6 +128,8 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
       throw std::logic_error("pair exchange: a process sent a malformed part");
     slowest = std::max(slowest, h.seconds);
     total += h.seconds;
+    most_pairs = std::max(most_pairs, static_cast<double>(h.slots));
+    total_pairs += static_cast<double>(h.slots);
     next[r] = begin[r] + sizeof h;
   }
   for (std::size_t k = 0; k < slots_.size(); ++k) {
@@ -148,8 +153,10 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
   dist_stats_.last_imbalance = mean > 0.0 ? slowest / mean : 1.0;
   const std::int64_t since = step_count_ + 1 - partition_step_;
   const std::int64_t every = dist.repartition_interval();
+  const double mean_pairs = total_pairs / static_cast<double>(counts.size());
+  const bool uneven_pairs = most_pairs > kPairCountThreshold * mean_pairs;
   if ((dist_stats_.last_imbalance > kImbalanceThreshold && slowest - mean > kMinImbalanceSeconds &&
-       since >= kMinStepsBetweenPartitions) ||
+       uneven_pairs && since >= kMinStepsBetweenPartitions) ||
       (every > 0 && since >= every))
     partition_blocks();
 }
