@@ -14,7 +14,7 @@ FLOORS = {
     "geometry": 1, "contact": 1,
     "collision": 2, "dynamics": 2, "analysis": 2,
     "world": 3,
-    "scenario": 4, "io": 4,
+    "scenario": 4, "io": 4, "parallel": 4,
     "voussoir": 5, "lab": 5, "calibration": 5, "rockmass": 5,
     "run": 6,
     "studies": 7,

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config clang-format libgomp1 clang libomp-dev
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev coinor-libclp-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-dev pybind11-dev python3-pybind11
   python3-pytest
 )

@@ -2,11 +2,15 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
+#include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/scenario_runner.hpp"
@@ -53,7 +57,37 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+int run_one(RunOptions opt, const MpiSession& mpi);
+
 int run(const RunOptions& opt) {
+  // Under mpirun/srun every rank runs the scenario in lockstep (parallel/mpi_run.hpp); rank 0
+  // writes the outputs, the others write into a private scratch folder removed at the end.
+  const MpiSession mpi;
+  if (!mpi.active()) {
+    const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+    if (!size) size = std::getenv("PMI_SIZE");
+    if (size && std::atoi(size) > 1) {
+      std::cerr << "blockdem: error: started by an MPI launcher with " << size
+                << " processes, but this blockdem was built without MPI (BLOCKDEM_MPI=OFF)\n";
+      return 2;
+    }
+    return run_one(opt, mpi);
+  }
+  if (mpi.rank() == 0) return run_one(opt, mpi);
+  RunOptions mine = opt;
+  mine.quiet = true;
+  mine.figures = false;
+  mine.out = (std::filesystem::temp_directory_path() /
+              ("blockdem-rank" + std::to_string(mpi.rank()) + "-" + std::to_string(getpid())))
+                 .string();
+  std::error_code ec;
+  std::filesystem::remove_all(mine.out, ec);
+  const int code = run_one(mine, mpi);
+  std::filesystem::remove_all(mine.out, ec);
+  return code;
+}
+
+int run_one(RunOptions opt, const MpiSession& mpi) {
   Progress progress(!opt.quiet);
   RunCallbacks cb;
   cb.progress = [&](const std::string& s) { progress.update(s); };
@@ -79,6 +113,13 @@ int run(const RunOptions& opt) {
                           "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
       std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
   };
+  // Until every rank has read the scenario, a failure must be agreed on by all (collective).
+  bool agreed = false;
+  auto agree = [&](bool ok, std::string& why) {
+    if (agreed) return ok;
+    agreed = true;
+    return mpi.all_ok(ok, why);
+  };
   try {
     // Read and check everything before anything is written.
     Scenario sc = load_scenario(opt.scenario);
@@ -100,22 +141,32 @@ int run(const RunOptions& opt) {
     install_stop_handlers();
     control.stop = [] { return stop_signal != 0; };
     beam = voussoir_scene(sc) != nullptr;
-    for (const auto& w : sc.warnings)
+    for (const auto& w : mpi.rank() == 0 ? sc.warnings : std::vector<std::string>{})
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     rock_mass = rock_mass_scene(sc) != nullptr;
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
+    if (std::string why; !agree(true, why)) {
+      // Another rank could not read the scenario: every rank stops with its message.
+      if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
+      return 2;
+    }
+    sc.settings.distribution = mpi.distribution();
     r = run_scenario(sc, opt.out, cb, control);
   } catch (const CheckpointError& e) {
     std::cerr << "blockdem: error: " << e.what() << "\n";
     return 2;
   } catch (const ScenarioError& e) {
+    std::string why = e.what();
+    agree(false, why);
     remove_outputs();
-    std::cerr << "blockdem: error: " << e.what() << "\n";
+    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
+    std::string why = opt.scenario + ": " + e.what();
+    agree(false, why);
     remove_outputs();
-    std::cerr << "blockdem: error: " << opt.scenario << ": " << e.what() << "\n";
+    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
     return 2;
   }
   if (r.interrupted) {
@@ -161,6 +212,7 @@ int run(const RunOptions& opt) {
     std::fprintf(stderr, "blockdem: collapse between %.4g g (stable) and %.4g g (failed)\n",
                  r.collapse->first, r.collapse->second);
   }
+  if (mpi.rank() != 0) return r.exit_code;
   if (r.exit_code != 0) {
     std::cerr << "blockdem: error: " << r.message << "\n"
               << "blockdem: outputs up to the last good state are in " << opt.out

@@ -11,6 +11,7 @@
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
@@ -69,6 +70,13 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   }
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
   check_time_step(sc, world);
+  const auto& distribution = world.settings().distribution;
+  const int ranks = distribution ? distribution->size() : 1;
+  if (ranks > static_cast<int>(world.blocks().size()))
+    throw ScenarioError(sc.file, "",
+                        "cannot run " + std::to_string(world.blocks().size()) + " blocks on " +
+                            std::to_string(ranks) +
+                            " processes: need at least one block per process");
   std::optional<MotionMonitor> resumed_monitor;
   std::optional<World> resumed_before;
   if (resume) {
@@ -112,6 +120,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["blocks"] = world.blocks().size();
   summary["contact_mode"] = to_string(sc.settings.contact_mode);
   summary["threads"] = world.thread_count();
+  summary["ranks"] = ranks;
   summary["citations"] = {
       "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between "
       "convex "
@@ -387,6 +396,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     }
   }
   if (any_excavation) summary["key_blocks"] = all_key_blocks;
+  if (ranks > 1)  // per process, in rank order (a collective call: every process gets here)
+    summary["distribution"] = gather_distribution_json(*distribution, world.distribution_stats());
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,7 @@
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/world/contact.hpp"
+#include "blockdem/world/distribution.hpp"
 #include "blockdem/world/state_stream.hpp"
 
 namespace blockdem {
@@ -67,6 +69,9 @@ struct WorldSettings {
   /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core).
   /// Results are bit-identical for every thread count.
   int threads = 0;
+  /// Processes sharing the per-pair work (an MPI run; parallel/); null: this process does all.
+  /// Results are bit-identical for every number of processes.
+  std::shared_ptr<PairDistribution> distribution;
 
   /// Whether contacts carry a twisting moment (`twist`, else the mode's default).
   bool twist_enabled() const {
@@ -165,6 +170,10 @@ class World {
   /// are removed again, matched by name); the run then continues bit-identically. Throws
   /// StateError when the state does not fit this world.
   void load_state(StateReader& in);
+  /// With settings().distribution: the owner process of each block (empty before the first
+  /// step) and this process's figures of the distributed work.
+  const std::vector<int>& block_owners() const { return owner_; }
+  const DistributionStats& distribution_stats() const { return dist_stats_; }
 
  private:
   /// One candidate pair: its contact (active when the blocks touch and a force acts) or, for a
@@ -185,6 +194,8 @@ class World {
   void evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const;
   bool evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const;
   void evaluate_pairs(double dt, bool advance_shear, int threads);
+  void evaluate_pairs_distributed(double dt, int threads);  // world_distributed.cpp
+  void partition_blocks();
   void scatter_loads();
   void apply_servos(double dt);
   void check_divergence();
@@ -209,6 +220,11 @@ class World {
   // Per-block stiffness sums of this step, for the automatic time step.
   std::vector<double> stiffness_, rotational_stiffness_;
   double contact_dt_ = 0.0;
+
+  // Distributed runs (settings_.distribution): block owners, when they were last computed.
+  std::vector<int> owner_;
+  std::int64_t partition_step_ = -1;
+  DistributionStats dist_stats_;
 
   double time_ = 0.0;
   std::int64_t step_count_ = 0;

@@ -47,7 +47,10 @@ void World::compute_contacts(double dt, int threads) {
       pairs_, threads);
   keep_open_bonds();
   merge_pairs();
-  evaluate_pairs(dt, true, threads);
+  if (settings_.distribution)
+    evaluate_pairs_distributed(dt, threads);
+  else
+    evaluate_pairs(dt, true, threads);
   scatter_loads();
 }
 

@@ -1,0 +1,168 @@
+// The MPI session and the pair distribution over MPI_COMM_WORLD. Without BLOCKDEM_HAVE_MPI the
+// session is always a single process.
+#include "blockdem/parallel/mpi_run.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+
+#include "blockdem/parallel/rcb.hpp"
+
+#ifdef BLOCKDEM_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace blockdem {
+
+bool mpi_built() {
+#ifdef BLOCKDEM_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+nlohmann::json distribution_json(const DistributionStats& s) {
+  const double steps = s.steps > 0 ? static_cast<double>(s.steps) : 1.0;
+  return {{"steps", s.steps},
+          {"partitions", s.partitions},
+          {"pairs_per_step", static_cast<double>(s.owned_pairs) / steps},
+          {"ghost_blocks_per_step", static_cast<double>(s.ghost_blocks) / steps},
+          {"bytes_sent_per_step", static_cast<double>(s.bytes_sent) / steps},
+          {"bytes_received_per_step", static_cast<double>(s.bytes_received) / steps},
+          {"pair_seconds_per_step", s.pair_seconds / steps},
+          {"exchange_seconds_per_step", s.exchange_seconds / steps},
+          {"last_imbalance", s.last_imbalance}};
+}
+
+nlohmann::json gather_distribution_json(PairDistribution& distribution,
+                                        const DistributionStats& stats) {
+  static_assert(std::is_trivially_copyable_v<DistributionStats>);
+  std::vector<char> mine(sizeof stats);
+  std::memcpy(mine.data(), &stats, sizeof stats);
+  std::vector<std::size_t> counts;
+  const std::vector<char> all = distribution.all_gather(mine, counts);
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t r = 0; r * sizeof stats < all.size(); ++r) {
+    DistributionStats s;
+    std::memcpy(&s, all.data() + r * sizeof stats, sizeof s);
+    out.push_back(distribution_json(s));
+  }
+  return out;
+}
+
+bool launched_by_mpi_launcher() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE",
+                           "MPI_LOCALNRANKS", "SLURM_PMIX_MAPPING_SERV"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
+}
+
+#ifdef BLOCKDEM_HAVE_MPI
+namespace {
+
+class MpiPairDistribution final : public PairDistribution {
+ public:
+  MpiPairDistribution(int rank, int size) : rank_(rank), size_(size) {
+    // A fixed repartition interval, for tests and for studying the cost of migration.
+    if (const char* every = std::getenv("BLOCKDEM_MPI_REBALANCE_STEPS"))
+      interval_ = std::max<std::int64_t>(0, std::atoll(every));
+  }
+  std::int64_t repartition_interval() const override { return interval_; }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  std::vector<int> partition(std::span<const Eigen::Vector3d> points,
+                             std::span<const double> weights) const override {
+    return recursive_coordinate_bisection(points, weights, size_);
+  }
+  std::vector<char> all_gather(const std::vector<char>& mine,
+                               std::vector<std::size_t>& counts) override {
+    if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::runtime_error("pair exchange: more than 2 GB from one process");
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> all_counts(static_cast<std::size_t>(size_));
+    MPI_Allgather(&count, 1, MPI_INT, all_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::vector<int> displs(static_cast<std::size_t>(size_), 0);
+    long long total = 0;
+    counts.assign(static_cast<std::size_t>(size_), 0);
+    for (int r = 0; r < size_; ++r) {
+      if (total > std::numeric_limits<int>::max())
+        throw std::runtime_error("pair exchange: more than 2 GB in one step");
+      displs[static_cast<std::size_t>(r)] = static_cast<int>(total);
+      counts[static_cast<std::size_t>(r)] =
+          static_cast<std::size_t>(all_counts[static_cast<std::size_t>(r)]);
+      total += all_counts[static_cast<std::size_t>(r)];
+    }
+    std::vector<char> all(static_cast<std::size_t>(total));
+    MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), all_counts.data(), displs.data(),
+                   MPI_BYTE, MPI_COMM_WORLD);
+    return all;
+  }
+
+ private:
+  int rank_;
+  int size_;
+  std::int64_t interval_ = 0;
+};
+
+}  // namespace
+
+MpiSession::MpiSession() {
+  if (!launched_by_mpi_launcher()) return;
+  int provided = 0;
+  // Only the main thread calls MPI; OpenMP threads work between the calls.
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  active_ = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+MpiSession::~MpiSession() {
+  if (active_) MPI_Finalize();
+}
+
+bool MpiSession::all_ok(bool ok, std::string& message) const {
+  if (!active_ || size_ == 1) return ok;
+  // The lowest failing rank (size_ when none) sends its message to all.
+  int failing = ok ? size_ : rank_;
+  int first = size_;
+  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == size_) return true;
+  int length = rank_ == first ? static_cast<int>(message.size()) : 0;
+  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  return false;
+}
+
+void MpiSession::abort(int code) const {
+  if (active_) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+std::shared_ptr<PairDistribution> MpiSession::distribution() const {
+  if (!active_ || size_ == 1) return nullptr;
+  return std::make_shared<MpiPairDistribution>(rank_, size_);
+}
+
+#else
+
+MpiSession::MpiSession() = default;
+MpiSession::~MpiSession() = default;
+bool MpiSession::all_ok(bool ok, std::string&) const {
+  return ok;
+}
+void MpiSession::abort(int code) const {
+  std::exit(code);
+}
+std::shared_ptr<PairDistribution> MpiSession::distribution() const {
+  return nullptr;
+}
+
+#endif
+
+}  // namespace blockdem

@@ -1,0 +1,215 @@
+// `mpirun -np K blockdem run`: the outputs of K = 1, 2, 3 processes are byte-identical to those
+// of one process started without mpirun (the oracle), for a settling brick pile, a shaken pile
+// whose blocks cross subdomain boundaries and change owner, and a voussoir beam; and bad input
+// (more processes than blocks, a scenario that one process cannot read, a process that dies)
+// stops every process. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "brick_pile.hpp"
+
+namespace blockdem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+#ifdef BLOCKDEM_TEST_MPIEXEC
+constexpr const char* kMpiexec = BLOCKDEM_TEST_MPIEXEC;
+#else
+constexpr const char* kMpiexec = nullptr;
+#endif
+
+std::string read_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+/// The launcher for K processes: oversubscribed (2 cores), allowed as root (CI), one OpenMP
+/// thread per process.
+std::string mpirun(int ranks) {
+  std::ostringstream c;
+  c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 -np " << ranks << " ";
+  return c.str();
+}
+
+int exit_code(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// summary.json without what may differ between process counts: wall time, ranks and the
+/// per-process figures of the distributed work.
+nlohmann::json comparable_summary(const fs::path& p) {
+  nlohmann::json j = nlohmann::json::parse(read_file(p));
+  j.erase("wall_time_s");
+  j.erase("ranks");
+  j.erase("distribution");
+  return j;
+}
+
+/// Runs `args` once without mpirun and with mpirun -np 1, 2, 3 (each must exit with `code`; 3: a
+/// stage cut short, whose outputs are still written) and checks that every output file
+/// is byte-identical to the single process's (summary.json: as comparable_summary). Returns the
+/// summaries of the runs on 2 and 3 processes. The one-process run is the oracle: the
+/// distributed step gathers every contact byte for byte and sums loads in the serial order.
+std::vector<nlohmann::json> expect_same_outputs(const fs::path& dir, const std::string& args,
+                                                const std::string& env = "", int code = 0) {
+  std::vector<fs::path> outs;
+  std::vector<nlohmann::json> summaries;
+  for (int ranks : {0, 1, 2, 3}) {
+    const fs::path out = dir / ("out" + std::to_string(ranks));
+    const std::string launcher = ranks == 0 ? "" : mpirun(ranks) + env;
+    const std::string cmd = launcher + BLOCKDEM_CLI_PATH + " run " + args + " --out " +
+                            out.string() + " --quiet --no-figures --threads 1";
+    EXPECT_EQ(exit_code(cmd), code) << cmd;
+    const nlohmann::json s = nlohmann::json::parse(read_file(out / "summary.json"));
+    EXPECT_EQ(s.at("ranks").get<int>(), ranks == 0 ? 1 : ranks) << cmd;
+    if (ranks >= 2) summaries.push_back(s);
+    outs.push_back(out);
+  }
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(outs[0])) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path rel = fs::relative(entry.path(), outs[0]);
+    for (std::size_t k = 1; k < outs.size(); ++k) {
+      const int ranks = static_cast<int>(k);
+      EXPECT_TRUE(fs::exists(outs[k] / rel)) << rel << " missing with " << ranks << " ranks";
+      if (rel == "summary.json") {
+        EXPECT_EQ(comparable_summary(entry.path()), comparable_summary(outs[k] / rel))
+            << ranks << " ranks";
+      } else {
+        EXPECT_TRUE(read_file(entry.path()) == read_file(outs[k] / rel))
+            << rel << " differs with " << ranks << " ranks";
+      }
+    }
+    ++files;
+  }
+  EXPECT_GE(files, 4u);  // history, blocks, contacts, summary (+ vtk)
+  return summaries;
+}
+
+class MpiRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+    dir_ = fs::temp_directory_path() /
+           ("blockdem_mpi_" + std::to_string(getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p;
+  }
+  fs::path dir_;
+};
+
+// A 4-layer pile of 362 cubes with small initial velocities settling under gravity on a fixed
+// plate, 1000 steps: positions (blocks.csv), contacts and the energies in summary.json (printed
+// to 17 digits) as from one process.
+TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
+  const fs::path scenario =
+      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 1000));
+  const auto summaries = expect_same_outputs(dir_, scenario.string());
+  for (const auto& s : summaries) {
+    // Each process evaluated a share of the pairs and saw other processes' blocks as ghosts.
+    ASSERT_EQ(s.at("distribution").size(), s.at("ranks").get<std::size_t>());
+    for (const auto& rank : s.at("distribution")) {
+      EXPECT_GT(rank.at("pairs_per_step").get<double>(), 0.0);
+      EXPECT_GT(rank.at("ghost_blocks_per_step").get<double>(), 0.0);
+    }
+  }
+}
+
+// The pile shaken by a steep sideways gravity (60, 25, -98.1) m/s^2 in mode face_integrated:
+// blocks slide and topple across subdomain boundaries; the blocks are partitioned again every
+// 50 steps (BLOCKDEM_MPI_REBALANCE_STEPS), so blocks and their contacts change owner.
+TEST_F(MpiRun, ShakenPileRepartitionedSameOutputs) {
+  const fs::path scenario =
+      write("shaken.toml",
+            BrickPile{}.toml("face_integrated", 20.0, Eigen::Vector3d(60, 25, -98.1), 400));
+  const auto summaries =
+      expect_same_outputs(dir_, scenario.string(), "-x BLOCKDEM_MPI_REBALANCE_STEPS=50 ");
+  for (const auto& s : summaries) {
+    for (const auto& rank : s.at("distribution"))
+      EXPECT_GE(rank.at("partitions").get<int>(), 8);  // 400 steps / 50
+  }
+}
+
+// A voussoir beam of the Boon et al. (2015) study (Table 2 case 1), its preload cut short after
+// 300 steps (exit code 3, not converged; the outputs up to there are written all the same).
+TEST_F(MpiRun, VoussoirBeamSameOutputs) {
+  const fs::path scenario = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/boon2015/T2-1.toml";
+  expect_same_outputs(dir_, scenario.string() + " --max-steps 300 2> /dev/null", "", 3);
+}
+
+// Bad input: 3 processes for 2 blocks. Every process stops; one message; exit code 2; nothing
+// written.
+TEST_F(MpiRun, MoreRanksThanBlocksIsAnInputError) {
+  BrickPile tiny;
+  tiny.n = 1;
+  tiny.layers = 1;  // the plate and one cube
+  const fs::path scenario =
+      write("tiny.toml", tiny.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
+  const fs::path out = dir_ / "out";
+  const fs::path log = dir_ / "log.txt";
+  const std::string cmd = mpirun(3) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + " --out " +
+                          out.string() + " --quiet 2> " + log.string();
+  EXPECT_EQ(exit_code(cmd), 2);
+  const std::string err = read_file(log);
+  EXPECT_NE(err.find("cannot run 2 blocks on 3 processes"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Bad input on one process only (MPMD: process 1 is given a broken file): every process stops
+// with process 1's message, exit code 2, nothing written.
+TEST_F(MpiRun, ScenarioFailingOnOneRankStopsAll) {
+  const fs::path good =
+      write("good.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
+  const fs::path bad = write("bad.toml", "title = \"bad\"\n[settings]\ndamping = 2.0\n");
+  const fs::path out = dir_ / "out";
+  const fs::path log = dir_ / "log.txt";
+  const std::string tail = " --out " + out.string() + " --quiet";
+  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 1 " +
+                          BLOCKDEM_CLI_PATH + " run " + good.string() + tail + " : -np 1 " +
+                          BLOCKDEM_CLI_PATH + " run " + bad.string() + tail + " 2> " + log.string();
+  EXPECT_EQ(exit_code(cmd), 2) << cmd;
+  const std::string err = read_file(log);
+  EXPECT_NE(err.find(bad.string()), std::string::npos) << err;
+  EXPECT_NE(err.find("damping"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A process killed in the middle of a run: the others are stopped by the launcher, the run
+// fails, and no summary.json claims a finished run.
+TEST_F(MpiRun, DeadRankStopsTheRunWithoutSummary) {
+  const fs::path scenario = write(
+      "long.toml", BrickPile{}.toml("face_integrated", 20.0, Eigen::Vector3d(0, 0, -9.81), 200000));
+  const fs::path out = dir_ / "out";
+  const std::string tail = " --out " + out.string() + " --quiet --no-figures --threads 1";
+  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 1 " +
+                          BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
+                          " : -np 1 timeout -s KILL 3 " + BLOCKDEM_CLI_PATH + " run " +
+                          scenario.string() + tail + " > /dev/null 2>&1";
+  EXPECT_NE(exit_code(cmd), 0) << cmd;
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+}  // namespace
+}  // namespace blockdem::test
