@@ -10,6 +10,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 start=$(date +%s)
 llvm=$(ls -d /usr/lib/llvm-*/lib | sort -V | tail -1)
 CXX=clang++ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLOCKDEM_BUILD_BENCH=OFF \
+  -DBLOCKDEM_PYTHON=OFF -DBLOCKDEM_MPI=OFF \
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
 cmake --build build-tsan -j "$jobs" --target blockdem_tests blockdem
