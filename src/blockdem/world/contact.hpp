@@ -61,4 +61,18 @@ struct Contact {
   Eigen::Vector3d force_on_b() const { return normal_force * geometry.normal + shear.force; }
 };
 
+/// Back to a fresh contact (no history, no forces), keeping the pair, its narrow-phase warm start
+/// and its bond state: a bond that broke stays broken, and an intact one stays intact, while the
+/// pair remains a candidate.
+inline void forget_history(Contact& c) {
+  if (!c.has_history) return;
+  Contact fresh;
+  fresh.a = c.a;
+  fresh.b = c.b;
+  fresh.law = c.law;
+  fresh.narrow_cache = c.narrow_cache;
+  fresh.shear.bond = c.shear.bond;
+  c = fresh;
+}
+
 }  // namespace blockdem

@@ -10,20 +10,6 @@
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
-namespace {
-
-/// Drops a contact's geometry and forces, keeping its pair, warm start and bond state.
-void open_joint(Contact& c) {
-  Contact fresh;
-  fresh.a = c.a;
-  fresh.b = c.b;
-  fresh.law = c.law;
-  fresh.narrow_cache = c.narrow_cache;
-  fresh.shear.bond = c.shear.bond;
-  c = fresh;
-}
-
-}  // namespace
 
 bool World::evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const {
   Contact& ct = slot.contact;
@@ -81,7 +67,7 @@ bool World::evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) co
   if (ct.shear.bond != BondState::intact) {
     // The tension cut-off: the bond breaks for good and the joint opens.
     slot.broke = advance_shear;
-    open_joint(ct);
+    forget_history(ct);
     return true;
   }
   ct.geometry.touching = false;
@@ -118,7 +104,7 @@ bool World::evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) co
     // Broken in shear while open: the joint has no strength left and no normal force.
     slot.broke = true;
     slot.active = false;
-    open_joint(ct);
+    forget_history(ct);
     return true;
   }
   slot.stiffness = kn + sr.stiffness;

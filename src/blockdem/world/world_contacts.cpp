@@ -20,20 +20,6 @@ bool less_pair(int a1, int b1, int a2, int b2) {
   return a1 < a2 || (a1 == a2 && b1 < b2);
 }
 
-/// Back to a fresh contact (no history), keeping the pair, its narrow-phase warm start and its
-/// bond state: a bond that broke stays broken, and an intact one stays intact, while the pair
-/// remains a candidate.
-void forget_history(Contact& c) {
-  if (!c.has_history) return;
-  Contact fresh;
-  fresh.a = c.a;
-  fresh.b = c.b;
-  fresh.law = c.law;
-  fresh.narrow_cache = c.narrow_cache;
-  fresh.shear.bond = c.shear.bond;
-  c = fresh;
-}
-
 }  // namespace
 
 void World::compute_contacts(double dt, int threads) {
