@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config clang-format libgomp1
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev coinor-libclp-dev
-  python3 python3-numpy python3-matplotlib
+  python3 python3-numpy python3-matplotlib python3-vtk9
 )
 
 missing=()

@@ -135,6 +135,13 @@ nlohmann::ordered_json normal_report(const ColumnCompressionData& data,
   nlohmann::ordered_json& e = out["exponential"];
   e["a_Pa"] = cal.exponential.a;
   e["b_per_m"] = cal.exponential.b;
+  e["a_standard_error_Pa"] = cal.a_standard_error;
+  e["b_standard_error_per_m"] = cal.b_standard_error;
+  e["a_interval95_Pa"] = {cal.a_lower95, cal.a_upper95};
+  e["b_interval95_per_m"] = {cal.b_lower95, cal.b_upper95};
+  e["uncertainty"] =
+      "standard errors and 95% intervals from the Jacobian at the optimum, s^2 (J^T J)^-1 over "
+      "(ln a, ln b), Student t with m - 2 degrees of freedom";
   e["k0_Pa_per_m"] = cal.exponential.a * cal.exponential.b;
   e["c_per_m"] = cal.exponential.b;
   e["tangent_stiffness"] = "k_n = k0 + c sigma_n (eq 1 form): k0 = a b, c = b";

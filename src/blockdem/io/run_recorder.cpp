@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "blockdem/io/vtk.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -18,7 +17,11 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
   std::filesystem::create_directories(dir_, ec);
   if (ec)
     throw std::runtime_error("cannot create output folder " + dir_.string() + ": " + ec.message());
-  if (vtk_) std::filesystem::create_directories(dir_ / "vtk", ec);
+  if (vtk_) {
+    std::filesystem::create_directories(dir_ / "vtk", ec);
+    blocks_pvd_ = std::make_unique<PvdCollection>(dir_ / "vtk" / "blocks.pvd");
+    contacts_pvd_ = std::make_unique<PvdCollection>(dir_ / "vtk" / "contacts.pvd");
+  }
   if (tables) {
     history_ = std::make_unique<CsvWriter>(
         dir_ / "history.csv",
@@ -89,7 +92,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(stage.name)
         .cell(stage.converged ? 1 : 0)
         .cell(static_cast<long long>(stage.steps))
-        .cell(world.time())
+        .cell(world.level_time())
         .cell(world.last_time_step())
         .cell(g.x())
         .cell(g.y())
@@ -105,15 +108,19 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
     history_->flush();
 
     for (const auto& b : world.blocks()) {
-      const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
-      const Eigen::Vector3d r = rad_to_deg(1.0) * b.rotation_since_start();
+      // One instant per row: the level state at which the contact forces were evaluated.
+      const World::LevelState st = world.level_state(b.index);
+      const Eigen::Vector3d u = 1e3 * (st.position - b.initial_position);
+      const Eigen::AngleAxisd turn(st.orientation * b.initial_orientation.conjugate());
+      const double angle = turn.angle() > kPi ? turn.angle() - 2 * kPi : turn.angle();
+      const Eigen::Vector3d r = rad_to_deg(angle) * turn.axis();
       blocks_->cell(level)
           .cell(stage.name)
           .cell(b.name)
           .cell(b.group)
-          .cell(b.position.x())
-          .cell(b.position.y())
-          .cell(b.position.z())
+          .cell(st.position.x())
+          .cell(st.position.y())
+          .cell(st.position.z())
           .cell(u.x())
           .cell(u.y())
           .cell(u.z())
@@ -121,9 +128,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
           .cell(r.x())
           .cell(r.y())
           .cell(r.z())
-          .cell(b.velocity.x())
-          .cell(b.velocity.y())
-          .cell(b.velocity.z())
+          .cell(st.velocity.x())
+          .cell(st.velocity.y())
+          .cell(st.velocity.z())
           .cell(b.contact_force.x())
           .cell(b.contact_force.y())
           .cell(b.contact_force.z());
@@ -165,13 +172,20 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
   }
   contacts_->flush();
 
-  if (vtk_) {
-    char name[64];
-    std::snprintf(name, sizeof name, "blocks_%04d.vtk", level);
-    write_vtk_blocks(dir_ / "vtk" / name, world);
-    std::snprintf(name, sizeof name, "contacts_%04d.vtk", level);
-    write_vtk_contacts(dir_ / "vtk" / name, world);
-  }
+  write_frame(world, level);
+}
+
+void RunRecorder::write_frame(const World& world, int level) {
+  if (!vtk_ || world.step_count() == last_frame_step_) return;
+  last_frame_step_ = world.step_count();
+  char name[64];
+  std::snprintf(name, sizeof name, "blocks_%06d.vtu", frames_);
+  write_vtu_blocks(dir_ / "vtk" / name, world, level);
+  blocks_pvd_->add(world.level_time(), name);
+  std::snprintf(name, sizeof name, "contacts_%06d.vtu", frames_);
+  write_vtu_contacts(dir_ / "vtk" / name, world);
+  contacts_pvd_->add(world.level_time(), name);
+  ++frames_;
 }
 
 }  // namespace blockdem

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "blockdem/io/run_recorder.hpp"
+#include "blockdem/io/time_history.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/voussoir/recorder.hpp"
@@ -30,6 +31,10 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   const auto wall0 = std::chrono::steady_clock::now();
   World world = build_world(sc);  // may throw ScenarioError: nothing written yet
   check_time_step(sc, world);
+  for (const auto& name : sc.output.history_blocks) {
+    if (world.find_block(name) < 0)
+      throw ScenarioError(sc.file, "output.history_blocks", "no block named '" + name + "'");
+  }
   RunResult res;
   const VoussoirScene* voussoir = voussoir_scene(sc);
   const bool beam = voussoir != nullptr;
@@ -37,6 +42,10 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   std::unique_ptr<VoussoirRecorder> beam_recorder;
   VoussoirReference reference;
   if (beam) beam_recorder = std::make_unique<VoussoirRecorder>(out, world);
+  auto history = std::make_unique<TimeHistoryWriter>(
+      out / "time_history.csv", world,
+      TimeHistoryOptions{sc.output.history_interval, sc.output.history_interval_s,
+                         sc.output.history_max_rows, sc.output.history_blocks});
 
   nlohmann::json& summary = res.summary;
   summary["program"] = "blockdem";
@@ -64,13 +73,28 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     // The state before the stage, from which every trial of a search starts.
     std::optional<World> before;
     if (search_collapse || reduce) before.emplace(world);
+    const auto stage_wall0 = std::chrono::steady_clock::now();
+    const double stage_time0 = world.time();
     auto progress = [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
-      if (cb.progress) {
-        cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
-                    ": step " + std::to_string(k) + ", unbalanced " +
-                    fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
-                    fmt("%.2e", m.kinetic_energy_ratio));
-      }
+      if (!cb.progress) return;
+      // Steps per second of this stage and, where the stage's end is known, the time left.
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_wall0).count();
+      std::string line = "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
+                         ": step " + std::to_string(k) + ", t = " + fmt("%.4g s", world.time()) +
+                         ", unbalanced " + fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
+                         fmt("%.2e", m.kinetic_energy_ratio) + ", " +
+                         fmt("%.0f steps/s", wall > 0.0 ? static_cast<double>(k) / wall : 0.0);
+      double done = -1.0;
+      if (s.kind == Stage::Kind::steps)
+        done = static_cast<double>(k) / static_cast<double>(s.steps);
+      if (s.kind == Stage::Kind::duration) done = (world.time() - stage_time0) / s.duration;
+      if (done > 0.0)
+        line +=
+            fmt(", %.0f%%", 100.0 * done) + fmt(", about %.0f s left", wall * (1 - done) / done);
+      else
+        line += ", at most " + std::to_string(s.max_steps) + " steps";
+      cb.progress(line);
     };
     auto trial_done = [&](const StabilityTrial& t) {
       if (cb.stage_done)
@@ -133,7 +157,12 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     bool diverged = false;
     std::optional<MotionMonitor> monitor;
     try {
-      result = run_stage(world, stage, progress, &monitor);
+      result = run_stage(
+          world, stage, progress, &monitor, [&](const World& w, const Stage& s, std::int64_t) {
+            history->after_step(w, s.name);
+            if (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0)
+              recorder.write_frame(w, level);
+          });
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
@@ -159,6 +188,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
     // Outputs of this level. A level that did not converge is written flagged converged = 0; a
     // diverged one is not written (the rows so far end with the last good state).
     if (!diverged) recorder.record(world, result, level);
+    if (!diverged) history->write(world, stage.name);
     if (beam && !diverged) {
       const double g_level = world.settings().gravity.norm() / kOneG;
       if (level == 0) reference = capture_reference(world);

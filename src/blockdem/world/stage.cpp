@@ -51,7 +51,7 @@ bool servos_settled(const World& world) {
 }
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
-                      std::optional<MotionMonitor>* monitor) {
+                      std::optional<MotionMonitor>* monitor, const StepFn& after_step) {
   stage.validate();
   const Eigen::Vector3d gravity_before = world.settings().gravity;
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
@@ -99,6 +99,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     }
     world.step();
     r.steps = k;
+    if (after_step) after_step(world, stage, k);
     const bool check = k % stage.check_interval == 0;
     if (check) watch->observe(world, ramping);
     if (progress && check) {

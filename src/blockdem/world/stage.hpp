@@ -87,11 +87,15 @@ struct StageResult {
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
 
+/// Called after every step of a stage with (stage, steps taken in it); e.g. a time-history writer.
+using StepFn = std::function<void(const World&, const Stage&, std::int64_t)>;
+
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
 /// `monitor`, when given, is created at the stage start and observed at every check, so that
 /// after a DivergenceError it still holds the last observation before the blow-up.
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
-                      std::optional<MotionMonitor>* monitor = nullptr);
+                      std::optional<MotionMonitor>* monitor = nullptr,
+                      const StepFn& after_step = {});
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

@@ -1,0 +1,75 @@
+// The VTK output read back by VTK itself (Debian's python3-vtk9): read_vtk_output.py checks every
+// frame of vtk/blocks.pvd and vtk/contacts.pvd against independent facts (box volumes, statics).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "../../support/cli_runner.hpp"
+
+namespace blockdem {
+namespace {
+
+// Two stacked boxes on a fixed base settle under gravity; frames every 200 steps and at the stage
+// end. The base must carry the weight of both (statics; tolerance 1e-4 from the stage's
+// unbalanced-force tolerance), and each polyhedron's volume, computed by VTK, is the box's
+// (1e-9: round-off of the vertices).
+TEST(VtuOutput, VtkReadsEveryFrameWithFields) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("blockdem_vtu_test_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "stack.toml") << R"(title = "two stacked boxes"
+[settings]
+damping = 0.7
+[[materials]]
+name = "rock"
+density = 2500.0
+[[joint_laws]]
+name = "joint"
+normal = { law = "linear", stiffness = 1e10 }
+shear = { law = "linear", stiffness = 1e9, friction_deg = 40 }
+[[blocks]]
+name = "base"
+material = "rock"
+size = [1.0, 1.0, 0.1]
+position = [0.0, 0.0, -0.05]
+motion = "fixed"
+[[blocks]]
+name = "lower"
+group = "stack"
+material = "rock"
+size = [0.2, 0.3, 0.1]
+position = [0.0, 0.0, 0.05]
+[[blocks]]
+name = "upper"
+group = "stack"
+material = "rock"
+size = [0.1, 0.1, 0.05]
+position = [0.02, 0.01, 0.125]
+[[stages]]
+name = "settle"
+gravity = [0.0, 0.0, -9.81]
+[output]
+vtk_interval = 200
+)";
+  const auto run = test::run_cli("run '" + (dir / "stack.toml").string() + "' --out '" +
+                                 (dir / "out").string() + "' --quiet --no-figures");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const double weight = 2500.0 * 9.81 * (0.2 * 0.3 * 0.1 + 0.1 * 0.1 * 0.05);
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string command = "VOLUMES=0.1,0.006,0.0005 " + python +
+                              " '" BLOCKDEM_SOURCE_DIR "/tests/unit/io/read_vtk_output.py' '" +
+                              (dir / "out").string() + "' 3 " + std::to_string(weight);
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  if (WEXITSTATUS(status) == 77) GTEST_SKIP() << "python3-vtk9 is not installed";
+  EXPECT_EQ(WEXITSTATUS(status), 0) << command;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace blockdem
