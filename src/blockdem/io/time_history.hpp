@@ -16,8 +16,8 @@ namespace blockdem {
 struct TimeHistoryOptions {
   std::int64_t interval_steps = 100;  ///< a row every this many steps (0: use interval_time)
   double interval_time = 0.0;         ///< or every this much model time (s), when > 0
-  /// The file never exceeds this many rows: each time it reaches half of what remains, the
-  /// interval doubles, so a long run is covered to its end at a coarser spacing.
+  /// The file never exceeds this many rows: each time half of the rows still allowed are used,
+  /// the interval doubles (about interval × max_rows × log2(max_rows) / 2 steps are covered).
   std::int64_t max_rows = 20000;
   std::vector<std::string> blocks;  ///< blocks whose displacement and velocity get columns
 };
