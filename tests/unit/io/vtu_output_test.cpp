@@ -1,11 +1,15 @@
-// The VTK output read back by VTK itself (Debian's python3-vtk9): read_vtk_output.py checks every
-// frame of vtk/blocks.pvd and vtk/contacts.pvd against independent facts (box volumes, statics).
+// A run's VTK output read back by VTK itself (Debian's python3-vtk9): read_vtk_output.py checks
+// every frame of vtk/blocks.pvd and vtk/contacts.pvd against independent facts (box volumes,
+// statics); and the energy budget of time_history.csv at rest (Clapeyron's theorem).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "../../support/cli_runner.hpp"
 
@@ -58,6 +62,34 @@ vtk_interval = 200
   const auto run = test::run_cli("run '" + (dir / "stack.toml").string() + "' --out '" +
                                  (dir / "out").string() + "' --quiet --no-figures");
   ASSERT_EQ(run.exit_code, 0) << run.err;
+
+  // time_history.csv's last row is the stage end at rest. The joints are linear and start
+  // closed at zero closure, so by Clapeyron's theorem the stored energy is half the work of
+  // gravity; tolerance 1e-2 (the elastic term is exact only at uniform closure, and the budget's
+  // residual is bounded by the contact-onset error, docs/outputs.md).
+  std::ifstream history(dir / "out" / "time_history.csv");
+  std::string header, line, last;
+  std::getline(history, header);
+  while (std::getline(history, line)) last = line;
+  std::vector<std::string> names, values;
+  for (auto* pair : {&header, &last}) {
+    std::stringstream ss(*pair);
+    for (std::string cell; std::getline(ss, cell, ',');)
+      (pair == &header ? names : values).push_back(cell);
+  }
+  ASSERT_EQ(names.size(), values.size());
+  auto column = [&](const std::string& name) {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return std::stod(values[i]);
+    ADD_FAILURE() << "no column " << name;
+    return 0.0;
+  };
+  EXPECT_EQ(values[2], "settle");
+  EXPECT_NEAR(column("elastic_energy_J"), 0.5 * column("gravity_work_J"),
+              1e-2 * column("gravity_work_J"));
+  EXPECT_LT(column("kinetic_energy_J"), 1e-6 * column("gravity_work_J"));
+  EXPECT_LT(std::abs(column("energy_residual_ratio")), 1e-2);
+
   const double weight = 2500.0 * 9.81 * (0.2 * 0.3 * 0.1 + 0.1 * 0.1 * 0.05);
   const std::string python =
       std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
@@ -68,6 +100,7 @@ vtk_interval = 200
   ASSERT_TRUE(WIFEXITED(status));
   if (WEXITSTATUS(status) == 77) GTEST_SKIP() << "python3-vtk9 is not installed";
   EXPECT_EQ(WEXITSTATUS(status), 0) << command;
+
   std::filesystem::remove_all(dir);
 }
 
