@@ -47,6 +47,10 @@ nlohmann::ordered_json power_law_json(const PowerLawFit& fit, const std::string&
   out["value_at_reference_stress_" + unit] = fit.reference_value;
   out["r_squared_of_log"] = number_or_null(fit.r_squared);
   out["rms_log_residual"] = fit.rms_log_residual;
+  out["exponent_standard_error"] = fit.exponent_standard_error;
+  out["exponent_interval95"] = {fit.exponent_lower95, fit.exponent_upper95};
+  out["value_at_reference_stress_interval95_" + unit] = {fit.reference_value_lower95,
+                                                         fit.reference_value_upper95};
   return out;
 }
 
@@ -183,6 +187,10 @@ nlohmann::ordered_json shear_report(const DirectShearData& data, const ShearCali
     c["normal_stress_Pa"] = fit.normal_stress;
     c["initial_stiffness_Pa_per_m"] = fit.initial_stiffness;
     c["peak_displacement_m"] = fit.peak_displacement;
+    c["initial_stiffness_interval95_Pa_per_m"] = {fit.initial_stiffness_lower95,
+                                                  fit.initial_stiffness_upper95};
+    c["peak_displacement_interval95_m"] = {fit.peak_displacement_lower95,
+                                           fit.peak_displacement_upper95};
     c["peak_shear_stress_Pa"] = fit.peak_shear_stress;
     c["rows_used"] = fit.points_used;
     c["peak_within_data"] = fit.peak_within_data;

@@ -1,10 +1,13 @@
-// The normal calibration's standard errors and 95% intervals of a and b (from the Jacobian at
-// the optimum) checked against a Monte-Carlo repetition of synthetic column tests.
+// Parameter uncertainty in the calibration: the normal calibration's standard errors and 95%
+// intervals of a and b checked against a Monte-Carlo repetition of synthetic column tests; the
+// power laws' exponent interval against the closed form of linear regression.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
+#include "blockdem/calibration/fit_quality.hpp"
 #include "blockdem/calibration/normal_calibration.hpp"
 
 namespace blockdem {
@@ -56,6 +59,41 @@ TEST(NormalCalibrationUncertainty, MatchesMonteCarloRepetition) {
   EXPECT_LE(covered_a, 199);
   EXPECT_GE(covered_b, 181);
   EXPECT_LE(covered_b, 199);
+}
+
+// y = C sigma^D with scatter, fitted in logs: a straight line ln y = ln y_ref + D ln(sigma /
+// sigma_ref). Closed form of simple linear regression: se(D) = s / sqrt(sum (x_i - mean x)^2),
+// s^2 = sum r_i^2 / (n - 2), x = ln sigma; the 95% interval is D +- t(0.975, n - 2) se(D) with
+// t(3) = 3.182. Tolerance 1e-10 relative (round-off).
+TEST(PowerLawUncertainty, ExponentIntervalIsLinearRegressionClosedForm) {
+  const std::vector<double> stress = {1e5, 2e5, 4e5, 8e5, 1.6e6};
+  const std::vector<double> scatter = {0.03, -0.02, 0.01, -0.04, 0.02};
+  std::vector<double> value;
+  for (std::size_t i = 0; i < stress.size(); ++i)
+    value.push_back(2e-3 * std::pow(stress[i], 0.4) * std::exp(scatter[i]));
+  const PowerLawFit fit = fit_power_law(stress, value, "test");
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < stress.size(); ++i) {
+    mx += std::log(stress[i]) / 5;
+    my += std::log(value[i]) / 5;
+  }
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < stress.size(); ++i) {
+    sxx += std::pow(std::log(stress[i]) - mx, 2);
+    sxy += (std::log(stress[i]) - mx) * (std::log(value[i]) - my);
+  }
+  const double slope = sxy / sxx;
+  double ss = 0;
+  for (std::size_t i = 0; i < stress.size(); ++i) {
+    ss += std::pow(std::log(value[i]) - my - slope * (std::log(stress[i]) - mx), 2);
+  }
+  const double se = std::sqrt(ss / 3) / std::sqrt(sxx);
+  EXPECT_NEAR(fit.exponent, slope, 1e-10 * slope);
+  EXPECT_NEAR(fit.exponent_standard_error, se, 1e-10 * se);
+  EXPECT_NEAR(fit.exponent_upper95 - fit.exponent, 3.182 * se, 1e-10 * se);
+  EXPECT_NEAR(fit.exponent - fit.exponent_lower95, 3.182 * se, 1e-10 * se);
+  // ln y_ref = mean of ln y, se = s / sqrt(n).
+  EXPECT_NEAR(std::log(fit.reference_value_upper95), my + 3.182 * std::sqrt(ss / 3 / 5), 1e-10);
 }
 
 }  // namespace
