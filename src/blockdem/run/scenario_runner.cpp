@@ -244,6 +244,15 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out,
   summary["wall_time_s"] = res.wall_time;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
+  const EnergyBudget& energy = world.energy_budget();  // at the last level (docs/outputs.md)
+  summary["energy_J"] = {{"kinetic", energy.kinetic},
+                         {"elastic", energy.elastic},
+                         {"gravity_work", energy.gravity_work},
+                         {"load_work", energy.load_work},
+                         {"boundary_work", energy.boundary_work},
+                         {"friction_dissipation", energy.friction_dissipation},
+                         {"damping_dissipation", energy.damping_dissipation},
+                         {"residual", energy.residual()}};
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -89,6 +90,13 @@ vtk_interval = 200
               1e-2 * column("gravity_work_J"));
   EXPECT_LT(column("kinetic_energy_J"), 1e-6 * column("gravity_work_J"));
   EXPECT_LT(std::abs(column("energy_residual_ratio")), 1e-2);
+  // summary.json's budget is the same last level (CSV: 12 significant digits).
+  const auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
+  for (const char* key : {"gravity_work", "elastic", "damping_dissipation"}) {
+    const double v = summary["energy_J"][key].get<double>();
+    EXPECT_NEAR(v, column(std::string(key) + (key[0] == 'e' ? "_energy_J" : "_J")), 1e-10 * v)
+        << key;
+  }
 
   const double weight = 2500.0 * 9.81 * (0.2 * 0.3 * 0.1 + 0.1 * 0.1 * 0.05);
   const std::string python =
