@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev coinor-libclp-dev
   python3 python3-numpy python3-matplotlib python3-dev pybind11-dev python3-pybind11
-  python3-pytest
+  python3-pytest python3-vtk9
 )
 
 missing=()
