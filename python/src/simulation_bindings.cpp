@@ -150,7 +150,7 @@ void bind_simulation(py::module_& m) {
               r = run_stage(s.world, stage, {}, nullptr, after);
             }
             py::dict d = stage_dict(r);
-            if (search && !r.converged && !r.stopped)
+            if (search && !r.converged && !r.interrupted)
               d["collapse"] = collapse_search(*before, stage);
             return d;
           },

@@ -378,6 +378,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     // diverged one is not written (the rows so far end with the last good state).
     if (!diverged) recorder.record(world, result, level);
     if (!diverged) history->write(world, stage.name);
+    history->flush();  // like the other CSV files, whole at every stage end
     if (beam && !diverged) {
       const double g_level = world.settings().gravity.norm() / kOneG;
       if (level == 0) reference = capture_reference(world);
@@ -465,6 +466,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   }
   // Written last, with the record of every other file the run wrote: a folder without it holds
   // a run still going or one that died.
+  history->flush();  // an interrupted stage's rows too, before the record reads the file
   summary["files"] = run_files_record(out, res.foreign_files);
   write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
   return res;

@@ -26,8 +26,8 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
 /// plastic slip from zero, so the blocks slip and the joints keep a slip history): settle,
 /// gravity tilted by 31 degrees over a ramp, then an equilibrium stage. `extra_steps` lengthens
 /// the first stage (another scenario). `last_steps` > 0 makes the last stage a long steps stage.
-/// Outputs inside the stages too: a VTK frame every 250 steps and a time_history.csv row every
-/// 10 steps, capped at 60 rows (so its interval doubles several times in a run).
+/// Outputs inside the stages too: a VTK frame every 250 steps (2500 with a long last stage) and a
+/// time_history.csv row every 10 steps, capped at 60 rows (its interval doubles several times).
 inline std::filesystem::path write_restart_scenario(const std::string& name, int extra_steps,
                                                     long long last_steps = 0) {
   const std::filesystem::path file =
@@ -36,7 +36,9 @@ inline std::filesystem::path write_restart_scenario(const std::string& name, int
   std::ofstream f(file);
   f << "title = \"restart test\"\n"
        "[settings]\ndamping = 0.3\n"
-       "[output]\nvtk_interval = 250\nhistory_interval = 10\nhistory_max_rows = 60\n"
+       "[output]\nvtk_interval = "
+    << (last_steps > 0 ? 2500 : 250)
+    << "\nhistory_interval = 10\nhistory_max_rows = 60\n"
        "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
        "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
        "shear = { law = \"continuously_yielding\", friction_deg = 35 }\n"
