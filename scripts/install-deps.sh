@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev coinor-libclp-dev
   libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-dev pybind11-dev python3-pybind11
-  python3-pytest
+  python3-pytest python3-vtk9
 )
 
 missing=()

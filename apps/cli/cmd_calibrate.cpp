@@ -138,6 +138,10 @@ void register_normal(CLI::App* calibrate) {
                 << " Pa, H = " << g(test->height) << " m, N = " << test->joints
                 << "\n  exponential sigma = a [exp(b u) - 1]: a = " << g(cal.exponential.a)
                 << " Pa, b = " << g(cal.exponential.b) << " 1/m"
+                << "\n    standard errors a " << g(cal.a_standard_error) << " Pa, b "
+                << g(cal.b_standard_error) << " 1/m; 95% intervals a [" << g(cal.a_lower95) << ", "
+                << g(cal.a_upper95) << "] Pa, b [" << g(cal.b_lower95) << ", " << g(cal.b_upper95)
+                << "] 1/m"
                 << "\n    tangent form k_n = k0 + c sigma: k0 = a b = "
                 << g(cal.exponential.a * cal.exponential.b)
                 << " Pa/m, c = b = " << g(cal.exponential.b) << " 1/m"

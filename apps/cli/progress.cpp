@@ -8,14 +8,25 @@
 
 namespace blockdem::cli {
 
-Progress::Progress(bool enabled) : interactive_(enabled && isatty(STDERR_FILENO) != 0) {}
+Progress::Progress(bool enabled, double log_interval)
+    : enabled_(enabled),
+      interactive_(enabled && isatty(STDERR_FILENO) != 0),
+      log_interval_(log_interval),
+      last_line_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() {
   if (dirty_) std::cerr << "\n";
 }
 
 void Progress::update(const std::string& line) {
-  if (!interactive_) return;
+  if (!enabled_) return;
+  if (!interactive_) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_line_).count() < log_interval_) return;
+    last_line_ = now;
+    std::cerr << line << "\n" << std::flush;
+    return;
+  }
   std::cerr << "\r\033[K" << line << std::flush;
   dirty_ = true;
 }

@@ -1,11 +1,19 @@
 // Coordinates far from the origin: the same column of blocks at the origin and at map
 // coordinates (512000, 6.1e6, 300) m gives the same contacts and forces. Without a scene origin,
 // plane offsets of ~6e6 m carry round-off of ~1e-9 m, a thousandth of these joints' closures.
+// The VTK frames give the points in the user's coordinates too.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/vtu.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/world/stage.hpp"
 
@@ -65,6 +73,52 @@ TEST(FarFromOrigin, MapCoordinatesGiveTheContactsAndForcesOfTheOrigin) {
     EXPECT_LE((pf - shift - pn).norm(), 2e-9);
   }
   EXPECT_EQ(near.settings().origin, Eigen::Vector3d::Zero()) << "a scene near 0 is not moved";
+}
+
+// The "Points" array of a .vtu file written with raw appended data (UInt64 sizes, Float64 x 3).
+std::vector<Eigen::Vector3d> vtu_points(const std::filesystem::path& file) {
+  const std::string bytes = read_file_bytes(file);
+  const std::size_t name = bytes.find("Name=\"Points\"");
+  const std::size_t at = bytes.find("offset=\"", name) + 8;
+  const std::uint64_t offset = std::stoull(bytes.substr(at, bytes.find('"', at) - at));
+  const std::string marker = "<AppendedData encoding=\"raw\">\n   _";
+  const std::size_t data = bytes.find(marker) + marker.size();
+  std::uint64_t n = 0;
+  std::memcpy(&n, bytes.data() + data + offset, sizeof n);
+  std::vector<Eigen::Vector3d> points(n / (3 * sizeof(double)));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    std::memcpy(points[i].data(), bytes.data() + data + offset + 8 + 24 * i, 24);
+  return points;
+}
+
+// Oracle: the frames of the column at the origin, shifted. Tolerance: 3e-9 m (about three ulps
+// of 6.1e6 m; the two runs' displacements agree far closer).
+TEST(FarFromOrigin, VtkFramesGivePointsInTheUsersCoordinates) {
+  const Eigen::Vector3d shift(512000.0, 6.1e6, 300.0);
+  const World near = run_column(0.0, 0.0, 0.0);
+  const World far = run_column(shift.x(), shift.y(), shift.z());
+  ASSERT_GT(far.settings().origin.norm(), 1e6) << "the far scene runs relative to its centre";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("blockdem_far_vtu_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const char* kind : {"blocks", "contacts"}) {
+    SCOPED_TRACE(kind);
+    const bool blocks = kind[0] == 'b';
+    const auto write = [&](const World& w, const std::filesystem::path& f) {
+      if (blocks)
+        write_vtu_blocks(f, w, 0);
+      else
+        write_vtu_contacts(f, w);
+    };
+    write(near, dir / "near.vtu");
+    write(far, dir / "far.vtu");
+    const auto pn = vtu_points(dir / "near.vtu");
+    const auto pf = vtu_points(dir / "far.vtu");
+    ASSERT_EQ(pn.size(), blocks ? 32u : 3u) << "8 vertices per block, 3 contacts";
+    ASSERT_EQ(pf.size(), pn.size());
+    for (std::size_t i = 0; i < pn.size(); ++i) EXPECT_LE((pf[i] - shift - pn[i]).norm(), 3e-9);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

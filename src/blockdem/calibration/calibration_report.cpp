@@ -47,6 +47,10 @@ nlohmann::ordered_json power_law_json(const PowerLawFit& fit, const std::string&
   out["value_at_reference_stress_" + unit] = fit.reference_value;
   out["r_squared_of_log"] = number_or_null(fit.r_squared);
   out["rms_log_residual"] = fit.rms_log_residual;
+  out["exponent_standard_error"] = fit.exponent_standard_error;
+  out["exponent_interval95"] = {fit.exponent_lower95, fit.exponent_upper95};
+  out["value_at_reference_stress_interval95_" + unit] = {fit.reference_value_lower95,
+                                                         fit.reference_value_upper95};
   return out;
 }
 
@@ -135,6 +139,13 @@ nlohmann::ordered_json normal_report(const ColumnCompressionData& data,
   nlohmann::ordered_json& e = out["exponential"];
   e["a_Pa"] = cal.exponential.a;
   e["b_per_m"] = cal.exponential.b;
+  e["a_standard_error_Pa"] = cal.a_standard_error;
+  e["b_standard_error_per_m"] = cal.b_standard_error;
+  e["a_interval95_Pa"] = {cal.a_lower95, cal.a_upper95};
+  e["b_interval95_per_m"] = {cal.b_lower95, cal.b_upper95};
+  e["uncertainty"] =
+      "standard errors and 95% intervals from the Jacobian at the optimum, s^2 (J^T J)^-1 over "
+      "(ln a, ln b), Student t with m - 2 degrees of freedom";
   e["k0_Pa_per_m"] = cal.exponential.a * cal.exponential.b;
   e["c_per_m"] = cal.exponential.b;
   e["tangent_stiffness"] = "k_n = k0 + c sigma_n (eq 1 form): k0 = a b, c = b";
@@ -176,6 +187,10 @@ nlohmann::ordered_json shear_report(const DirectShearData& data, const ShearCali
     c["normal_stress_Pa"] = fit.normal_stress;
     c["initial_stiffness_Pa_per_m"] = fit.initial_stiffness;
     c["peak_displacement_m"] = fit.peak_displacement;
+    c["initial_stiffness_interval95_Pa_per_m"] = {fit.initial_stiffness_lower95,
+                                                  fit.initial_stiffness_upper95};
+    c["peak_displacement_interval95_m"] = {fit.peak_displacement_lower95,
+                                           fit.peak_displacement_upper95};
     c["peak_shear_stress_Pa"] = fit.peak_shear_stress;
     c["rows_used"] = fit.points_used;
     c["peak_within_data"] = fit.peak_within_data;

@@ -118,6 +118,15 @@ PowerLawFit fit_power_law(const std::vector<double>& stress, const std::vector<d
   const FitQuality q = fit_quality(observed, model);
   fit.r_squared = q.r_squared;
   fit.rms_log_residual = q.rms_residual;
+  if (m > 2) {
+    const ParameterUncertainty u =
+        parameter_uncertainty(design, solution.residuals, solution.parameters);
+    fit.exponent_standard_error = u.standard_errors(1);
+    fit.exponent_lower95 = u.lower95(1);
+    fit.exponent_upper95 = u.upper95(1);
+    fit.reference_value_lower95 = std::exp(u.lower95(0));
+    fit.reference_value_upper95 = std::exp(u.upper95(0));
+  }
   return fit;
 }
 

@@ -43,6 +43,12 @@ struct PowerLawFit {
   double reference_value = 0.0;   ///< y at sigma_ref (units of y)
   double r_squared = 0.0;         ///< R^2 of ln y (-)
   double rms_log_residual = 0.0;  ///< RMS of ln y_fit - ln y: relative scatter (-)
+  /// With 3 or more points (else 0): the exponent's standard error and 95% interval, and the
+  /// 95% interval of reference_value, from the covariance of the fit in ln y
+  /// (parameter_uncertainty; the interval of y_ref is exp of that of ln y_ref).
+  double exponent_standard_error = 0.0;                                 ///< (-)
+  double exponent_lower95 = 0.0, exponent_upper95 = 0.0;                ///< (-)
+  double reference_value_lower95 = 0.0, reference_value_upper95 = 0.0;  ///< (units of y)
 
   /// coefficient * sigma^exponent, evaluated as y_ref (sigma / sigma_ref)^exponent.
   double evaluate(double sigma) const;

@@ -185,6 +185,21 @@ NormalCalibration calibrate_normal(const ColumnCompressionData& data, const Colu
   }
   cal.iterations = fit.iterations;
   cal.termination = to_string(fit.termination);
+  if (m > 2) {
+    ParameterUncertainty u;
+    try {
+      u = parameter_uncertainty(model.jacobian(fit.parameters), fit.residuals, fit.parameters);
+    } catch (const std::invalid_argument& e) {
+      throw CalibrationError(data.source +
+                             ": no standard errors for the exponential fit: " + e.what());
+    }
+    cal.a_standard_error = cal.exponential.a * u.standard_errors(0);
+    cal.b_standard_error = cal.exponential.b * u.standard_errors(1);
+    cal.a_lower95 = std::exp(u.lower95(0));
+    cal.a_upper95 = std::exp(u.upper95(0));
+    cal.b_lower95 = std::exp(u.lower95(1));
+    cal.b_upper95 = std::exp(u.upper95(1));
+  }
   for (double s : stress) {
     cal.exponential_closure.push_back(exponential_closure(cal.exponential.a, cal.exponential.b, s));
   }

@@ -36,8 +36,14 @@ struct NormalCalibration {
   ExponentialNormal exponential;            ///< fitted sigma = a [exp(b u) - 1]
   std::vector<double> exponential_closure;  ///< ln(1 + sigma / a) / b at each row (m)
   FitQuality exponential_quality;           ///< in closure (m; relative: -)
-  int iterations = 0;                       ///< Levenberg-Marquardt steps (-)
-  std::string termination;                  ///< how Levenberg-Marquardt stopped
+  /// Standard errors of a (Pa) and b (1/m) at the optimum: the fit is over (ln a, ln b), whose
+  /// covariance comes from the Jacobian (parameter_uncertainty); se(a) = a se(ln a) (delta
+  /// method), likewise b.
+  double a_standard_error = 0.0, b_standard_error = 0.0;
+  /// 95% intervals of a (Pa) and b (1/m): exp of the intervals of ln a and ln b (asymmetric).
+  double a_lower95 = 0.0, a_upper95 = 0.0, b_lower95 = 0.0, b_upper95 = 0.0;
+  int iterations = 0;       ///< Levenberg-Marquardt steps (-)
+  std::string termination;  ///< how Levenberg-Marquardt stopped
 
   LinearNormal linear;                 ///< fitted sigma = k u, for comparison
   std::vector<double> linear_closure;  ///< sigma / k at each row (m)

@@ -120,6 +120,20 @@ PeakCurveFit fit_curve(const DirectShearData& data, const DirectShearCurve& curv
   fit.peak_displacement = std::exp(result.parameters(1));
   fit.peak_shear_stress = 0.5 * fit.initial_stiffness * fit.peak_displacement;
   fit.iterations = result.iterations;
+  if (m > 2) {
+    ParameterUncertainty un;
+    try {
+      un = parameter_uncertainty(model.jacobian(result.parameters), result.residuals,
+                                 result.parameters);
+    } catch (const std::invalid_argument& e) {
+      throw CalibrationError(curve_name(data, curve) +
+                             ": no intervals for the eq 5 fit: " + e.what());
+    }
+    fit.initial_stiffness_lower95 = std::exp(un.lower95(0));
+    fit.initial_stiffness_upper95 = std::exp(un.upper95(0));
+    fit.peak_displacement_lower95 = std::exp(un.lower95(1));
+    fit.peak_displacement_upper95 = std::exp(un.upper95(1));
+  }
   if (fit.peak_displacement > kMaximumPeakExtrapolation * u.back()) {
     throw CalibrationError(curve_name(data, curve) + " shows no softening up to row " +
                            std::to_string(curve.lines[last_row]) +

@@ -32,6 +32,11 @@ struct PeakCurveFit {
   std::vector<double> law_stress;
   FitQuality law_quality;  ///< residuals of law_stress on every row of the curve (Pa)
   int iterations = 0;      ///< Levenberg-Marquardt steps (-)
+  /// 95% intervals of k_s,initial (Pa/m) and u_peak (m) from the Jacobian at the optimum of the
+  /// fit over (ln k_i, ln u_peak) (parameter_uncertainty; exp of the intervals in logs); 0 when
+  /// only 2 rows were used.
+  double initial_stiffness_lower95 = 0.0, initial_stiffness_upper95 = 0.0;
+  double peak_displacement_lower95 = 0.0, peak_displacement_upper95 = 0.0;
 };
 
 /// Result of calibrate_shear.

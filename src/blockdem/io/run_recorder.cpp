@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "blockdem/io/vtk.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -18,7 +17,11 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
   std::filesystem::create_directories(dir_, ec);
   if (ec)
     throw std::runtime_error("cannot create output folder " + dir_.string() + ": " + ec.message());
-  if (vtk_) std::filesystem::create_directories(dir_ / "vtk", ec);
+  if (vtk_) {
+    std::filesystem::create_directories(dir_ / "vtk", ec);
+    blocks_pvd_ = std::make_unique<PvdCollection>(dir_ / "vtk" / "blocks.pvd");
+    contacts_pvd_ = std::make_unique<PvdCollection>(dir_ / "vtk" / "contacts.pvd");
+  }
   if (tables) {
     history_ = std::make_unique<CsvWriter>(
         dir_ / "history.csv",
@@ -93,7 +96,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(stage.name)
         .cell(stage.converged ? 1 : 0)
         .cell(static_cast<long long>(stage.steps))
-        .cell(world.time())
+        .cell(world.level_time())
         .cell(world.last_time_step())
         .cell(g.x())
         .cell(g.y())
@@ -109,15 +112,19 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
     history_->flush();
 
     for (const auto& b : world.blocks()) {
-      const Eigen::Vector3d u = 1e3 * (b.position - b.initial_position);
-      const Eigen::Vector3d r = rad_to_deg(1.0) * b.rotation_since_start();
+      // One instant per row: the level state at which the contact forces were evaluated.
+      const World::LevelState st = world.level_state(b.index);
+      const Eigen::Vector3d u = 1e3 * (st.position - b.initial_position);
+      const Eigen::AngleAxisd turn(st.orientation * b.initial_orientation.conjugate());
+      const double angle = turn.angle() > kPi ? turn.angle() - 2 * kPi : turn.angle();
+      const Eigen::Vector3d r = rad_to_deg(angle) * turn.axis();
       blocks_->cell(level)
           .cell(stage.name)
           .cell(b.name)
           .cell(b.group)
-          .cell(b.position.x() + origin.x())
-          .cell(b.position.y() + origin.y())
-          .cell(b.position.z() + origin.z())
+          .cell(st.position.x() + origin.x())
+          .cell(st.position.y() + origin.y())
+          .cell(st.position.z() + origin.z())
           .cell(u.x())
           .cell(u.y())
           .cell(u.z())
@@ -125,9 +132,9 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
           .cell(r.x())
           .cell(r.y())
           .cell(r.z())
-          .cell(b.velocity.x())
-          .cell(b.velocity.y())
-          .cell(b.velocity.z())
+          .cell(st.velocity.x())
+          .cell(st.velocity.y())
+          .cell(st.velocity.z())
           .cell(b.contact_force.x())
           .cell(b.contact_force.y())
           .cell(b.contact_force.z());
@@ -169,12 +176,48 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
   }
   contacts_->flush();
 
-  if (vtk_) {
-    char name[64];
-    std::snprintf(name, sizeof name, "blocks_%04d.vtk", level);
-    write_vtk_blocks(dir_ / "vtk" / name, world);
-    std::snprintf(name, sizeof name, "contacts_%04d.vtk", level);
-    write_vtk_contacts(dir_ / "vtk" / name, world);
+  write_frame(world, level);
+}
+
+void RunRecorder::write_frame(const World& world, int level) {
+  if (!vtk_ || world.step_count() == last_frame_step_) return;
+  last_frame_step_ = world.step_count();
+  char name[64];
+  std::snprintf(name, sizeof name, "blocks_%06d.vtu", frames_);
+  write_vtu_blocks(dir_ / "vtk" / name, world, level);
+  blocks_pvd_->add(world.level_time(), name);
+  std::snprintf(name, sizeof name, "contacts_%06d.vtu", frames_);
+  write_vtu_contacts(dir_ / "vtk" / name, world);
+  contacts_pvd_->add(world.level_time(), name);
+  ++frames_;
+}
+
+void RunRecorder::save_state(StateWriter& w) const {
+  w.pod(static_cast<std::int32_t>(frames_));
+  w.pod(last_frame_step_);
+  for (const PvdCollection* pvd : {blocks_pvd_.get(), contacts_pvd_.get()}) {
+    const std::size_t n = pvd ? pvd->frames().size() : 0;
+    w.size(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      w.pod(pvd->frames()[i].first);
+      w.str(pvd->frames()[i].second);
+    }
+  }
+}
+
+void RunRecorder::load_state(StateReader& r) {
+  frames_ = r.pod<std::int32_t>();
+  r.pod(last_frame_step_);
+  for (PvdCollection* pvd : {blocks_pvd_.get(), contacts_pvd_.get()}) {
+    std::vector<std::pair<double, std::string>> frames(r.size());
+    for (auto& [t, file] : frames) {
+      r.pod(t);
+      file = r.str();
+    }
+    if (frames_ < 0 || frames.size() > static_cast<std::size_t>(frames_) ||
+        (!pvd && !frames.empty()))
+      throw StateError("saved VTK frame list is corrupt");
+    if (pvd) pvd->set_frames(std::move(frames));
   }
 }
 

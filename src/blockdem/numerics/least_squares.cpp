@@ -214,6 +214,50 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
   return result;
 }
 
+double student_t_975(int dof) {
+  if (dof < 1) throw std::invalid_argument("student_t_975: degrees of freedom must be >= 1");
+  static constexpr double kTable[30] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                        2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                        2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                        2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+  if (dof <= 30) return kTable[dof - 1];
+  // A&S 26.7.5 with x the normal 0.975 quantile.
+  const double x = 1.959963984540054, n = dof;
+  const double x2 = x * x;
+  const double g1 = (x2 + 1) * x / 4;
+  const double g2 = ((5 * x2 + 16) * x2 + 3) * x / 96;
+  const double g3 = (((3 * x2 + 19) * x2 + 17) * x2 - 15) * x / 384;
+  const double g4 = ((((79 * x2 + 776) * x2 + 1482) * x2 - 1920) * x2 - 945) * x / 92160;
+  return x + g1 / n + g2 / (n * n) + g3 / (n * n * n) + g4 / (n * n * n * n);
+}
+
+ParameterUncertainty parameter_uncertainty(const Eigen::MatrixXd& jacobian,
+                                           const Eigen::VectorXd& residuals,
+                                           const Eigen::VectorXd& parameters) {
+  const Eigen::Index m = jacobian.rows(), k = jacobian.cols();
+  if (residuals.size() != m || parameters.size() != k)
+    throw std::invalid_argument("parameter_uncertainty: sizes of J, r and p disagree");
+  if (m <= k)
+    throw std::invalid_argument("parameter_uncertainty: needs more residuals than parameters");
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(jacobian);
+  if (qr.rank() < k) throw std::invalid_argument("parameter_uncertainty: J is rank deficient");
+  // JᵀJ = P Rᵀ R Pᵀ, so (JᵀJ)⁻¹ = P R⁻¹ R⁻ᵀ Pᵀ.
+  const Eigen::MatrixXd r = qr.matrixR().topLeftCorner(k, k).triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd r_inv =
+      r.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(k, k));
+  const Eigen::MatrixXd inner = r_inv * r_inv.transpose();
+  const auto& perm = qr.colsPermutation();
+  ParameterUncertainty u;
+  u.degrees_of_freedom = static_cast<int>(m - k);
+  const double s2 = residuals.squaredNorm() / static_cast<double>(u.degrees_of_freedom);
+  u.covariance = s2 * (perm * inner * perm.transpose());
+  u.standard_errors = u.covariance.diagonal().cwiseSqrt();
+  const double t = student_t_975(u.degrees_of_freedom);
+  u.lower95 = parameters - t * u.standard_errors;
+  u.upper95 = parameters + t * u.standard_errors;
+  return u;
+}
+
 Eigen::MatrixXd finite_difference_jacobian(
     const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residuals,
     const Eigen::VectorXd& parameters, double step) {

@@ -83,6 +83,27 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
                                              const Eigen::VectorXd& initial_parameters,
                                              const LevenbergMarquardtOptions& options = {});
 
+/// Uncertainty of least-squares parameters from the Jacobian J at the optimum (the linearised
+/// model; Seber & Wild, Nonlinear Regression, Wiley 1989, section 2.1.3, eq 2.21): covariance
+/// C = s² (JᵀJ)⁻¹ with s² = ||r||² / (m − k), formed from the R factor of a QR of J as
+/// R⁻¹ R⁻ᵀ (never JᵀJ itself). The 95% interval of p_j is p_j ± t s_j, t the 0.975 quantile of
+/// Student's t with m − k degrees of freedom.
+struct ParameterUncertainty {
+  Eigen::MatrixXd covariance;        ///< (parameter units squared)
+  Eigen::VectorXd standard_errors;   ///< sqrt of the diagonal (parameter units)
+  Eigen::VectorXd lower95, upper95;  ///< the 95% intervals (parameter units)
+  int degrees_of_freedom = 0;        ///< m − k (-)
+};
+
+/// Throws std::invalid_argument when m <= k, sizes disagree or J is rank deficient.
+ParameterUncertainty parameter_uncertainty(const Eigen::MatrixXd& jacobian,
+                                           const Eigen::VectorXd& residuals,
+                                           const Eigen::VectorXd& parameters);
+
+/// The 0.975 quantile of Student's t with `degrees_of_freedom` >= 1: tabulated to 3 decimals up
+/// to 30, above by the Cornish-Fisher expansion of Abramowitz & Stegun 26.7.5 (error < 1e-4).
+double student_t_975(int degrees_of_freedom);
+
 /// Central-difference Jacobian of `residuals` at `parameters`, step h_j = step * max(1, |p_j|).
 /// Meant for checking analytic Jacobians in tests and for quick prototypes.
 Eigen::MatrixXd finite_difference_jacobian(

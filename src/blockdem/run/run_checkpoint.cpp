@@ -26,6 +26,7 @@ std::string encode_run_point(const RunPoint& p) {
     w.str(path);
     w.str(content);
   }
+  w.str(p.outputs);
   return std::string(w.bytes().begin(), w.bytes().end());
 }
 
@@ -54,6 +55,7 @@ RunPoint decode_run_point(const std::string& bytes) {
     if (path.empty() || path.find("..") != std::string::npos || path.front() == '/')
       throw StateError("saved state is corrupt (a file path leaves the output folder)");
   }
+  p.outputs = r.str();
   if (!r.done()) throw StateError("saved state is corrupt (bytes left over)");
   if (p.level < 0 || p.stage.steps_done < 0) throw StateError("saved state is corrupt");
   return p;

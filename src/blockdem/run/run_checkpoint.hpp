@@ -27,6 +27,8 @@ struct RunPoint {
   std::optional<double> factor_of_safety;
   /// The run's files so far: path relative to the output folder, content.
   std::vector<std::pair<std::string, std::string>> files;
+  /// The writers that continue files (time_history.csv, the VTK frame lists): their state bytes.
+  std::string outputs;
 };
 
 std::string encode_run_point(const RunPoint& point);

@@ -27,9 +27,10 @@ void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints) 
       // An unreadable record: the standard names below still go.
     }
   }
-  for (const char* name : {"manifest.json", "summary.json", "history.csv", "blocks.csv",
-                           "contacts.csv", "joints.csv", "levels.csv", "strength_reduction.csv",
-                           "mechanism.csv", "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
+  for (const char* name :
+       {"manifest.json", "summary.json", "history.csv", "time_history.csv", "blocks.csv",
+        "contacts.csv", "joints.csv", "levels.csv", "strength_reduction.csv", "mechanism.csv",
+        "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
     fs::remove_all(out / name, ec);
   if (!keep_checkpoints) {
     fs::remove(out / kCheckpointName, ec);

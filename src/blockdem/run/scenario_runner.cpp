@@ -10,6 +10,7 @@
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
+#include "blockdem/io/time_history.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/key_blocks.hpp"
@@ -77,6 +78,10 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
                         "cannot run " + std::to_string(world.blocks().size()) + " blocks on " +
                             std::to_string(ranks) +
                             " processes: need at least one block per process");
+  for (const auto& name : sc.output.history_blocks) {
+    if (world.find_block(name) < 0)
+      throw ScenarioError(sc.file, "output.history_blocks", "no block named '" + name + "'");
+  }
   std::optional<MotionMonitor> resumed_monitor;
   std::optional<World> resumed_before;
   if (resume) {
@@ -112,6 +117,23 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   std::unique_ptr<VoussoirRecorder> beam_recorder;
   VoussoirReference reference;
   if (beam) beam_recorder = std::make_unique<VoussoirRecorder>(out, world);
+  auto history = std::make_unique<TimeHistoryWriter>(
+      out / "time_history.csv", world,
+      TimeHistoryOptions{sc.output.history_interval, sc.output.history_interval_s,
+                         sc.output.history_max_rows, sc.output.history_blocks},
+      resume.has_value());
+  if (resume) {
+    // The writers that continue files pick up where the checkpoint left them.
+    try {
+      StateReader r(reinterpret_cast<const std::uint8_t*>(resume->outputs.data()),
+                    resume->outputs.size());
+      history->load_state(r);
+      recorder.load_state(r);
+      if (!r.done()) throw StateError("saved output state is corrupt (bytes left over)");
+    } catch (const StateError& e) {
+      throw CheckpointError(control.restart, e.what());
+    }
+  }
 
   nlohmann::json& summary = res.summary;
   summary["program"] = "blockdem";
@@ -158,6 +180,13 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     p.stages = stages.dump();
     p.steps_per_stage = res.steps_per_stage;
     p.factor_of_safety = res.factor_of_safety;
+    {
+      StateWriter w;
+      history->save_state(w);
+      recorder.save_state(w);
+      p.outputs.assign(w.bytes().begin(), w.bytes().end());
+    }
+    history->flush();  // the rows so far are in the file saved below
     for (const std::string& rel : list_run_folder(out)) {
       if (is_checkpoint(rel) || res.foreign_files.count(rel)) continue;
       p.files.emplace_back(rel, read_file_bytes(out / rel));
@@ -203,13 +232,36 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     } else if (!resuming && (search_collapse || reduce)) {
       before.emplace(world);
     }
+    // Where this process took the stage up (a restart continues it part way).
+    const auto stage_wall0 = std::chrono::steady_clock::now();
+    const double stage_time0 = resuming ? resume->stage.start_time : world.time();
+    const std::int64_t stage_steps0 = resuming ? resume->stage.steps_done : 0;
+    const double done0 = resuming && stage.kind == Stage::Kind::steps
+                             ? static_cast<double>(stage_steps0) / static_cast<double>(stage.steps)
+                         : resuming && stage.kind == Stage::Kind::duration
+                             ? (world.time() - stage_time0) / stage.duration
+                             : 0.0;
     auto progress = [&](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
-      if (cb.progress) {
-        cb.progress("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
-                    ": step " + std::to_string(k) + ", unbalanced " +
-                    fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
-                    fmt("%.2e", m.kinetic_energy_ratio));
-      }
+      if (!cb.progress) return;
+      // Steps per second of this stage and, where the stage's end is known, the time left.
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_wall0).count();
+      std::string line =
+          "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name + ": step " +
+          std::to_string(k) + ", t = " + fmt("%.4g s", world.time()) + ", unbalanced " +
+          fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
+          fmt("%.2e", m.kinetic_energy_ratio) + ", " +
+          fmt("%.0f steps/s", wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0);
+      double done = -1.0;
+      if (s.kind == Stage::Kind::steps)
+        done = static_cast<double>(k) / static_cast<double>(s.steps);
+      if (s.kind == Stage::Kind::duration) done = (world.time() - stage_time0) / s.duration;
+      if (done > done0)
+        line += fmt(", %.0f%%", 100.0 * done) +
+                fmt(", about %.0f s left", wall * (1 - done) / (done - done0));
+      else
+        line += ", at most " + std::to_string(s.max_steps) + " steps";
+      cb.progress(line);
     };
     auto trial_done = [&](const StabilityTrial& t) {
       if (cb.stage_done)
@@ -287,8 +339,13 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {
-      result = run_stage(world, stage, progress, &monitor, after_step,
-                         resuming ? &resume->stage : nullptr);
+      result = run_stage(
+          world, stage, progress, &monitor, after_step, resuming ? &resume->stage : nullptr,
+          [&](const World& w, const Stage& s, std::int64_t) {
+            history->after_step(w, s.name);
+            if (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0)
+              recorder.write_frame(w, level);
+          });
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
@@ -329,6 +386,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     // Outputs of this level. A level that did not converge is written flagged converged = 0; a
     // diverged one is not written (the rows so far end with the last good state).
     if (!diverged) recorder.record(world, result, level);
+    if (!diverged) history->write(world, stage.name);
+    history->flush();  // like the other CSV files, whole at every stage end
     if (beam && !diverged) {
       const double g_level = world.settings().gravity.norm() / kOneG;
       if (level == 0) reference = capture_reference(world);
@@ -398,6 +457,15 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   if (any_excavation) summary["key_blocks"] = all_key_blocks;
   if (ranks > 1)  // per process, in rank order (a collective call: every process gets here)
     summary["distribution"] = gather_distribution_json(*distribution, world.distribution_stats());
+  const EnergyBudget& energy = world.energy_budget();  // at the last level (docs/outputs.md)
+  summary["energy_J"] = {{"kinetic", energy.kinetic},
+                         {"elastic", energy.elastic},
+                         {"gravity_work", energy.gravity_work},
+                         {"load_work", energy.load_work},
+                         {"boundary_work", energy.boundary_work},
+                         {"friction_dissipation", energy.friction_dissipation},
+                         {"damping_dissipation", energy.damping_dissipation},
+                         {"residual", energy.residual()}};
   if (beam) {
     summary["voussoir"] = voussoir_summary(voussoir->spec, res.levels);
     // The headline numbers at the top level too, as the contract asks.
@@ -409,6 +477,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   }
   // Written last, with the record of every other file the run wrote: a folder without it holds
   // a run still going or one that died.
+  history->flush();  // an interrupted stage's rows too, before the record reads the file
   summary["files"] = run_files_record(out, res.foreign_files);
   write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
   return res;

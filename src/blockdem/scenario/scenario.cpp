@@ -201,6 +201,14 @@ void read_joint_law_tables(const CheckedTable& t, JointLaw& law) {
 
 void read_output(const CheckedTable& o, OutputSpec& output) {
   output.vtk = o.boolean("vtk", output.vtk);
+  output.vtk_interval = o.integer("vtk_interval", output.vtk_interval);
+  if (output.vtk_interval < 0) o.fail("vtk_interval", "must be 0 (stage ends only) or positive");
+  output.history_interval = o.integer("history_interval", output.history_interval);
+  if (output.history_interval <= 0) o.fail("history_interval", "must be a positive step count");
+  output.history_interval_s = o.positive("history_interval_s", 0.0, true);
+  output.history_max_rows = o.integer("history_max_rows", output.history_max_rows);
+  if (output.history_max_rows < 2) o.fail("history_max_rows", "must be at least 2");
+  if (o.has("history_blocks")) output.history_blocks = o.strings("history_blocks");
   o.finish();
 }
 

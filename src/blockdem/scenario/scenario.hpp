@@ -15,7 +15,14 @@
 namespace blockdem {
 
 struct OutputSpec {
-  bool vtk = true;  ///< write VTK files of blocks and contacts at every stage end
+  bool vtk = true;                ///< write VTK files of blocks and contacts at every stage end
+  std::int64_t vtk_interval = 0;  ///< also a VTK frame every this many steps (0: stage ends only)
+  /// time_history.csv: a row every history_interval steps, or every history_interval_s of
+  /// model time (s) when that is given; never more than history_max_rows rows.
+  std::int64_t history_interval = 100;
+  double history_interval_s = 0.0;
+  std::int64_t history_max_rows = 20000;
+  std::vector<std::string> history_blocks;  ///< blocks with their own columns
 };
 
 struct Scenario {

@@ -53,6 +53,7 @@ struct Contact {
   double peak_closure = 0.0;     ///< largest closure over the contact (m)
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
   bool sliding = false;          ///< the shear law yielded this step
+  double shear_stiffness = 0.0;  ///< k_s A of the last shear update, for its energy (N/m)
 
   /// Warm start of the narrow phase between steps. Kept for candidate pairs that do not touch too.
   Boon2012Cache narrow_cache;

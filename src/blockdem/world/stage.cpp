@@ -91,7 +91,7 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
                       std::optional<MotionMonitor>* monitor, const AfterStepFn& after_step,
-                      const StageResume* resume) {
+                      const StageResume* resume, const StepFn& on_step) {
   stage.validate();
   if (resume && !(monitor && monitor->has_value()))
     throw std::logic_error("run_stage: resuming a stage needs its motion monitor");
@@ -111,6 +111,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     }
     world.step();
     r.steps = k;
+    if (on_step) on_step(world, stage, k);
     const bool check = k % stage.check_interval == 0;
     if (check) watch->observe(world, ramping);
     if (progress && check) {

@@ -100,6 +100,9 @@ using AfterStepFn = std::function<bool(const StageResume&)>;
 /// Progress reports: called now and then during a stage with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
 
+/// Called after every step of a stage with (stage, steps taken in it); e.g. a time-history writer.
+using StepFn = std::function<void(const World&, const Stage&, std::int64_t)>;
+
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
 /// `monitor`, when given, is created at the stage start and observed at every check, so that
 /// after a DivergenceError it still holds the last observation before the blow-up.
@@ -107,7 +110,8 @@ using ProgressFn = std::function<void(const Stage&, std::int64_t, const Equilibr
 /// commands, removals) is already in the world and `*monitor` must hold the monitor of then.
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
                       std::optional<MotionMonitor>* monitor = nullptr,
-                      const AfterStepFn& after_step = {}, const StageResume* resume = nullptr);
+                      const AfterStepFn& after_step = {}, const StageResume* resume = nullptr,
+                      const StepFn& on_step = {});
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

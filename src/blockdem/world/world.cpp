@@ -247,10 +247,19 @@ void World::step() {
   apply_servos(dt);
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   const double damping = settings_.damping;
+  energy_.before_integration(blocks_);
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > 256)
   for (std::int64_t i = 0; i < n; ++i) {
     integrate_block(blocks_[static_cast<std::size_t>(i)], dt, damping);
   }
+  // 7. Energy budget at the level whose forces this step used (serial, in a fixed order).
+  double elastic = 0.0, slip_work = 0.0;
+  for (const auto& s : slots_) {
+    if (!s.active) continue;
+    elastic += joint_elastic_energy(s.contact);
+    slip_work += s.slip_work;
+  }
+  energy_.after_integration(blocks_, settings_.gravity, damping, dt, elastic, slip_work);
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;
@@ -319,6 +328,7 @@ void World::save_checkpoint() {
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
+  checkpoint_.energy = energy_;
   checkpoint_.valid = true;
 }
 
@@ -364,6 +374,20 @@ void World::restore_checkpoint() {
   time_ = checkpoint_.time;
   step_count_ = checkpoint_.step_count;
   broken_bonds_ = checkpoint_.broken_bonds;
+  energy_ = checkpoint_.energy;
+}
+
+World::LevelState World::level_state(int block) const {
+  const Block& b = blocks_[static_cast<std::size_t>(block)];
+  // Positions moved by Δt v_{n+1/2} in the last step; the orientation by the rotation Δt ω_{n+1/2}
+  // (exact for prescribed motion, to O(Δt²) for a free block's two-stage update).
+  LevelState s;
+  s.position = b.position - last_dt_ * b.velocity;
+  s.orientation =
+      (rotation_quaternion(-last_dt_ * b.angular_velocity) * b.orientation).normalized();
+  s.velocity = energy_.level_velocity(block, b);
+  s.angular_velocity = energy_.level_angular_velocity(block, b);
+  return s;
 }
 
 }  // namespace blockdem

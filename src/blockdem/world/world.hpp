@@ -19,6 +19,7 @@
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/distribution.hpp"
+#include "blockdem/world/energy_budget.hpp"
 #include "blockdem/world/state_stream.hpp"
 
 namespace blockdem {
@@ -153,6 +154,22 @@ class World {
 
   EquilibriumMeasures equilibrium() const;
 
+  /// A block's state at time level n, where the last step evaluated forces and contacts (t_n =
+  /// time() - last_time_step()): position and orientation stepped back by that step, velocities
+  /// the mean of the half-step velocities around t_n. Outputs written from these, with the
+  /// contacts and energy_budget(), describe one instant.
+  struct LevelState {
+    Eigen::Vector3d position;          ///< centroid (m)
+    Eigen::Quaterniond orientation;    ///< body to world
+    Eigen::Vector3d velocity;          ///< (m/s)
+    Eigen::Vector3d angular_velocity;  ///< world frame (rad/s)
+  };
+  LevelState level_state(int block) const;
+  /// t_n (s); see level_state.
+  double level_time() const { return time_ - last_dt_; }
+  /// The energy budget at level n since the world was built (world/energy_budget.hpp).
+  const EnergyBudget& energy_budget() const { return energy_.budget(); }
+
   /// Bonds (cohesion, tensile strength) broken since the world was built, counted in the step
   /// they break (a bond that breaks and then separates still counts).
   std::int64_t broken_bond_count() const { return broken_bonds_; }
@@ -182,6 +199,7 @@ class World {
     Contact contact;
     int group_law = -1;            ///< the group rules' law for the pair (-1: none)
     bool broke = false;            ///< the pair's bond broke in this step
+    double slip_work = 0.0;        ///< energy dissipated by slip in this step (J)
     double stiffness = 0.0;        ///< k_n A + k_s A of this step, for the time step (N/m)
     double twist_stiffness = 0.0;  ///< k_s J of this step, for the time step (N m/rad)
     bool active = false;
@@ -229,6 +247,7 @@ class World {
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
   double last_dt_ = 0.0;
+  EnergyLedger energy_;
 
   struct BlockState {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;
@@ -255,6 +274,7 @@ class World {
     double time = 0.0;
     std::int64_t step_count = 0;
     std::int64_t broken_bonds = 0;
+    EnergyLedger energy;
     bool valid = false;
   } checkpoint_;
 };

@@ -46,6 +46,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
     kept_face_area.push_back(max_face_area_[i]);
   }
   blocks_ = std::move(kept);
+  energy_.restart();  // the removed blocks' energy leaves the budget
   face_laws_ = std::move(kept_laws);
   max_face_area_ = std::move(kept_face_area);
   // Pairs with a removed block go; the others keep their history under the new indices. The

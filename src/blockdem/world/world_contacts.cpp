@@ -128,6 +128,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   Contact& ct = slot.contact;
   slot.active = false;
   slot.broke = false;
+  slot.slip_work = 0.0;
   slot.stiffness = 0.0;
   slot.twist_stiffness = 0.0;
   const std::vector<int>& face_laws_a = face_laws(ct.a);
@@ -243,6 +244,8 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
+  slot.slip_work = sr.plastic_work;
+  ct.shear_stiffness = sr.stiffness;
   ct.previous_normal = n;
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).

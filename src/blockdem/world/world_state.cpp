@@ -114,6 +114,7 @@ void write_contact(StateWriter& w, const Contact& c) {
   w.pod(c.normal_force);
   w.pod(static_cast<std::uint8_t>(c.sliding));
   w.pod(c.twist.moment);
+  w.pod(c.shear_stiffness);
   write_cache(w, c.narrow_cache);
 }
 
@@ -142,6 +143,7 @@ Contact read_contact(StateReader& r) {
   r.pod(c.normal_force);
   c.sliding = r.pod<std::uint8_t>() != 0;
   r.pod(c.twist.moment);
+  r.pod(c.shear_stiffness);
   c.narrow_cache = read_cache(r);
   return c;
 }
@@ -205,6 +207,7 @@ void World::save_state(StateWriter& w) const {
     write_contact(w, s.contact);
     w.pod(static_cast<std::int32_t>(s.group_law));
     w.pod(static_cast<std::uint8_t>(s.broke));
+    w.pod(s.slip_work);
     w.pod(s.stiffness);
     w.pod(s.twist_stiffness);
     w.pod(static_cast<std::uint8_t>(s.active));
@@ -237,6 +240,9 @@ void World::save_state(StateWriter& w) const {
     w.pod(h.closure);
     w.pod(h.area);
   }
+  checkpoint_.energy.save_state(w);
+  // The energy ledger last: level_state() and energy_budget() read it.
+  energy_.save_state(w);
 }
 
 void World::load_state(StateReader& r) {
@@ -336,6 +342,7 @@ void World::load_state(StateReader& r) {
     s.group_law = r.pod<std::int32_t>();
     if (s.group_law < -1 || s.group_law >= law_count) throw StateError("saved contact is corrupt");
     s.broke = r.pod<std::uint8_t>() != 0;
+    r.pod(s.slip_work);
     r.pod(s.stiffness);
     r.pod(s.twist_stiffness);
     s.active = r.pod<std::uint8_t>() != 0;
@@ -370,6 +377,8 @@ void World::load_state(StateReader& r) {
     r.pod(h.closure);
     r.pod(h.area);
   }
+  checkpoint_.energy.load_state(r);
+  energy_.load_state(r);  // after remove_blocks above, which starts the accounting again
 }
 
 }  // namespace blockdem

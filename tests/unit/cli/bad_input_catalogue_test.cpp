@@ -238,6 +238,14 @@ INSTANTIATE_TEST_SUITE_P(
                      "blocks", "overlap"},
         ScenarioCase{"time_step_absurd", "density = 2600", "density = 1e-12", "settings.time_step",
                      "units"},
+        ScenarioCase{"history_block_unknown", "", "[output]\nhistory_blocks = [\"ghost\"]",
+                     "output.history_blocks", "ghost"},
+        ScenarioCase{"history_interval_zero", "", "[output]\nhistory_interval = 0",
+                     "output.history_interval", "positive"},
+        ScenarioCase{"history_max_rows_one", "", "[output]\nhistory_max_rows = 1",
+                     "output.history_max_rows", "at least 2"},
+        ScenarioCase{"vtk_interval_negative", "", "[output]\nvtk_interval = -5",
+                     "output.vtk_interval", "positive"},
         ScenarioCase{"huge_array", "gravity = [0, 0, -9.81]",
                      "gravity = [0, 0, -9.81]\nhold = [" +
                          [] {

@@ -26,6 +26,8 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
 /// plastic slip from zero, so the blocks slip and the joints keep a slip history): settle,
 /// gravity tilted by 31 degrees over a ramp, then an equilibrium stage. `extra_steps` lengthens
 /// the first stage (another scenario). `last_steps` > 0 makes the last stage a long steps stage.
+/// Outputs inside the stages too: a VTK frame every 250 steps (2500 with a long last stage) and a
+/// time_history.csv row every 10 steps, capped at 60 rows (its interval doubles several times).
 inline std::filesystem::path write_restart_scenario(const std::string& name, int extra_steps,
                                                     long long last_steps = 0) {
   const std::filesystem::path file =
@@ -34,6 +36,9 @@ inline std::filesystem::path write_restart_scenario(const std::string& name, int
   std::ofstream f(file);
   f << "title = \"restart test\"\n"
        "[settings]\ndamping = 0.3\n"
+       "[output]\nvtk_interval = "
+    << (last_steps > 0 ? 2500 : 250)
+    << "\nhistory_interval = 10\nhistory_max_rows = 60\n"
        "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
        "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
        "shear = { law = \"continuously_yielding\", friction_deg = 35 }\n"
@@ -70,18 +75,22 @@ inline std::map<std::string, std::string> folder_digest(const std::filesystem::p
   return digest;
 }
 
-/// The run outputs of two folders are byte-identical: every CSV and VTK file, and summary.json
-/// but for the fields that describe the machine (wall time, threads).
+/// The run outputs of two folders are byte-identical: every CSV file (time_history.csv too), every
+/// VTK frame and .pvd collection, and summary.json but for the fields that describe the machine
+/// (wall time, threads).
 inline void expect_same_outputs(const std::filesystem::path& a, const std::filesystem::path& b) {
   auto outputs = [](const std::filesystem::path& dir) {
     auto d = folder_digest(dir);
     std::erase_if(d, [](const auto& kv) {
-      return !(kv.first.ends_with(".csv") || kv.first.ends_with(".vtk"));
+      return !(kv.first.ends_with(".csv") || kv.first.ends_with(".vtk") ||
+               kv.first.ends_with(".vtu") || kv.first.ends_with(".pvd"));
     });
     return d;
   };
   const auto da = outputs(a);
-  EXPECT_GE(da.size(), 5u) << "history, blocks, contacts and VTK files";
+  EXPECT_GE(da.size(), 8u) << "history, time history, blocks, contacts, VTK frames and lists";
+  EXPECT_TRUE(da.count("time_history.csv") && da.count("vtk/blocks.pvd") &&
+              da.count("vtk/contacts.pvd"));
   EXPECT_EQ(da, outputs(b));
   auto summary = [](const std::filesystem::path& dir) {
     auto j = nlohmann::json::parse(read_file_bytes(dir / "summary.json"));

@@ -77,9 +77,23 @@ TEST_F(Restart, SummaryListsEveryFileWithSizeAndChecksum) {
     EXPECT_EQ(f.at("fnv1a64").get<std::string>(), hex64(fnv1a64(bytes))) << rel;
     listed[rel] = true;
   }
-  for (const char* rel : {"history.csv", "blocks.csv", "contacts.csv", "vtk/blocks_0000.vtk"})
+  for (const char* rel :
+       {"history.csv", "time_history.csv", "blocks.csv", "contacts.csv", "vtk/blocks.pvd",
+        "vtk/contacts.pvd", "vtk/blocks_000000.vtu", "vtk/contacts_000000.vtu"})
     EXPECT_TRUE(listed.count(rel)) << rel;
-  EXPECT_EQ(listed.size(), 9u) << "three CSV files and six VTK files, nothing else";
+  // Nothing else: every file in the folder but summary.json and the checkpoints, counted here.
+  std::size_t on_disk = 0, frames = 0;
+  for (const auto& e : fs::recursive_directory_iterator(reference_)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), reference_).generic_string();
+    if (rel == "summary.json" || rel.starts_with("checkpoint.bdck")) continue;
+    ++on_disk;
+    EXPECT_TRUE(listed.count(rel)) << rel;
+    frames += rel.ends_with(".vtu") ? 1 : 0;
+  }
+  EXPECT_EQ(listed.size(), on_disk);
+  // Frames: the three stage ends and one every 250 steps, each as blocks and contacts.
+  EXPECT_GE(frames, 2u * (3u + 4u));
 }
 
 // A new run in a used folder: the earlier run's files go (also those its summary lists), the

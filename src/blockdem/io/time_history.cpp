@@ -1,0 +1,147 @@
+// time_history.csv writer.
+#include "blockdem/io/time_history.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <stdexcept>
+
+#include "blockdem/numerics/units.hpp"
+
+namespace blockdem {
+
+TimeHistoryWriter::TimeHistoryWriter(const std::filesystem::path& path, const World& world,
+                                     TimeHistoryOptions options, bool append)
+    : options_(std::move(options)),
+      interval_steps_(options_.interval_steps),
+      interval_time_(options_.interval_time) {
+  if (options_.max_rows < 2) throw std::invalid_argument("max_rows: must be at least 2");
+  if (interval_time_ <= 0.0 && interval_steps_ <= 0)
+    throw std::invalid_argument("interval: give a positive number of steps or seconds");
+  std::vector<std::string> columns = {"time_s",
+                                      "step",
+                                      "stage",
+                                      "time_step_s",
+                                      "kinetic_energy_J",
+                                      "elastic_energy_J",
+                                      "gravity_work_J",
+                                      "load_work_J",
+                                      "boundary_work_J",
+                                      "friction_dissipation_J",
+                                      "damping_dissipation_J",
+                                      "energy_residual_J",
+                                      "energy_residual_ratio",
+                                      "unbalanced_force_ratio",
+                                      "kinetic_energy_ratio",
+                                      "max_speed_m_s",
+                                      "contacts",
+                                      "sliding_contacts",
+                                      "broken_bonds"};
+  for (const auto& name : options_.blocks) {
+    const int i = world.find_block(name);
+    if (i < 0) throw std::invalid_argument("history_blocks: no block named '" + name + "'");
+    blocks_.push_back(i);
+    for (const char* c :
+         {"_ux_m", "_uy_m", "_uz_m", "_vx_m_s", "_vy_m_s", "_vz_m_s", "_rotation_deg"})
+      columns.push_back(name + c);
+  }
+  next_coarsening_ = options_.max_rows / 2;
+  csv_ = std::make_unique<CsvWriter>(path, std::move(columns), append);
+}
+
+void TimeHistoryWriter::save_state(StateWriter& w) const {
+  w.pod(interval_steps_);
+  w.pod(interval_time_);
+  w.pod(rows_);
+  w.pod(next_coarsening_);
+  w.pod(last_step_);
+  w.pod(next_time_);
+}
+
+void TimeHistoryWriter::load_state(StateReader& r) {
+  r.pod(interval_steps_);
+  r.pod(interval_time_);
+  r.pod(rows_);
+  r.pod(next_coarsening_);
+  r.pod(last_step_);
+  r.pod(next_time_);
+  if (rows_ < 0 || rows_ > options_.max_rows || (interval_time_ <= 0.0 && interval_steps_ <= 0))
+    throw StateError("saved time history state is corrupt");
+}
+
+void TimeHistoryWriter::coarsen() {
+  if (rows_ < next_coarsening_) return;
+  interval_steps_ *= 2;
+  interval_time_ *= 2.0;
+  next_coarsening_ += std::max<std::int64_t>(1, (options_.max_rows - next_coarsening_) / 2);
+}
+
+void TimeHistoryWriter::after_step(const World& world, const std::string& stage) {
+  const std::int64_t level = world.step_count() - 1;
+  const bool due =
+      interval_time_ > 0.0 ? world.level_time() >= next_time_ : level % interval_steps_ == 0;
+  if (due) write(world, stage);
+}
+
+void TimeHistoryWriter::write(const World& world, const std::string& stage) {
+  const std::int64_t level = world.step_count() - 1;
+  if (level < 0 || level == last_step_ || rows_ >= options_.max_rows) return;
+  last_step_ = level;
+  const double t = world.level_time();
+  if (interval_time_ > 0.0) {
+    while (next_time_ <= t) next_time_ += interval_time_;
+  }
+  // Everything below is at level n: the budget, the contacts and the blocks' level states.
+  const EnergyBudget& e = world.energy_budget();
+  const auto contacts = world.contacts();
+  double normal_energy = 0.0;
+  long long sliding = 0;
+  for (const Contact* c : contacts) {
+    normal_energy += 0.5 * c->normal_force * c->geometry.overlap;
+    sliding += c->sliding ? 1 : 0;
+  }
+  double max_speed = 0.0;
+  for (const auto& b : world.blocks()) {
+    if (b.is_dynamic()) max_speed = std::max(max_speed, world.level_state(b.index).velocity.norm());
+  }
+  const double scale = e.scale();
+  csv_->cell(t)
+      .cell(static_cast<long long>(level))
+      .cell(stage)
+      .cell(world.last_time_step())
+      .cell(e.kinetic)
+      .cell(e.elastic)
+      .cell(e.gravity_work)
+      .cell(e.load_work)
+      .cell(e.boundary_work)
+      .cell(e.friction_dissipation)
+      .cell(e.damping_dissipation)
+      .cell(e.residual())
+      .cell(scale > 0.0 ? e.residual() / scale : 0.0)
+      .cell(world.equilibrium().unbalanced_force_ratio)
+      .cell(normal_energy > 0.0 ? e.kinetic / normal_energy : 0.0)
+      .cell(max_speed)
+      .cell(static_cast<long long>(contacts.size()))
+      .cell(sliding)
+      .cell(static_cast<long long>(world.broken_bond_count()));
+  for (int i : blocks_) {
+    const Block& b = world.blocks()[static_cast<std::size_t>(i)];
+    const World::LevelState s = world.level_state(i);
+    const Eigen::Vector3d u = s.position - b.initial_position;
+    const double turn =
+        Eigen::AngleAxisd(s.orientation * b.initial_orientation.conjugate()).angle();
+    const double angle = std::min(turn, 2 * kPi - turn);
+    csv_->cell(u.x())
+        .cell(u.y())
+        .cell(u.z())
+        .cell(s.velocity.x())
+        .cell(s.velocity.y())
+        .cell(s.velocity.z())
+        .cell(rad_to_deg(angle));
+  }
+  csv_->end_row();
+  ++rows_;
+  if (rows_ % 64 == 0) csv_->flush();
+  coarsen();
+}
+
+}  // namespace blockdem

@@ -1,0 +1,202 @@
+// VTK XML writer: UnstructuredGrid with raw appended data (header_type UInt64), as described in
+// "VTK File Formats" of the VTK User's Guide (Kitware, 11th ed., 2010, ch. 19, XML formats).
+#include "blockdem/io/vtu.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/numerics/units.hpp"
+
+namespace blockdem {
+namespace {
+
+// One data array of the appended block: its XML attributes and its bytes.
+struct Array {
+  std::string name, type;
+  int components = 1;
+  std::string bytes;
+};
+
+template <class T>
+Array array(const std::string& name, const std::string& type, int components,
+            const std::vector<T>& values) {
+  Array a{name, type, components, std::string(values.size() * sizeof(T), '\0')};
+  if (!values.empty()) std::memcpy(a.bytes.data(), values.data(), a.bytes.size());
+  return a;
+}
+
+Array vectors(const std::string& name, const std::vector<Eigen::Vector3d>& values) {
+  std::vector<double> flat;
+  flat.reserve(3 * values.size());
+  for (const auto& v : values) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
+  return array(name, "Float64", 3, flat);
+}
+
+// Strings: each followed by a NUL, as VTK's XML readers expect for a String array.
+Array strings(const std::string& name, const std::vector<std::string>& values) {
+  Array a{name, "String", 1, {}};
+  for (const auto& s : values) {
+    a.bytes += s;
+    a.bytes.push_back('\0');
+  }
+  return a;
+}
+
+void write_arrays(std::ostream& out, const std::vector<Array>& arrays, std::uint64_t& offset) {
+  for (const Array& a : arrays) {
+    out << "        <DataArray type=\"" << a.type << "\" Name=\"" << a.name
+        << "\" NumberOfComponents=\"" << a.components << "\" format=\"appended\" offset=\""
+        << offset << "\"/>\n";
+    offset += sizeof(std::uint64_t) + a.bytes.size();
+  }
+}
+
+// Writes the grid: point data, cell data, points, cells (connectivity, offsets, types and, for
+// polyhedra, faces and faceoffsets), then the appended bytes. Built in memory and written
+// atomically: a reader never sees half a file.
+void write_grid(const std::filesystem::path& path, std::size_t points, std::size_t cells,
+                const std::vector<Array>& point_data, const std::vector<Array>& cell_data,
+                const Array& coordinates, const std::vector<Array>& topology) {
+  std::ostringstream out(std::ios::binary);
+  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
+      << order << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
+      << points << "\" NumberOfCells=\"" << cells << "\">\n";
+  std::uint64_t offset = 0;
+  out << "      <PointData>\n";
+  write_arrays(out, point_data, offset);
+  out << "      </PointData>\n      <CellData>\n";
+  write_arrays(out, cell_data, offset);
+  out << "      </CellData>\n      <Points>\n";
+  write_arrays(out, {coordinates}, offset);
+  out << "      </Points>\n      <Cells>\n";
+  write_arrays(out, topology, offset);
+  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n"
+      << "   _";
+  for (const auto* group : {&point_data, &cell_data}) {
+    for (const Array& a : *group) {
+      const std::uint64_t n = a.bytes.size();
+      out.write(reinterpret_cast<const char*>(&n), sizeof n);
+      out.write(a.bytes.data(), static_cast<std::streamsize>(a.bytes.size()));
+    }
+  }
+  const std::uint64_t nc = coordinates.bytes.size();
+  out.write(reinterpret_cast<const char*>(&nc), sizeof nc);
+  out.write(coordinates.bytes.data(), static_cast<std::streamsize>(coordinates.bytes.size()));
+  for (const Array& a : topology) {
+    const std::uint64_t n = a.bytes.size();
+    out.write(reinterpret_cast<const char*>(&n), sizeof n);
+    out.write(a.bytes.data(), static_cast<std::streamsize>(a.bytes.size()));
+  }
+  out << "\n  </AppendedData>\n</VTKFile>\n";
+  write_file_atomically(path, out.str());
+}
+
+constexpr std::uint8_t kVtkVertex = 1;
+constexpr std::uint8_t kVtkPolyhedron = 42;
+
+}  // namespace
+
+ContactStatus contact_status(const Contact& c) {
+  if (c.shear.broken()) return ContactStatus::broken;
+  if (c.sliding) return ContactStatus::sliding;
+  if (!(c.normal_force > 0.0)) return ContactStatus::open;
+  return ContactStatus::closed;
+}
+
+void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage) {
+  std::vector<Eigen::Vector3d> coordinates, displacement, velocity, rotation, spin;
+  std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
+  std::vector<std::uint8_t> types;
+  std::vector<std::int32_t> ids, stages;
+  std::vector<std::string> names, groups;
+  const Eigen::Vector3d& origin = world.settings().origin;  // points out in user coordinates
+  for (const auto& b : world.blocks()) {
+    const World::LevelState s = world.level_state(b.index);
+    const auto base = static_cast<std::int64_t>(coordinates.size());
+    for (std::size_t v = 0; v < b.shape.vertices().size(); ++v) {
+      coordinates.push_back(s.position + s.orientation * b.shape.vertices()[v] + origin);
+      connectivity.push_back(base + static_cast<std::int64_t>(v));
+    }
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    types.push_back(kVtkPolyhedron);
+    // Faces: their count, then per face its vertex count and global point ids (outward order).
+    faces.push_back(static_cast<std::int64_t>(b.shape.faces().size()));
+    for (const auto& f : b.shape.faces()) {
+      faces.push_back(static_cast<std::int64_t>(f.vertices.size()));
+      for (int v : f.vertices) faces.push_back(base + v);
+    }
+    face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
+    ids.push_back(b.index);
+    names.push_back(b.name);
+    groups.push_back(b.group);
+    stages.push_back(stage);
+    displacement.push_back(s.position - b.initial_position);
+    velocity.push_back(s.velocity);
+    const Eigen::AngleAxisd turn(s.orientation * b.initial_orientation.conjugate());
+    const double angle = turn.angle() > kPi ? turn.angle() - 2 * kPi : turn.angle();
+    rotation.push_back(angle * turn.axis());
+    spin.push_back(s.angular_velocity);
+  }
+  write_grid(path, coordinates.size(), world.blocks().size(), {},
+             {array("block_id", "Int32", 1, ids), strings("name", names), strings("group", groups),
+              array("stage", "Int32", 1, stages), vectors("displacement", displacement),
+              vectors("velocity", velocity), vectors("rotation", rotation),
+              vectors("angular_velocity", spin)},
+             vectors("Points", coordinates),
+             {array("connectivity", "Int64", 1, connectivity),
+              array("offsets", "Int64", 1, offsets), array("types", "UInt8", 1, types),
+              array("faces", "Int64", 1, faces), array("faceoffsets", "Int64", 1, face_offsets)});
+}
+
+void write_vtu_contacts(const std::filesystem::path& path, const World& world) {
+  const auto contacts = world.contacts();
+  std::vector<Eigen::Vector3d> points, normal, shear;
+  std::vector<std::int32_t> a, b, status;
+  std::vector<double> force, stress, closure, area;
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  const Eigen::Vector3d& origin = world.settings().origin;  // points out in user coordinates
+  for (const Contact* c : contacts) {
+    connectivity.push_back(static_cast<std::int64_t>(points.size()));
+    offsets.push_back(static_cast<std::int64_t>(points.size()) + 1);
+    types.push_back(kVtkVertex);
+    points.push_back(c->force_point + origin);
+    a.push_back(c->a);
+    b.push_back(c->b);
+    normal.push_back(c->geometry.normal);
+    force.push_back(c->normal_force);
+    shear.push_back(c->shear.force);
+    stress.push_back(c->normal_stress);
+    closure.push_back(c->geometry.overlap);
+    area.push_back(c->geometry.area);
+    status.push_back(static_cast<std::int32_t>(contact_status(*c)));
+  }
+  write_grid(
+      path, points.size(), points.size(),
+      {array("block_a", "Int32", 1, a), array("block_b", "Int32", 1, b), vectors("normal", normal),
+       array("normal_force", "Float64", 1, force), vectors("shear_force", shear),
+       array("normal_stress", "Float64", 1, stress), array("closure", "Float64", 1, closure),
+       array("area", "Float64", 1, area), array("status", "Int32", 1, status)},
+      {}, vectors("Points", points),
+      {array("connectivity", "Int64", 1, connectivity), array("offsets", "Int64", 1, offsets),
+       array("types", "UInt8", 1, types)});
+}
+
+void PvdCollection::add(double time, const std::string& file) {
+  frames_.emplace_back(time, file);
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n"
+      << "  <Collection>\n";
+  for (const auto& [t, f] : frames_)
+    xml << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << f << "\"/>\n";
+  xml << "  </Collection>\n</VTKFile>\n";
+  write_file_atomically(path_, xml.str());  // a reader never sees half a file
+}
+
+}  // namespace blockdem

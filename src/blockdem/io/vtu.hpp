@@ -1,0 +1,49 @@
+// ParaView-ready output: VTK XML unstructured grids (.vtu, binary appended data) of the blocks
+// and the contacts at one time level, and .pvd collections that give each frame its model time.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+/// Contact status written to VTK and documented in docs/outputs.md.
+enum class ContactStatus { closed = 0, open = 1, sliding = 2, broken = 3 };
+/// broken (the bond has broken) before sliding (the shear law yielded in the last step) before
+/// open (no compression) before closed.
+ContactStatus contact_status(const Contact& contact);
+
+/// Writes every block as a VTK polyhedron cell at the world's level state (World::level_state)
+/// with cell data block_id, name, group, stage, displacement (m), velocity (m/s), rotation (the
+/// rotation vector since the start, rad) and angular_velocity (rad/s).
+void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage);
+
+/// Writes every contact as a vertex at its force point with point data block_a, block_b, normal,
+/// normal_force (N), shear_force (N, vector on block b), normal_stress (Pa), closure (m), area (m²)
+/// and status (ContactStatus).
+void write_vtu_contacts(const std::filesystem::path& path, const World& world);
+
+/// A .pvd collection: one DataSet per frame with its model time. Rewritten whole after each
+/// add(), so the file on disk always lists every frame written so far.
+class PvdCollection {
+ public:
+  explicit PvdCollection(std::filesystem::path path) : path_(std::move(path)) {}
+  /// `file`: the frame's path relative to the .pvd's folder. Throws std::runtime_error when the
+  /// file cannot be written.
+  void add(double time, const std::string& file);
+  /// The frames listed so far (model time, file), e.g. to continue the collection after a restart.
+  const std::vector<std::pair<double, std::string>>& frames() const { return frames_; }
+  /// Continues a collection that already lists `frames` (the file is not rewritten until add()).
+  void set_frames(std::vector<std::pair<double, std::string>> frames) {
+    frames_ = std::move(frames);
+  }
+
+ private:
+  std::filesystem::path path_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+}  // namespace blockdem

@@ -1,0 +1,149 @@
+// Energy budget bookkeeping: trapezoidal works of central differences, joint energies.
+#include "blockdem/world/energy_budget.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "blockdem/dynamics/integrator.hpp"
+
+namespace blockdem {
+
+double EnergyBudget::residual() const {
+  return kinetic + elastic + friction_dissipation + damping_dissipation -
+         (initial + gravity_work + load_work + boundary_work);
+}
+
+double EnergyBudget::scale() const {
+  double s = 0.0;
+  for (double v : {kinetic, elastic, friction_dissipation, damping_dissipation, initial,
+                   gravity_work, load_work, boundary_work})
+    s = std::max(s, std::abs(v));
+  return s;
+}
+
+double joint_elastic_energy(const Contact& c) {
+  const double normal = 0.5 * c.normal_force * c.geometry.overlap;
+  const double shear =
+      c.shear_stiffness > 0.0 ? 0.5 * c.shear.force.squaredNorm() / c.shear_stiffness : 0.0;
+  return normal + shear;
+}
+
+void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
+  if (started_ && previous_.size() == blocks.size()) return;
+  // The accounting starts (or starts again) at this level: no previous step to pair with.
+  previous_.assign(blocks.size(), Previous{});
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    previous_[i].velocity = blocks[i].velocity;
+    previous_[i].angular_velocity = blocks[i].angular_velocity;
+    previous_[i].angular_momentum = blocks[i].angular_momentum;
+  }
+  started_ = false;
+}
+
+void EnergyLedger::after_integration(const std::vector<Block>& blocks,
+                                     const Eigen::Vector3d& gravity, double damping, double dt,
+                                     double elastic, double slip_work) {
+  EnergyBudget& e = budget_;
+  const double carried = started_ ? 0.0 : e.residual();
+  double kinetic = 0.0;
+  level_velocity_.resize(blocks.size());
+  level_angular_velocity_.resize(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const Block& b = blocks[i];
+    Previous& p = previous_[i];
+    const Eigen::Vector3d& u = p.velocity;          // v_{n-1/2}
+    const Eigen::Vector3d& w = p.angular_velocity;  // ω_{n-1/2}
+    level_velocity_[i] = 0.5 * (u + b.velocity);
+    level_angular_velocity_[i] = 0.5 * (w + b.angular_velocity);
+    if (b.is_dynamic()) {
+      // This step's impulses; the damping force is what local_damping took off the load.
+      const Eigen::Vector3d ig = dt * b.mass * gravity;
+      const Eigen::Vector3d il = dt * b.external_force;
+      const Eigen::Vector3d tl = dt * b.external_torque;
+      const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
+      const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
+      if (started_) {
+        e.gravity_work += 0.5 * u.dot(ig + p.gravity);
+        e.load_work += 0.5 * (u.dot(il + p.load) + w.dot(tl + p.load_torque));
+        e.damping_dissipation += 0.5 * (u.dot(id + p.damping) + w.dot(td + p.damping_torque));
+      }
+      kinetic += 0.5 * b.mass * u.dot(b.velocity) +
+                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
+      p.gravity = ig;
+      p.load = il;
+      p.load_torque = tl;
+      p.damping = id;
+      p.damping_torque = td;
+    } else {
+      // A moving boundary does work -F·dx on the model through the contact force F it feels.
+      const Eigen::Vector3d ic = dt * b.contact_force;
+      const Eigen::Vector3d tc = dt * b.torque;
+      if (started_) e.boundary_work -= 0.5 * (u.dot(ic + p.contact) + w.dot(tc + p.contact_torque));
+      p.contact = ic;
+      p.contact_torque = tc;
+    }
+    p.velocity = b.velocity;
+    p.angular_velocity = b.angular_velocity;
+    p.angular_momentum = b.angular_momentum;
+  }
+  e.kinetic = kinetic;
+  e.elastic = elastic;
+  if (started_) {
+    e.friction_dissipation += slip_work;
+  } else {
+    // Start (or restart) the accounting here, keeping the residual carried so far.
+    e.initial = 0.0;
+    e.initial = e.residual() - carried;
+    started_ = true;
+  }
+}
+
+Eigen::Vector3d EnergyLedger::level_velocity(int i, const Block& b) const {
+  const auto k = static_cast<std::size_t>(i);
+  return k < level_velocity_.size() ? level_velocity_[k] : b.velocity;
+}
+
+Eigen::Vector3d EnergyLedger::level_angular_velocity(int i, const Block& b) const {
+  const auto k = static_cast<std::size_t>(i);
+  return k < level_angular_velocity_.size() ? level_angular_velocity_[k] : b.angular_velocity;
+}
+
+void EnergyLedger::save_state(StateWriter& w) const {
+  const EnergyBudget& e = budget_;
+  for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
+                   e.friction_dissipation, e.damping_dissipation, e.initial})
+    w.pod(v);
+  w.size(previous_.size());
+  for (const Previous& p : previous_) {
+    for (const Eigen::Vector3d* v :
+         {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load,
+          &p.load_torque, &p.damping, &p.damping_torque, &p.contact, &p.contact_torque})
+      w.vec(*v);
+  }
+  for (const auto* list : {&level_velocity_, &level_angular_velocity_}) {
+    w.size(list->size());
+    for (const Eigen::Vector3d& v : *list) w.vec(v);
+  }
+  w.pod(static_cast<std::uint8_t>(started_));
+}
+
+void EnergyLedger::load_state(StateReader& r) {
+  EnergyBudget& e = budget_;
+  for (double* v : {&e.kinetic, &e.elastic, &e.gravity_work, &e.load_work, &e.boundary_work,
+                    &e.friction_dissipation, &e.damping_dissipation, &e.initial})
+    r.pod(*v);
+  previous_.resize(r.size());
+  for (Previous& p : previous_) {
+    for (Eigen::Vector3d* v :
+         {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load,
+          &p.load_torque, &p.damping, &p.damping_torque, &p.contact, &p.contact_torque})
+      *v = r.vec();
+  }
+  for (auto* list : {&level_velocity_, &level_angular_velocity_}) {
+    list->resize(r.size());
+    for (Eigen::Vector3d& v : *list) v = r.vec();
+  }
+  started_ = r.pod<std::uint8_t>() != 0;
+}
+
+}  // namespace blockdem

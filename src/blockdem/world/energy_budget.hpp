@@ -1,0 +1,89 @@
+// The energy budget of a run: kinetic and elastic energy at a time level, the work of gravity,
+// applied loads and moving boundaries, and the energy dissipated by joint slip and by damping.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "blockdem/dynamics/block.hpp"
+#include "blockdem/world/contact.hpp"
+#include "blockdem/world/state_stream.hpp"
+
+namespace blockdem {
+
+/// Energies at time level n (the positions at which the last step evaluated its forces) and the
+/// works and dissipations accumulated since the world was built. The balance
+///   kinetic + elastic + friction + damping = initial + gravity + loads + boundary
+/// holds to the integration error; residual() is the difference.
+struct EnergyBudget {
+  /// Free blocks: Σ ½ m v_{n-1/2}·v_{n+1/2} + ¼ (ω_{n-1/2}·L_{n+1/2} + ω_{n+1/2}·L_{n-1/2}), the
+  /// kinetic energy that central differences conserve exactly (J). It differs from ½ m v_n² with
+  /// v_n = (v_{n-1/2} + v_{n+1/2})/2 by m |Δv|²/8, Δv the velocity change of one step.
+  double kinetic = 0.0;
+  /// Joints at level n: Σ ½ F_n δ + |F_s|² / (2 k_s A) (J). Exact for linear laws at a uniform
+  /// closure; an estimate for the others (their difference then shows in the residual).
+  double elastic = 0.0;
+  double gravity_work = 0.0;  ///< work of gravity on the free blocks (J)
+  double load_work = 0.0;     ///< work of the applied forces and torques on free blocks (J)
+  /// Work done on the model by prescribed and servo blocks through their contacts (J).
+  double boundary_work = 0.0;
+  double friction_dissipation = 0.0;  ///< Σ -F_s·du_p over joint slip (J), positive
+  double damping_dissipation = 0.0;   ///< work removed by local damping (J), positive
+  double initial = 0.0;               ///< kinetic + elastic when the accounting started (J)
+
+  /// kinetic + elastic + friction + damping − (initial + gravity + loads + boundary) (J).
+  double residual() const;
+  /// The largest magnitude among the terms, the scale for a relative residual (J).
+  double scale() const;
+};
+
+/// Elastic energy of one joint, ½ F_n δ + |F_s|² / (2 k_s A) (J).
+double joint_elastic_energy(const Contact& contact);
+
+/// Keeps an EnergyBudget up to date, one world step at a time. Works use the trapezoidal rule of
+/// central differences: in the step that evaluates forces at level n,
+///   W += ½ v_{n-1/2} · (Δt_n F_n + Δt_{n-1} F_{n-1}),
+/// for which the change of `kinetic` equals the work of every force to round-off (a discrete
+/// form of the work-energy theorem; Hairer, Lubich & Wanner, Geometric Numerical Integration,
+/// 2nd ed., 2006, ch. I.1.4, the Störmer-Verlet energy).
+class EnergyLedger {
+ public:
+  /// Before the blocks are integrated in a step (after the servos set their velocities).
+  void before_integration(const std::vector<Block>& blocks);
+  /// After integration: `dt` the step just taken, `gravity` and `damping` those it used,
+  /// `elastic` the joints' energy at level n, `slip_work` the energy dissipated by slip in it.
+  void after_integration(const std::vector<Block>& blocks, const Eigen::Vector3d& gravity,
+                         double damping, double dt, double elastic, double slip_work);
+  /// Blocks were removed: the next step starts the accounting again, carrying the residual.
+  void restart() { started_ = false; }
+
+  const EnergyBudget& budget() const { return budget_; }
+  /// The whole ledger (budget, previous step, level velocities), for a bit-identical restart.
+  void save_state(StateWriter& w) const;
+  /// Throws StateError for bytes that are not a ledger.
+  void load_state(StateReader& r);
+  /// Velocity of block i at level n, (v_{n-1/2} + v_{n+1/2}) / 2 (m/s); before the first step,
+  /// the block's own.
+  Eigen::Vector3d level_velocity(int i, const Block& b) const;
+  /// Angular velocity of block i at level n (rad/s), likewise.
+  Eigen::Vector3d level_angular_velocity(int i, const Block& b) const;
+
+ private:
+  /// What a block brings from the previous step.
+  struct Previous {
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          ///< v_{n-1/2} (m/s)
+    Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< ω_{n-1/2} (rad/s)
+    Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  ///< L_{n-1/2} (kg m²/s)
+    // Impulses Δt F of the previous step (N s) and angular impulses Δt T (N m s).
+    Eigen::Vector3d gravity = Eigen::Vector3d::Zero(), load = Eigen::Vector3d::Zero();
+    Eigen::Vector3d load_torque = Eigen::Vector3d::Zero();
+    Eigen::Vector3d damping = Eigen::Vector3d::Zero(), damping_torque = Eigen::Vector3d::Zero();
+    Eigen::Vector3d contact = Eigen::Vector3d::Zero(), contact_torque = Eigen::Vector3d::Zero();
+  };
+  EnergyBudget budget_;
+  std::vector<Previous> previous_;
+  std::vector<Eigen::Vector3d> level_velocity_, level_angular_velocity_;
+  bool started_ = false;
+};
+
+}  // namespace blockdem
