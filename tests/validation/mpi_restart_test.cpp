@@ -10,12 +10,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -164,6 +169,61 @@ TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
               read_file_bytes(single / "checkpoint.bdck"));
   ASSERT_EQ(run(2, scenario_, out, "--resume"), 0);
   EXPECT_EQ(outputs(out), outputs(reference_));
+}
+
+int count_lines(const fs::path& file) {
+  std::ifstream in(file);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+// A real SIGTERM, sent from outside to process 1 alone (its process id from a wrapper shell that
+// execs the program) while the 2 processes are inside a stage of 20,000 steps: every process
+// stops after the same step (mpirun's exit code 143), summary.json says "interrupted" inside
+// the stage, and a one-process --resume ends with the outputs of the run never stopped.
+// Reference: that run, on one process. Tolerance: none (bytes).
+TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentically) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  constexpr long long kSteps = 20000;
+  const fs::path scenario = write_restart_scenario("mpi_signal", 0, kSteps);
+  const fs::path reference = fresh_dir("mpi_signal_reference");
+  ASSERT_EQ(run(0, scenario, reference, ""), 0);
+  const fs::path out = fresh_dir("mpi_signal_out");
+  const fs::path pid_file = fresh_dir("mpi_signal_pid");
+  // Unquoted: the paths have no spaces, and the command goes inside sh -c '...'.
+  const std::string args =
+      " run " + scenario.string() + " --out " + out.string() + " --quiet --no-figures --threads 1";
+  const std::string cmd = std::string(kMpiexec) +
+                          " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 -np 1 " +
+                          BLOCKDEM_CLI_PATH + args + " : -np 1 sh -c 'echo $$ > " +
+                          pid_file.string() + "; exec " + BLOCKDEM_CLI_PATH + args + "'";
+  FILE* launcher = ::popen((cmd + " > /dev/null 2>&1; echo $?").c_str(), "r");
+  ASSERT_NE(launcher, nullptr);
+  // Into the last stage: its row count shows the two first stages are done.
+  const auto start = std::chrono::steady_clock::now();
+  while (count_lines(out / "history.csv") < 3 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::string pid;
+  std::ifstream(pid_file) >> pid;
+  ASSERT_FALSE(pid.empty());
+  ::kill(static_cast<pid_t>(std::stol(pid)), SIGTERM);
+  char line[32] = {};
+  const bool read = std::fgets(line, sizeof line, launcher) != nullptr;
+  ::pclose(launcher);
+  ASSERT_TRUE(read);
+  EXPECT_EQ(std::atoi(line), 143);
+  const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  const long long steps = summary.at("stages").back().at("steps").get<long long>();
+  EXPECT_GT(steps, 0) << "stopped inside the last stage";
+  EXPECT_LT(steps, kSteps);
+  ASSERT_EQ(run(0, scenario, out, "--resume"), 0);
+  EXPECT_EQ(outputs(out), outputs(reference));
+  for (const auto& d : {reference, out, pid_file}) fs::remove_all(d);
+  fs::remove(scenario);
 }
 
 }  // namespace
