@@ -178,26 +178,31 @@ int count_lines(const fs::path& file) {
   return n;
 }
 
-// A real SIGTERM, sent from outside to process 1 alone (its process id from a wrapper shell that
-// execs the program) while the 2 processes are inside a stage of 20,000 steps: every process
-// stops after the same step (mpirun's exit code 143), summary.json says "interrupted" inside
-// the stage, and a one-process --resume ends with the outputs of the run never stopped.
-// Reference: that run, on one process. Tolerance: none (bytes).
-TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentically) {
-  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-  constexpr long long kSteps = 20000;
-  const fs::path scenario = write_restart_scenario("mpi_signal", 0, kSteps);
-  const fs::path reference = fresh_dir("mpi_signal_reference");
+/// Runs the restart scenario with a last stage of `steps` steps on 2 processes and, once they
+/// are inside that stage, sends SIGTERM from outside to process 1 alone (its process id from a
+/// wrapper shell that execs the program) or to mpirun (which passes it on to both after
+/// `odls_base_sigkill_timeout`, here 3 s, and kills them as long after). Checks: the launcher's
+/// exit code, summary.json "interrupted" inside the stage, and that a one-process --resume ends
+/// with the outputs of the run never stopped (the reference, on one process). Tolerance: none
+/// (bytes).
+void signal_from_outside(bool to_launcher, long long steps, int expected_code) {
+  const std::string name = to_launcher ? "mpi_signal_launcher" : "mpi_signal_rank";
+  const fs::path scenario = write_restart_scenario(name, 0, steps);
+  const fs::path reference = fresh_dir(name + "_reference");
   ASSERT_EQ(run(0, scenario, reference, ""), 0);
-  const fs::path out = fresh_dir("mpi_signal_out");
-  const fs::path pid_file = fresh_dir("mpi_signal_pid");
+  const fs::path out = fresh_dir(name + "_out");
+  const fs::path pid_file = fresh_dir(name + "_pid");
   // Unquoted: the paths have no spaces, and the command goes inside sh -c '...'.
   const std::string args =
       " run " + scenario.string() + " --out " + out.string() + " --quiet --no-figures --threads 1";
-  const std::string cmd = std::string(kMpiexec) +
-                          " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 -np 1 " +
-                          BLOCKDEM_CLI_PATH + args + " : -np 1 sh -c 'echo $$ > " +
-                          pid_file.string() + "; exec " + BLOCKDEM_CLI_PATH + args + "'";
+  const std::string mpirun = std::string(kMpiexec) +
+                             " --oversubscribe --allow-run-as-root --mca odls_base_sigkill_timeout "
+                             "3 -x OMP_NUM_THREADS=1 ";
+  const std::string cmd = to_launcher ? "sh -c 'echo $$ > " + pid_file.string() + "; exec " +
+                                            mpirun + "-np 2 " + BLOCKDEM_CLI_PATH + args + "'"
+                                      : mpirun + "-np 1 " + BLOCKDEM_CLI_PATH + args +
+                                            " : -np 1 sh -c 'echo $$ > " + pid_file.string() +
+                                            "; exec " + BLOCKDEM_CLI_PATH + args + "'";
   FILE* launcher = ::popen((cmd + " > /dev/null 2>&1; echo $?").c_str(), "r");
   ASSERT_NE(launcher, nullptr);
   // Into the last stage: its row count shows the two first stages are done.
@@ -214,16 +219,30 @@ TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentical
   const bool read = std::fgets(line, sizeof line, launcher) != nullptr;
   ::pclose(launcher);
   ASSERT_TRUE(read);
-  EXPECT_EQ(std::atoi(line), 143);
+  EXPECT_EQ(std::atoi(line), expected_code);
   const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
   EXPECT_EQ(summary.at("status"), "interrupted");
-  const long long steps = summary.at("stages").back().at("steps").get<long long>();
-  EXPECT_GT(steps, 0) << "stopped inside the last stage";
-  EXPECT_LT(steps, kSteps);
+  const long long done = summary.at("stages").back().at("steps").get<long long>();
+  EXPECT_GT(done, 0) << "stopped inside the last stage";
+  EXPECT_LT(done, steps);
   ASSERT_EQ(run(0, scenario, out, "--resume"), 0);
   EXPECT_EQ(outputs(out), outputs(reference));
   for (const auto& d : {reference, out, pid_file}) fs::remove_all(d);
   fs::remove(scenario);
+}
+
+// SIGTERM to process 1 alone: both stop after the same step; mpirun passes on the exit code 143.
+TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentically) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  signal_from_outside(false, 20000, 143);
+}
+
+// SIGTERM to mpirun (as Ctrl-C or a batch system would send it): Open MPI passes SIGTERM on to
+// every process after odls_base_sigkill_timeout and exits with 1 itself; the processes stop
+// and write their checkpoint within that time.
+TEST(MpiRestartSignal, SigtermToTheLauncherStopsAllAndResumesBitIdentically) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  signal_from_outside(true, 100000, 1);  // the stage outlasts the 3 s before the signal
 }
 
 }  // namespace
