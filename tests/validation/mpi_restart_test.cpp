@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "blockdem/io/atomic_file.hpp"
+#include "blockdem/run/run_files.hpp"
 #include "unit/run/restart_support.hpp"
 
 namespace blockdem::test {
@@ -169,6 +170,29 @@ TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
               read_file_bytes(single / "checkpoint.bdck"));
   ASSERT_EQ(run(2, scenario_, out, "--resume"), 0);
   EXPECT_EQ(outputs(out), outputs(reference_));
+}
+
+// Bad input: a checkpoint that is not one, given to --resume on 3 processes. Process 0 alone
+// reads it; every process stops with its one message, exit code 2, the folder untouched.
+TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
+  const fs::path out = dir("bad_checkpoint");
+  fs::create_directories(out);
+  const std::string garbage = "not a checkpoint\n";
+  write_file_atomically(out / "checkpoint.bdck", garbage);
+  const fs::path log = out.string() + ".log";
+  dirs_.push_back(log);
+  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 3 " +
+                          BLOCKDEM_CLI_PATH + " run " + scenario_.string() + " --out " +
+                          out.string() + " --quiet --resume 2> " + log.string();
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2);
+  const std::string err = read_file_bytes(log);
+  const std::string message = "checkpoint.bdck: not a blockdem checkpoint";
+  const auto at = err.find(message);
+  EXPECT_NE(at, std::string::npos) << err;
+  EXPECT_EQ(err.find(message, at + 1), std::string::npos) << "printed once: " << err;
+  EXPECT_EQ(list_run_folder(out), std::vector<std::string>{"checkpoint.bdck"});
+  EXPECT_EQ(read_file_bytes(out / "checkpoint.bdck"), garbage);
 }
 
 int count_lines(const fs::path& file) {
