@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -49,6 +51,40 @@ extern "C" void on_stop_signal(int sig) {
   stop_signal = sig;
 }
 
+// A test hook (docs/restart.md): BLOCKDEM_TEST_KILL_RANK=R:STEP[:SIGNAL] makes process R of
+// the run (0 without a launcher) send itself SIGNAL (KILL, the default, TERM or INT) after
+// world step STEP, where the processes agree on stopping: a deterministic stand-in for a
+// signal or a crash that reaches one process.
+struct KillHook {
+  int rank = -1;
+  std::int64_t step = -1;
+  int signal = SIGKILL;
+};
+
+KillHook kill_hook_from_environment() {
+  KillHook hook;
+  const char* text = std::getenv("BLOCKDEM_TEST_KILL_RANK");
+  if (text == nullptr) return hook;
+  const std::string s = text;
+  const auto first = s.find(':');
+  if (first == std::string::npos)
+    throw std::invalid_argument("BLOCKDEM_TEST_KILL_RANK: expected RANK:STEP[:KILL|TERM|INT]");
+  const auto second = s.find(':', first + 1);
+  hook.rank = std::atoi(s.substr(0, first).c_str());
+  hook.step = std::atoll(s.substr(first + 1, second - first - 1).c_str());
+  if (second != std::string::npos) {
+    const std::string name = s.substr(second + 1);
+    if (name == "TERM")
+      hook.signal = SIGTERM;
+    else if (name == "INT")
+      hook.signal = SIGINT;
+    else if (name != "KILL")
+      throw std::invalid_argument("BLOCKDEM_TEST_KILL_RANK: signal '" + name +
+                                  "' is not KILL, TERM or INT");
+  }
+  return hook;
+}
+
 void install_stop_handlers() {
   struct sigaction action = {};
   action.sa_handler = on_stop_signal;
@@ -73,17 +109,30 @@ int run(const RunOptions& opt) {
     }
     return run_one(opt, mpi);
   }
-  if (mpi.rank() == 0) return run_one(opt, mpi);
   RunOptions mine = opt;
-  mine.quiet = true;
-  mine.figures = false;
-  mine.out = (std::filesystem::temp_directory_path() /
-              ("blockdem-rank" + std::to_string(mpi.rank()) + "-" + std::to_string(getpid())))
-                 .string();
+  if (mpi.rank() != 0) {
+    mine.quiet = true;
+    mine.figures = false;
+    mine.out = (std::filesystem::temp_directory_path() /
+                ("blockdem-rank" + std::to_string(mpi.rank()) + "-" + std::to_string(getpid())))
+                   .string();
+  }
   std::error_code ec;
-  std::filesystem::remove_all(mine.out, ec);
-  const int code = run_one(mine, mpi);
-  std::filesystem::remove_all(mine.out, ec);
+  if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);
+  int code = 1;
+  try {
+    code = run_one(mine, mpi);
+  } catch (const std::exception& e) {
+    // A failure on one process only (a full disk on the writer): the others would wait for it
+    // in the next collective, so every process ends now (rank 0's files are whole or absent;
+    // summary.json is not written).
+    std::cerr << "blockdem: internal error on process " << mpi.rank() << ": " << e.what() << "\n";
+    mpi.abort(1);
+  }
+  if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);
+  // No process ends before the writer has finished: the launcher stops the others as soon as
+  // one exits with a non-zero code.
+  mpi.barrier();
   return code;
 }
 
@@ -120,6 +169,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     agreed = true;
     return mpi.all_ok(ok, why);
   };
+  int agreed_signal = 0;  // the stop signal the processes agreed on
   try {
     // Read and check everything before anything is written.
     Scenario sc = load_scenario(opt.scenario);
@@ -138,23 +188,52 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     // The scenario's bytes and the options that change results (not --threads).
     control.scenario_hash = fnv1a64("max_steps=" + std::to_string(opt.max_steps),
                                     fnv1a64(read_file_bytes(opt.scenario)));
-    install_stop_handlers();
-    control.stop = [] { return stop_signal != 0; };
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : mpi.rank() == 0 ? sc.warnings : std::vector<std::string>{})
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     rock_mass = rock_mass_scene(sc) != nullptr;
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
+    const KillHook hook = kill_hook_from_environment();
     if (std::string why; !agree(true, why)) {
       // Another rank could not read the scenario: every rank stops with its message.
       if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
       return 2;
     }
+    // The first process reads and checks the checkpoint and sends it to the others: only it
+    // needs the output folder. A checkpoint it refuses stops every process (exit code 2).
+    if (!control.restart.empty()) {
+      std::string why;
+      if (mpi.rank() == 0) {
+        try {
+          control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
+        } catch (const CheckpointError& e) {
+          why = e.what();
+        }
+      }
+      if (!mpi.all_ok(why.empty(), why)) {
+        if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
+        return 2;
+      }
+      mpi.broadcast(control.restart_payload, 0);
+    }
+    install_stop_handlers();
+    // After every step, one reduction over the processes: the largest stop signal any of them
+    // received and whether any clock says a timed checkpoint is due. All stop after the same
+    // step and take the same checkpoints.
+    control.poll = [&mpi, hook, &agreed_signal](std::int64_t steps, bool due) {
+      if (hook.rank == mpi.rank() && hook.step == steps) std::raise(hook.signal);
+      std::vector<int> flags = {static_cast<int>(stop_signal), due ? 1 : 0};
+      mpi.max_over_ranks(flags);
+      agreed_signal = flags[0];
+      return RunPoll{flags[0] != 0, flags[1] != 0};
+    };
+    control.write_checkpoint_files = mpi.rank() == 0;
     sc.settings.distribution = mpi.distribution();
     r = run_scenario(sc, opt.out, cb, control);
   } catch (const CheckpointError& e) {
-    std::cerr << "blockdem: error: " << e.what() << "\n";
+    // Found by every process alike (the same bytes): one message.
+    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << e.what() << "\n";
     return 2;
   } catch (const ScenarioError& e) {
     std::string why = e.what();
@@ -170,9 +249,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     return 2;
   }
   if (r.interrupted) {
-    // 128 + the signal, as a shell reports a program ended by it (130 SIGINT, 143 SIGTERM).
-    std::cerr << "blockdem: " << r.message << "\n";
-    return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGINT);
+    // 128 + the signal, as a shell reports a program ended by it (130 SIGINT, 143 SIGTERM); under
+    // MPI the signal the processes agreed on, on every process.
+    if (mpi.rank() == 0) std::cerr << "blockdem: " << r.message << "\n";
+    return 128 + (agreed_signal != 0 ? agreed_signal : SIGINT);
   }
   const bool draws =
       opt.figures && ((beam && !r.levels.empty()) || rock_mass || r.factor_of_safety);

@@ -41,11 +41,17 @@ void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scen
   put(bytes, static_cast<std::uint64_t>(payload.size()));
   bytes.append(payload);
   put(bytes, fnv1a64(bytes));
+  // The last checkpoint becomes NAME.prev by a second name (a hard link; a copy where the file
+  // system has none), then the new one replaces NAME by a rename: at every moment NAME is a
+  // whole checkpoint, also when the process is killed in between.
   std::error_code ec;
   if (std::filesystem::exists(file, ec)) {
     std::filesystem::path prev = file;
     prev += ".prev";
-    std::filesystem::rename(file, prev, ec);
+    std::filesystem::remove(prev, ec);
+    std::filesystem::create_hard_link(file, prev, ec);
+    if (ec)
+      std::filesystem::copy_file(file, prev, std::filesystem::copy_options::overwrite_existing, ec);
   }
   write_file_atomically(file, bytes);
 }

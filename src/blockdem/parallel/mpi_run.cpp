@@ -144,6 +144,28 @@ void MpiSession::abort(int code) const {
   std::exit(code);
 }
 
+void MpiSession::max_over_ranks(std::vector<int>& values) const {
+  if (!active_ || size_ == 1 || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_INT, MPI_MAX,
+                MPI_COMM_WORLD);
+}
+
+void MpiSession::broadcast(std::string& bytes, int root) const {
+  if (!active_ || size_ == 1) return;
+  long long length = static_cast<long long>(bytes.size());
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, root, MPI_COMM_WORLD);
+  bytes.resize(static_cast<std::size_t>(length));
+  constexpr long long kPiece = 1LL << 30;
+  for (long long at = 0; at < length; at += kPiece) {
+    const int count = static_cast<int>(std::min(kPiece, length - at));
+    MPI_Bcast(bytes.data() + at, count, MPI_CHAR, root, MPI_COMM_WORLD);
+  }
+}
+
+void MpiSession::barrier() const {
+  if (active_ && size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
+}
+
 std::shared_ptr<PairDistribution> MpiSession::distribution() const {
   if (!active_ || size_ == 1) return nullptr;
   return std::make_shared<MpiPairDistribution>(rank_, size_);
@@ -159,6 +181,9 @@ bool MpiSession::all_ok(bool ok, std::string&) const {
 void MpiSession::abort(int code) const {
   std::exit(code);
 }
+void MpiSession::max_over_ranks(std::vector<int>&) const {}
+void MpiSession::broadcast(std::string&, int) const {}
+void MpiSession::barrier() const {}
 std::shared_ptr<PairDistribution> MpiSession::distribution() const {
   return nullptr;
 }

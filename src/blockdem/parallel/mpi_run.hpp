@@ -43,6 +43,13 @@ class MpiSession {
   bool all_ok(bool ok, std::string& message) const;
   /// Ends every rank of the run at once with this exit code (MPI_Abort).
   [[noreturn]] void abort(int code) const;
+  /// Collective: the element-wise maximum of `values` over every rank (unchanged for one
+  /// process). Cheap enough for every step: one MPI_Allreduce of a few integers.
+  void max_over_ranks(std::vector<int>& values) const;
+  /// Collective: `bytes` of rank `root` on every rank (sent in pieces of at most 1 GiB).
+  void broadcast(std::string& bytes, int root) const;
+  /// Collective: returns when every rank has called it.
+  void barrier() const;
 
   /// The pair distribution over this session's ranks (null when size() == 1).
   std::shared_ptr<PairDistribution> distribution() const;

@@ -61,7 +61,9 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   // Everything is read and checked before anything is written: the restart file first.
   std::optional<RunPoint> resume;
   if (!control.restart.empty()) {
-    const std::string payload = read_checkpoint_file(control.restart, control.scenario_hash);
+    const std::string payload = !control.restart_payload.empty()
+                                    ? control.restart_payload
+                                    : read_checkpoint_file(control.restart, control.scenario_hash);
     try {
       resume = decode_run_point(payload);
     } catch (const StateError& e) {
@@ -141,8 +143,6 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["title"] = sc.title;
   summary["blocks"] = world.blocks().size();
   summary["contact_mode"] = to_string(sc.settings.contact_mode);
-  summary["threads"] = world.thread_count();
-  summary["ranks"] = ranks;
   summary["citations"] = {
       "Boon C.W., Houlsby G.T., Utili S. (2012) A new algorithm for contact detection between "
       "convex "
@@ -156,7 +156,6 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   nlohmann::json stages = nlohmann::json::array();
   if (resume) {
     summary = nlohmann::json::parse(resume->summary);
-    summary["threads"] = world.thread_count();
     stages = nlohmann::json::parse(resume->stages);
     res.steps_per_stage = resume->steps_per_stage;
     res.factor_of_safety = resume->factor_of_safety;
@@ -192,9 +191,21 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       p.files.emplace_back(rel, read_file_bytes(out / rel));
     }
     write_checkpoint_file(out / kCheckpointName, control.scenario_hash, encode_run_point(p));
+  };
+  // A checkpoint that every process of an MPI run decides on together (the outputs' writer
+  // alone writes the file): the checkpoint does not depend on the number of processes.
+  auto checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
+                        const World* before) {
+    if (control.write_checkpoint_files) write_checkpoint(level, at, monitor, before);
     last_checkpoint = std::chrono::steady_clock::now();
   };
-  auto stop_requested = [&] { return control.stop && control.stop(); };
+  auto poll = [&] {
+    const bool due =
+        control.checkpoint_seconds > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+            control.checkpoint_seconds;
+    return control.poll ? control.poll(world.step_count(), due) : RunPoll{false, due};
+  };
   auto interrupt = [&](const std::string& where) {
     res.interrupted = true;
     res.status = "interrupted";
@@ -211,9 +222,9 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     const bool resuming = resume && level == first && resume->in_stage;
     if (!resuming) {
       // A stage boundary (the end of the previous stage): checkpoint, and stop if asked.
-      const bool stop = stop_requested();
+      const bool stop = poll().stop;
       if ((checkpoints || stop) && !beam && !(resume && level == first))
-        write_checkpoint(level, nullptr, nullptr, nullptr);
+        checkpoint(level, nullptr, nullptr, nullptr);
       if (stop) {
         stages.push_back({{"name", stage.name},
                           {"converged", false},
@@ -326,15 +337,12 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     if (resuming) monitor = std::move(resumed_monitor);
     // After every step: a checkpoint when one is due or a stop is asked for.
     const AfterStepFn after_step = [&](const StageResume& at) {
-      const bool stop = stop_requested();
+      const RunPoll now = poll();
       const bool due =
-          stop ||
-          (control.checkpoint_every > 0 && world.step_count() % control.checkpoint_every == 0) ||
-          (control.checkpoint_seconds > 0.0 &&
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
-                   .count() >= control.checkpoint_seconds);
-      if (due && !beam) write_checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
-      return stop;
+          now.stop || now.checkpoint ||
+          (control.checkpoint_every > 0 && world.step_count() % control.checkpoint_every == 0);
+      if (due && !beam) checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
+      return now.stop;
     };
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
@@ -441,6 +449,10 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["steps"] = res.steps;
   summary["time_s"] = world.time();
   summary["wall_time_s"] = res.wall_time;
+  // What describes the machine, not the run: not in the checkpoints, which any number of
+  // threads and processes continue.
+  summary["threads"] = world.thread_count();
+  summary["ranks"] = ranks;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
   // Every excavation stage's key blocks (from `stages`, which a restart carries on).

@@ -19,7 +19,7 @@ namespace blockdem {
 struct RunResult {
   /// "completed", "collapsed" (physical: a mechanism formed), "diverged" (numerical blow-up),
   /// "not_converged" (no equilibrium and no mechanism within the step limit), "interrupted"
-  /// (RunControl::stop asked the run to stop).
+  /// (RunControl::poll asked the run to stop).
   std::string status = "completed";
   std::string message;
   /// 0 completed, or collapsed with a collapse search asked for (the search found it);
@@ -45,18 +45,33 @@ struct RunCallbacks {
   std::function<void(const std::string&)> stage_done;
 };
 
+/// What a run does after a step or between stages: stop, and write a timed checkpoint.
+struct RunPoll {
+  bool stop = false;        ///< stop here: checkpoint, outputs so far, status "interrupted"
+  bool checkpoint = false;  ///< write the timed checkpoint (--checkpoint-seconds) now
+};
+
 /// Checkpoints, restarts and stopping (docs/restart.md).
 struct RunControl {
   std::int64_t checkpoint_every = 0;  ///< world steps between checkpoints (0: none)
   double checkpoint_seconds = 0.0;    ///< wall time between checkpoints (s); 0: none
   /// Continue the run saved in this checkpoint (empty: a fresh run).
   std::filesystem::path restart;
+  /// The payload of `restart`, already read and checked (read_checkpoint_file) by one process
+  /// of an MPI run and sent to the others; empty: the runner reads `restart` itself.
+  std::string restart_payload;
   /// Identifies the scenario file and the options that change results; a checkpoint written
   /// under another hash is refused.
   std::uint64_t scenario_hash = 0;
-  /// Polled after every step of a stage and between stages: true stops the run there with a
-  /// checkpoint, the outputs so far and summary.json status "interrupted".
-  std::function<bool()> stop;
+  /// Polled after every step of a stage and between stages, with the world's step count and
+  /// whether this process's wall clock says a timed checkpoint is due. Its answer is what the
+  /// run does. Every process of an MPI run calls it at the same points, so that the caller can
+  /// make the answer the same on all of them (one reduction: every process stops after the same
+  /// step and takes the same checkpoints). Empty: never stop; the local clock decides.
+  std::function<RunPoll(std::int64_t steps, bool checkpoint_due)> poll;
+  /// False on the processes of an MPI run that do not write the outputs: they take every
+  /// checkpoint decision but write no checkpoint file.
+  bool write_checkpoint_files = true;
 };
 
 /// Builds the world, runs every stage, and writes history.csv, blocks.csv, contacts.csv (and

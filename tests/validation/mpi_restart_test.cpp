@@ -1,0 +1,281 @@
+// Stopping, restarting and failing under `mpirun -np K blockdem run`: a stop signal that reaches
+// one process stops every process after the same step (the processes agree after every step),
+// with the checkpoint and summary.json of a one-process run stopped there; that checkpoint, the
+// same bytes for any K, continues under 1, 2 or 3 processes to the outputs of the run that was
+// never stopped; a process killed outright leaves the last whole checkpoint and no summary.json.
+// The oracle is always the one-process run. Signals and kills come from the test hook
+// BLOCKDEM_TEST_KILL_RANK=R:STEP[:SIGNAL] (process R sends itself SIGNAL after step STEP), so
+// that every run stops at a known step. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/run/run_files.hpp"
+#include "unit/run/restart_support.hpp"
+
+namespace blockdem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+#ifdef BLOCKDEM_TEST_MPIEXEC
+constexpr const char* kMpiexec = BLOCKDEM_TEST_MPIEXEC;
+#else
+constexpr const char* kMpiexec = nullptr;
+#endif
+
+// The restart scenario (three blocks with slip history on a base; settle 400 steps, tilt 600,
+// then a steps stage of kLongSteps), with rows of time_history.csv and VTK frames inside stages.
+constexpr long long kLongSteps = 1500;
+// Where the stops and the kill fall: in the last stage (it starts after step 1000), between
+// the checkpoints every 500 steps in the kill test.
+constexpr int kStopStep = 1300;
+constexpr int kKillStep = 1250;
+
+/// `blockdem run SCENARIO --out OUT ARGS` on `ranks` processes (0: no launcher), with `env`
+/// (-x NAME=VALUE for mpirun, NAME=VALUE before the program without it). Returns the exit code
+/// (-1: no normal exit).
+int run(int ranks, const fs::path& scenario, const fs::path& out, const std::string& args,
+        const std::string& env_name = "", const std::string& env_value = "") {
+  std::ostringstream c;
+  if (ranks == 0) {
+    if (!env_name.empty()) c << env_name << "=" << env_value << " ";
+  } else {
+    c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 ";
+    if (!env_name.empty()) c << "-x " << env_name << "=" << env_value << " ";
+    c << "-np " << ranks << " ";
+  }
+  c << BLOCKDEM_CLI_PATH << " run '" << scenario.string() << "' --out '" << out.string()
+    << "' --quiet --no-figures --threads 1 " << args << " > /dev/null 2>&1";
+  const int status = std::system(c.str().c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Every output file of a run folder (checkpoints left out) -> its FNV-1a 64; summary.json
+/// without what describes the machine (wall time, threads, ranks and the per-process figures).
+std::map<std::string, std::string> outputs(const fs::path& dir) {
+  auto d = folder_digest(dir);
+  std::erase_if(d, [](const auto& kv) { return kv.first.find("checkpoint.bdck") == 0; });
+  auto j = nlohmann::json::parse(read_file_bytes(dir / "summary.json"));
+  for (const char* key : {"wall_time_s", "threads", "ranks", "distribution"}) j.erase(key);
+  d["summary.json"] = j.dump(2);
+  return d;
+}
+
+class MpiRestart : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+    scenario_ = write_restart_scenario("mpi_restart", 0, kLongSteps);
+    reference_ = fresh_dir("mpi_restart_reference");
+    ASSERT_EQ(run(0, scenario_, reference_, ""), 0);
+  }
+  void TearDown() override {
+    for (const auto& d : dirs_) fs::remove_all(d);
+    if (!reference_.empty()) fs::remove_all(reference_);
+    if (!scenario_.empty()) fs::remove(scenario_);
+  }
+  fs::path dir(const std::string& name) {
+    dirs_.push_back(fresh_dir("mpi_restart_" + name));
+    return dirs_.back();
+  }
+  fs::path scenario_, reference_;
+  std::vector<fs::path> dirs_;
+};
+
+// SIGTERM (2 processes) or SIGINT (3 processes) reaching process 1 alone after step 1300: every
+// process stops after that step and exits with 143 or 130 (mpirun passes the first non-zero
+// code on); process 0 writes summary.json "interrupted" with 300 steps of the last stage and a
+// checkpoint byte-identical to that of one process stopped after step 1300. Reference: the
+// one-process run stopped by the same hook. Tolerance: none (bytes).
+TEST_F(MpiRestart, SignalToOneRankStopsEveryRankAfterTheSameStep) {
+  const fs::path single = dir("single");
+  ASSERT_EQ(run(0, scenario_, single, "", "BLOCKDEM_TEST_KILL_RANK",
+                "0:" + std::to_string(kStopStep) + ":TERM"),
+            143);
+  const std::string checkpoint = read_file_bytes(single / "checkpoint.bdck");
+  for (const auto& [ranks, signal, code] :
+       {std::tuple{2, "TERM", 143}, std::tuple{3, "INT", 130}}) {
+    SCOPED_TRACE(std::to_string(ranks) + " ranks, SIG" + signal);
+    const fs::path out = dir("stopped" + std::to_string(ranks));
+    EXPECT_EQ(run(ranks, scenario_, out, "", "BLOCKDEM_TEST_KILL_RANK",
+                  "1:" + std::to_string(kStopStep) + ":" + signal),
+              code);
+    const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+    EXPECT_EQ(summary.at("status"), "interrupted");
+    EXPECT_EQ(summary.at("ranks").get<int>(), ranks);
+    EXPECT_EQ(summary.at("steps").get<int>(), kStopStep);
+    EXPECT_EQ(summary.at("stages").back().at("steps").get<int>(), kStopStep - 1000);
+    EXPECT_TRUE(read_file_bytes(out / "checkpoint.bdck") == checkpoint)
+        << "the checkpoint does not depend on the number of processes";
+  }
+}
+
+// The checkpoint of a 2-process run stopped after step 1300, continued with --resume under 1, 2
+// and 3 processes, and that of a 3-process run continued under 2: every output file and
+// summary.json byte-identical to the one-process run never stopped (summary.json but for wall
+// time, threads, ranks and the per-process figures). Tolerance: none.
+TEST_F(MpiRestart, CheckpointOfKRanksResumesOnOneTwoThreeRanksBitIdentically) {
+  for (int ranks_before : {2, 3}) {
+    const fs::path stopped = dir("before" + std::to_string(ranks_before));
+    ASSERT_EQ(run(ranks_before, scenario_, stopped, "", "BLOCKDEM_TEST_KILL_RANK",
+                  "1:" + std::to_string(kStopStep) + ":TERM"),
+              143);
+    for (int ranks_after : ranks_before == 2 ? std::vector<int>{0, 2, 3} : std::vector<int>{2}) {
+      SCOPED_TRACE(std::to_string(ranks_before) + " ranks, then " + std::to_string(ranks_after));
+      const fs::path out =
+          dir("after" + std::to_string(ranks_before) + std::to_string(ranks_after));
+      fs::copy(stopped, out, fs::copy_options::recursive);
+      ASSERT_EQ(run(ranks_after, scenario_, out, "--resume"), 0);
+      const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+      EXPECT_EQ(summary.at("ranks").get<int>(), ranks_after == 0 ? 1 : ranks_after);
+      EXPECT_EQ(outputs(out), outputs(reference_));
+    }
+  }
+}
+
+// Process 1 of 2 killed (SIGKILL) after step 1250 of a run with checkpoints every 500 steps, in
+// a folder that held a finished run: the launcher stops process 0 and exits non-zero; there is
+// no summary.json (nothing claims a finished run); checkpoint.bdck is the whole checkpoint of
+// step 1000, byte-identical to the one a single process killed there leaves, and a resume from
+// it on 2 processes ends with the outputs of the run never stopped. Tolerance: none.
+TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
+  const std::string every = "--checkpoint-every 500";
+  const std::string kill = "1:" + std::to_string(kKillStep);
+  const fs::path single = dir("killed_single");
+  EXPECT_NE(
+      run(0, scenario_, single, every, "BLOCKDEM_TEST_KILL_RANK", "0:" + std::to_string(kKillStep)),
+      0);  // killed
+  const fs::path out = dir("killed");
+  fs::copy(reference_, out, fs::copy_options::recursive);  // an earlier, finished run
+  EXPECT_NE(run(2, scenario_, out, every, "BLOCKDEM_TEST_KILL_RANK", kill), 0);
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  ASSERT_TRUE(fs::exists(out / "checkpoint.bdck"));
+  EXPECT_TRUE(read_file_bytes(out / "checkpoint.bdck") ==
+              read_file_bytes(single / "checkpoint.bdck"));
+  ASSERT_EQ(run(2, scenario_, out, "--resume"), 0);
+  EXPECT_EQ(outputs(out), outputs(reference_));
+}
+
+// Bad input: a checkpoint that is not one, given to --resume on 3 processes. Process 0 alone
+// reads it; every process stops with its one message, exit code 2, the folder untouched.
+TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
+  const fs::path out = dir("bad_checkpoint");
+  fs::create_directories(out);
+  const std::string garbage = "not a checkpoint\n";
+  write_file_atomically(out / "checkpoint.bdck", garbage);
+  const fs::path log = out.string() + ".log";
+  dirs_.push_back(log);
+  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 3 " +
+                          BLOCKDEM_CLI_PATH + " run " + scenario_.string() + " --out " +
+                          out.string() + " --quiet --resume 2> " + log.string();
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2);
+  const std::string err = read_file_bytes(log);
+  const std::string message = "checkpoint.bdck: not a blockdem checkpoint";
+  const auto at = err.find(message);
+  EXPECT_NE(at, std::string::npos) << err;
+  EXPECT_EQ(err.find(message, at + 1), std::string::npos) << "printed once: " << err;
+  EXPECT_EQ(list_run_folder(out), std::vector<std::string>{"checkpoint.bdck"});
+  EXPECT_EQ(read_file_bytes(out / "checkpoint.bdck"), garbage);
+}
+
+int count_lines(const fs::path& file) {
+  std::ifstream in(file);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+/// Runs the restart scenario with a last stage of `steps` steps on 2 processes and, once they
+/// are inside that stage, sends SIGTERM from outside to process 1 alone (its process id from a
+/// wrapper shell that execs the program) or to mpirun (which passes it on to both after
+/// `odls_base_sigkill_timeout`, here 3 s, and kills them as long after). Checks: the launcher's
+/// exit code, summary.json "interrupted" inside the stage, and, with `resume`, that a
+/// one-process --resume ends with the outputs of the run never stopped (the reference, on one
+/// process). Tolerance: none (bytes).
+void signal_from_outside(bool to_launcher, long long steps, int expected_code, bool resume) {
+  const std::string name = to_launcher ? "mpi_signal_launcher" : "mpi_signal_rank";
+  const fs::path scenario = write_restart_scenario(name, 0, steps);
+  const fs::path reference = fresh_dir(name + "_reference");
+  if (resume) {
+    ASSERT_EQ(run(0, scenario, reference, ""), 0);
+  }
+  const fs::path out = fresh_dir(name + "_out");
+  const fs::path pid_file = fresh_dir(name + "_pid");
+  // Unquoted: the paths have no spaces, and the command goes inside sh -c '...'.
+  const std::string args =
+      " run " + scenario.string() + " --out " + out.string() + " --quiet --no-figures --threads 1";
+  const std::string mpirun = std::string(kMpiexec) +
+                             " --oversubscribe --allow-run-as-root --mca odls_base_sigkill_timeout "
+                             "3 -x OMP_NUM_THREADS=1 ";
+  const std::string cmd = to_launcher ? "sh -c 'echo $$ > " + pid_file.string() + "; exec " +
+                                            mpirun + "-np 2 " + BLOCKDEM_CLI_PATH + args + "'"
+                                      : mpirun + "-np 1 " + BLOCKDEM_CLI_PATH + args +
+                                            " : -np 1 sh -c 'echo $$ > " + pid_file.string() +
+                                            "; exec " + BLOCKDEM_CLI_PATH + args + "'";
+  FILE* launcher = ::popen((cmd + " > /dev/null 2>&1; echo $?").c_str(), "r");
+  ASSERT_NE(launcher, nullptr);
+  // Into the last stage: its row count shows the two first stages are done.
+  const auto start = std::chrono::steady_clock::now();
+  while (count_lines(out / "history.csv") < 3 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::string pid;
+  std::ifstream(pid_file) >> pid;
+  ASSERT_FALSE(pid.empty());
+  ::kill(static_cast<pid_t>(std::stol(pid)), SIGTERM);
+  char line[32] = {};
+  const bool read = std::fgets(line, sizeof line, launcher) != nullptr;
+  ::pclose(launcher);
+  ASSERT_TRUE(read);
+  EXPECT_EQ(std::atoi(line), expected_code);
+  const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  const long long done = summary.at("stages").back().at("steps").get<long long>();
+  EXPECT_GT(done, 0) << "stopped inside the last stage";
+  EXPECT_LT(done, steps);
+  EXPECT_TRUE(fs::exists(out / "checkpoint.bdck"));
+  if (resume) {
+    ASSERT_EQ(run(0, scenario, out, "--resume"), 0);
+    EXPECT_EQ(outputs(out), outputs(reference));
+  }
+  for (const auto& d : {reference, out, pid_file}) fs::remove_all(d);
+  fs::remove(scenario);
+}
+
+// SIGTERM to process 1 alone: both stop after the same step; mpirun passes on the exit code 143.
+TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentically) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  // The stage (100,000 steps) outlasts the 0.2 s before the signal on an idle machine too.
+  signal_from_outside(false, 100000, 143, true);
+}
+
+// SIGTERM to mpirun (as Ctrl-C or a batch system would send it): Open MPI passes SIGTERM on to
+// every process after odls_base_sigkill_timeout and exits with 1 itself; the processes stop
+// and write their checkpoint and interrupted record within that time.
+TEST(MpiRestartSignal, SigtermToTheLauncherStopsAllWithAnInterruptedRecord) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  // A stage that outlasts the 3 s before the signal on any machine (no reference run: the
+  // resumes are checked above and in MpiRestart.*).
+  signal_from_outside(true, 100000000, 1, false);
+}
+
+}  // namespace
+}  // namespace blockdem::test
