@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh --target blockdem
 # The Python module too when it is configured, so that `cmake --install build` finds everything it
 # installs.
-if cmake --build build --target help | grep -qw blockdem_python; then
+# (grep reads the whole list: with -q it could stop early and fail the pipe under pipefail)
+if cmake --build build --target help | grep -w blockdem_python >/dev/null; then
   cmake --build build -j "$(nproc 2>/dev/null || echo 2)" --target blockdem_python
 fi
 out=results/boon2015
