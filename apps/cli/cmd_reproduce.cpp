@@ -57,20 +57,38 @@ int reproduce(const ReproduceOptions& opt) {
   const int jobs =
       opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   Progress progress(!opt.quiet);
-  run_boon2015_cases(
-      runs, out, jobs,
-      [&](const Boon2015CaseRun& r) {
-        if (opt.quiet) return;
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%-12s %-13s %8lld steps  %6.2f s", r.spec.id.c_str(),
-                      r.result.status.c_str(), static_cast<long long>(r.result.steps),
-                      r.result.wall_time);
-        progress.message(buf);
-        if (r.result.status != "completed") progress.message("  " + r.result.message);
-      },
-      [&](const std::string& id, const std::string& line) {
-        if (!opt.quiet) progress.update(id + ": " + line);
-      });
+  // A line as each case starts and ends (with the time since the start and the case's own), and
+  // the status line of the running stages (rewritten on a terminal, every few seconds otherwise).
+  const std::size_t total = runs.size();
+  std::size_t started = 0, finished = 0;
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  Boon2015Callbacks callbacks;
+  if (!opt.quiet) {
+    callbacks.case_started = [&](const Boon2015CaseRun& r) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "[%zu/%zu] %-12s started   at %8.1f s", ++started, total,
+                    r.spec.id.c_str(), elapsed());
+      progress.message(buf);
+    };
+    callbacks.case_done = [&](const Boon2015CaseRun& r) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "[%zu/%zu] %-12s finished  at %8.1f s: %s, %lld steps in %.2f s", ++finished,
+                    total, r.spec.id.c_str(), elapsed(), r.result.status.c_str(),
+                    static_cast<long long>(r.result.steps), r.result.wall_time);
+      progress.message(buf);
+      if (r.result.status != "completed") progress.message("  " + r.result.message);
+    };
+    callbacks.stage_done = [&](const std::string& id, const std::string& line) {
+      progress.update(id + ": " + line);
+    };
+    callbacks.progress = [&](const std::string& id, const std::string& line) {
+      progress.update(id + ": " + line);
+    };
+  }
+  run_boon2015_cases(runs, out, jobs, callbacks);
   for (const auto& r : runs) {
     if (r.result.status == "failed") {
       std::cerr << "blockdem: error: case " << r.spec.id << ": " << r.result.message << "\n";

@@ -247,14 +247,14 @@ void bind_studies(py::module_& m) {
         const auto wall0 = std::chrono::steady_clock::now();
         {
           py::gil_scoped_release free;
-          run_boon2015_cases(runs, out, threads,
-                             [&](const Boon2015CaseRun& r) {
-                               if (!progress) return;
-                               py::gil_scoped_acquire hold;
-                               progress(r.spec.id + ": " + r.result.status + " after " +
-                                        std::to_string(r.result.steps) + " steps");
-                             },
-                             {});
+          Boon2015Callbacks callbacks;
+          callbacks.case_done = [&](const Boon2015CaseRun& r) {
+            if (!progress) return;
+            py::gil_scoped_acquire hold;
+            progress(r.spec.id + ": " + r.result.status + " after " +
+                     std::to_string(r.result.steps) + " steps");
+          };
+          run_boon2015_cases(runs, out, threads, callbacks);
           const double wall =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
           write_boon2015_report(out, runs, {}, "figures are drawn by `blockdem reproduce`", wall);

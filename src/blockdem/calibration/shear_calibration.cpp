@@ -120,6 +120,15 @@ PeakCurveFit fit_curve(const DirectShearData& data, const DirectShearCurve& curv
   fit.peak_displacement = std::exp(result.parameters(1));
   fit.peak_shear_stress = 0.5 * fit.initial_stiffness * fit.peak_displacement;
   fit.iterations = result.iterations;
+  // No softening first: with u_peak far beyond the data its column of J vanishes, and the
+  // intervals below would only say that J is rank deficient.
+  if (fit.peak_displacement > kMaximumPeakExtrapolation * u.back()) {
+    throw CalibrationError(curve_name(data, curve) + " shows no softening up to row " +
+                           std::to_string(curve.lines[last_row]) +
+                           ": the fitted u_peak = " + format_value(fit.peak_displacement) +
+                           " m is more than " + format_value(kMaximumPeakExtrapolation) +
+                           " times the largest displacement, so eq 5 cannot determine it");
+  }
   if (m > 2) {
     ParameterUncertainty un;
     try {
@@ -133,13 +142,6 @@ PeakCurveFit fit_curve(const DirectShearData& data, const DirectShearCurve& curv
     fit.initial_stiffness_upper95 = std::exp(un.upper95(0));
     fit.peak_displacement_lower95 = std::exp(un.lower95(1));
     fit.peak_displacement_upper95 = std::exp(un.upper95(1));
-  }
-  if (fit.peak_displacement > kMaximumPeakExtrapolation * u.back()) {
-    throw CalibrationError(curve_name(data, curve) + " shows no softening up to row " +
-                           std::to_string(curve.lines[last_row]) +
-                           ": the fitted u_peak = " + format_value(fit.peak_displacement) +
-                           " m is more than " + format_value(kMaximumPeakExtrapolation) +
-                           " times the largest displacement, so eq 5 cannot determine it");
   }
   fit.peak_within_data = fit.peak_displacement <= u.back();
   std::vector<double> model_used;

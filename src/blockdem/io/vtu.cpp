@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -55,17 +56,22 @@ void write_arrays(std::ostream& out, const std::vector<Array>& arrays, std::uint
   }
 }
 
-// Writes the grid: point data, cell data, points, cells (connectivity, offsets, types and, for
-// polyhedra, faces and faceoffsets), then the appended bytes. Built in memory and written
-// atomically: a reader never sees half a file.
-void write_grid(const std::filesystem::path& path, std::size_t points, std::size_t cells,
-                const std::vector<Array>& point_data, const std::vector<Array>& cell_data,
-                const Array& coordinates, const std::vector<Array>& topology) {
+// Writes the grid: its model time as the field TimeValue (the name ParaView reads a frame's time
+// from when a .vtu is opened alone), point data, cell data, points, cells (connectivity, offsets,
+// types and, for polyhedra, faces and faceoffsets), then the appended bytes. Built in memory and
+// written atomically: a reader never sees half a file.
+void write_grid(const std::filesystem::path& path, double time, std::size_t points,
+                std::size_t cells, const std::vector<Array>& point_data,
+                const std::vector<Array>& cell_data, const Array& coordinates,
+                const std::vector<Array>& topology) {
   std::ostringstream out(std::ios::binary);
   const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
-      << order << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
-      << points << "\" NumberOfCells=\"" << cells << "\">\n";
+      << order << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n"
+      << "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
+      << "format=\"ascii\">" << std::setprecision(17) << time << "</DataArray>\n"
+      << "    </FieldData>\n    <Piece NumberOfPoints=\"" << points << "\" NumberOfCells=\""
+      << cells << "\">\n";
   std::uint64_t offset = 0;
   out << "      <PointData>\n";
   write_arrays(out, point_data, offset);
@@ -142,7 +148,7 @@ void write_vtu_blocks(const std::filesystem::path& path, const World& world, int
     rotation.push_back(angle * turn.axis());
     spin.push_back(s.angular_velocity);
   }
-  write_grid(path, coordinates.size(), world.blocks().size(), {},
+  write_grid(path, world.level_time(), coordinates.size(), world.blocks().size(), {},
              {array("block_id", "Int32", 1, ids), strings("name", names), strings("group", groups),
               array("stage", "Int32", 1, stages), vectors("displacement", displacement),
               vectors("velocity", velocity), vectors("rotation", rotation),
@@ -177,7 +183,7 @@ void write_vtu_contacts(const std::filesystem::path& path, const World& world) {
     status.push_back(static_cast<std::int32_t>(contact_status(*c)));
   }
   write_grid(
-      path, points.size(), points.size(),
+      path, world.level_time(), points.size(), points.size(),
       {array("block_a", "Int32", 1, a), array("block_b", "Int32", 1, b), vectors("normal", normal),
        array("normal_force", "Float64", 1, force), vectors("shear_force", shear),
        array("normal_stress", "Float64", 1, stress), array("closure", "Float64", 1, closure),

@@ -18,12 +18,13 @@ ContactStatus contact_status(const Contact& contact);
 
 /// Writes every block as a VTK polyhedron cell at the world's level state (World::level_state)
 /// with cell data block_id, name, group, stage, displacement (m), velocity (m/s), rotation (the
-/// rotation vector since the start, rad) and angular_velocity (rad/s).
+/// rotation vector since the start, rad) and angular_velocity (rad/s), and the field TimeValue,
+/// the model time of that level (World::level_time, s).
 void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage);
 
 /// Writes every contact as a vertex at its force point with point data block_a, block_b, normal,
 /// normal_force (N), shear_force (N, vector on block b), normal_stress (Pa), closure (m), area (m²)
-/// and status (ContactStatus).
+/// and status (ContactStatus), and the field TimeValue (World::level_time, s).
 void write_vtu_contacts(const std::filesystem::path& path, const World& world);
 
 /// A .pvd collection: one DataSet per frame with its model time. Rewritten whole after each

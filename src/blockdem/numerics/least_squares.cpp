@@ -1,8 +1,9 @@
-// Linear least squares by column-pivoted QR and a Levenberg-Marquardt solver (see the header for
-// the method and its sources).
+// Linear least squares by column-pivoted QR, and Levenberg-Marquardt through Eigen's MINPACK port
+// (see the header for the method and its sources).
 #include "blockdem/numerics/least_squares.hpp"
 
 #include <Eigen/QR>
+#include <unsupported/Eigen/NonLinearOptimization>
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +12,6 @@
 
 namespace blockdem {
 namespace {
-
-// Half the squared norm: the cost Levenberg-Marquardt minimises.
-double half_squared_norm(const Eigen::VectorXd& r) {
-  return 0.5 * r.squaredNorm();
-}
 
 double rms(const Eigen::VectorXd& r) {
   return r.size() == 0 ? 0.0 : std::sqrt(r.squaredNorm() / static_cast<double>(r.size()));
@@ -66,8 +62,8 @@ LinearLeastSquaresSolution solve_linear_least_squares(const Eigen::MatrixXd& des
 }
 
 void LevenbergMarquardtOptions::validate() const {
-  if (max_iterations < 1) {
-    throw std::invalid_argument("LevenbergMarquardtOptions.max_iterations must be >= 1");
+  if (max_evaluations < 2) {
+    throw std::invalid_argument("LevenbergMarquardtOptions.max_evaluations must be >= 2");
   }
   if (!(gradient_tolerance >= 0.0)) {
     throw std::invalid_argument("LevenbergMarquardtOptions.gradient_tolerance must be >= 0");
@@ -78,9 +74,9 @@ void LevenbergMarquardtOptions::validate() const {
   if (!(cost_tolerance >= 0.0)) {
     throw std::invalid_argument("LevenbergMarquardtOptions.cost_tolerance must be >= 0");
   }
-  if (!(initial_damping_factor > 0.0 && std::isfinite(initial_damping_factor))) {
+  if (!(initial_step_bound > 0.0 && std::isfinite(initial_step_bound))) {
     throw std::invalid_argument(
-        "LevenbergMarquardtOptions.initial_damping_factor must be positive and finite");
+        "LevenbergMarquardtOptions.initial_step_bound must be positive and finite");
   }
 }
 
@@ -92,13 +88,64 @@ std::string to_string(LevenbergMarquardtTermination termination) {
       return "step_small";
     case LevenbergMarquardtTermination::cost_stalled:
       return "cost_stalled";
-    case LevenbergMarquardtTermination::max_iterations:
-      return "max_iterations";
+    case LevenbergMarquardtTermination::machine_precision:
+      return "machine_precision";
+    case LevenbergMarquardtTermination::max_evaluations:
+      return "max_evaluations";
     case LevenbergMarquardtTermination::non_finite:
       return "non_finite";
   }
   throw std::logic_error("unknown LevenbergMarquardtTermination value");
 }
+
+namespace {
+
+// A LeastSquaresModel in the functor form Eigen's LevenbergMarquardt calls. A Jacobian that is
+// not finite stops the run (a negative return is MINPACK's "user asked"); a trial point whose
+// residuals are not finite needs nothing: its actual reduction compares false and the step is
+// rejected, shrinking the trust region.
+struct EigenFunctor {
+  const LeastSquaresModel* model = nullptr;
+  Eigen::Index m = 0;
+  bool jacobian_not_finite = false;
+  Eigen::Index values() const { return m; }
+  int operator()(const Eigen::VectorXd& p, Eigen::VectorXd& r) const {
+    r = model->residuals(p);
+    return r.size() == m ? 0 : -1;
+  }
+  int df(const Eigen::VectorXd& p, Eigen::MatrixXd& jac) {
+    jac = model->jacobian(p);
+    jacobian_not_finite = !jac.allFinite();
+    return jacobian_not_finite ? -1 : 0;
+  }
+};
+
+LevenbergMarquardtTermination termination_of(Eigen::LevenbergMarquardtSpace::Status status) {
+  using Status = Eigen::LevenbergMarquardtSpace::Status;
+  switch (status) {
+    case Status::CosinusTooSmall:
+      return LevenbergMarquardtTermination::gradient_small;
+    case Status::RelativeErrorTooSmall:
+    case Status::RelativeErrorAndReductionTooSmall:
+      return LevenbergMarquardtTermination::step_small;
+    case Status::RelativeReductionTooSmall:
+      return LevenbergMarquardtTermination::cost_stalled;
+    case Status::FtolTooSmall:
+    case Status::XtolTooSmall:
+    case Status::GtolTooSmall:
+      return LevenbergMarquardtTermination::machine_precision;
+    case Status::TooManyFunctionEvaluation:
+      return LevenbergMarquardtTermination::max_evaluations;
+    case Status::UserAsked:
+      return LevenbergMarquardtTermination::non_finite;
+    default:
+      break;
+  }
+  throw std::logic_error("levenberg_marquardt: Eigen returned status " +
+                         std::to_string(static_cast<int>(status)));
+}
+
+}  // namespace
 
 LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
                                              const Eigen::VectorXd& initial_parameters,
@@ -113,13 +160,14 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
   LevenbergMarquardtResult result;
   result.parameters = initial_parameters;
   result.residuals = model.residuals(result.parameters);
+  result.evaluations = 1;
   const Eigen::Index m = result.residuals.size();
   if (m < k) {
     std::ostringstream msg;
     msg << "levenberg_marquardt: " << m << " residuals cannot determine " << k << " parameters";
     throw std::invalid_argument(msg.str());
   }
-  Eigen::MatrixXd jac = model.jacobian(result.parameters);
+  const Eigen::MatrixXd jac = model.jacobian(result.parameters);
   if (jac.rows() != m || jac.cols() != k) {
     std::ostringstream msg;
     msg << "levenberg_marquardt: jacobian is " << jac.rows() << " x " << jac.cols() << ", expected "
@@ -131,85 +179,27 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
     result.termination = LevenbergMarquardtTermination::non_finite;
     return result;
   }
-
-  double cost = half_squared_norm(result.residuals);
-  // Marquardt scaling: D_jj = ||J_j||^2, never allowed to shrink (MINPACK); 1 for a null column.
-  Eigen::VectorXd scaling = jac.colwise().squaredNorm().transpose();
-  for (Eigen::Index j = 0; j < k; ++j) {
-    if (scaling(j) == 0.0) scaling(j) = 1.0;
+  // An exact fit at the start: nothing to do (MINPACK would divide by ||r|| = 0).
+  if (result.residuals.squaredNorm() == 0.0) {
+    result.termination = LevenbergMarquardtTermination::gradient_small;
+    return result;
   }
-  double mu = options.initial_damping_factor;
-  double nu = 2.0;
 
-  for (int iter = 0; iter < options.max_iterations; ++iter) {
-    result.iterations = iter + 1;
-    // First-order optimality: the residual is orthogonal to every column of J (MINPACK's gtol).
-    const double r_norm = result.residuals.norm();
-    if (r_norm == 0.0) {
-      result.termination = LevenbergMarquardtTermination::gradient_small;
-      break;
-    }
-    const Eigen::VectorXd gradient = jac.transpose() * result.residuals;
-    double max_cosine = 0.0;
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const double col_norm = jac.col(j).norm();
-      if (col_norm > 0.0) {
-        max_cosine = std::max(max_cosine, std::abs(gradient(j)) / (col_norm * r_norm));
-      }
-    }
-    if (max_cosine <= options.gradient_tolerance) {
-      result.termination = LevenbergMarquardtTermination::gradient_small;
-      break;
-    }
-
-    // Damped step from the augmented system [J; sqrt(mu D)] dp = [-r; 0], solved by QR.
-    Eigen::MatrixXd augmented(m + k, k);
-    augmented.topRows(m) = jac;
-    augmented.bottomRows(k) = (mu * scaling).cwiseSqrt().asDiagonal();
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m + k);
-    rhs.head(m) = -result.residuals;
-    const Eigen::VectorXd step = augmented.colPivHouseholderQr().solve(rhs);
-
-    // Negligible step: nothing left to gain at this damping.
-    if (step.norm() <=
-        options.step_tolerance * (result.parameters.norm() + options.step_tolerance)) {
-      result.termination = LevenbergMarquardtTermination::step_small;
-      break;
-    }
-
-    const Eigen::VectorXd trial = result.parameters + step;
-    const Eigen::VectorXd trial_residuals = model.residuals(trial);
-    const double trial_cost =
-        trial_residuals.allFinite() ? half_squared_norm(trial_residuals) : HUGE_VAL;
-    // Gain ratio: actual over predicted decrease of the cost (linear model of r).
-    const double predicted = cost - half_squared_norm(result.residuals + jac * step);
-    const double actual = cost - trial_cost;
-    const double gain = predicted > 0.0 ? actual / predicted : -1.0;
-
-    if (actual > 0.0 && gain > 0.0) {
-      // Accepted: move, relinearise, relax the damping (Nielsen 1999).
-      result.parameters = trial;
-      result.residuals = trial_residuals;
-      jac = model.jacobian(result.parameters);
-      if (!jac.allFinite()) {
-        result.termination = LevenbergMarquardtTermination::non_finite;
-        break;
-      }
-      scaling = scaling.cwiseMax(jac.colwise().squaredNorm().transpose());
-      const double old_cost = cost;
-      cost = trial_cost;
-      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * gain - 1.0, 3));
-      nu = 2.0;
-      if (old_cost - cost <= options.cost_tolerance * old_cost) {
-        result.termination = LevenbergMarquardtTermination::cost_stalled;
-        break;
-      }
-    } else {
-      // Rejected: stiffen the damping, growing the factor each time.
-      mu *= nu;
-      nu *= 2.0;
-    }
-  }
+  EigenFunctor functor{&model, m};
+  Eigen::LevenbergMarquardt<EigenFunctor> lm(functor);
+  lm.parameters.maxfev = options.max_evaluations;
+  lm.parameters.gtol = options.gradient_tolerance;
+  lm.parameters.xtol = options.step_tolerance;
+  lm.parameters.ftol = options.cost_tolerance;
+  lm.parameters.factor = options.initial_step_bound;
+  Eigen::VectorXd p = initial_parameters;
+  const auto status = lm.minimize(p);
+  result.termination = termination_of(status);
+  // Eigen's `iter` starts at 1 and counts accepted steps; fvec holds r at the returned p.
+  result.iterations = static_cast<int>(lm.iter - 1);
+  result.evaluations = static_cast<int>(lm.nfev);
+  result.parameters = p;
+  result.residuals = lm.fvec;
   result.rms_residual = rms(result.residuals);
   return result;
 }

@@ -1,5 +1,5 @@
-// Least-squares solvers for curve fits: linear least squares by column-pivoted QR, and a small
-// Levenberg-Marquardt solver for nonlinear models given residual and Jacobian functions.
+// Least-squares solvers for curve fits: linear least squares by column-pivoted QR, and
+// Levenberg-Marquardt (Eigen's MINPACK port) for nonlinear models given residual and Jacobian.
 // Used by the line-of-thrust fits and by the joint-law calibration (exponential, power-law fits).
 #pragma once
 
@@ -32,13 +32,16 @@ struct LeastSquaresModel {
   std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> jacobian;   ///< dr/dp, size m x k
 };
 
-/// Options of the Levenberg-Marquardt solver. Defaults suit well-scaled fits of a few parameters.
+/// Options of the Levenberg-Marquardt solver, MINPACK's (More, Garbow & Hillstrom 1980, lmder)
+/// under readable names. Defaults suit well-scaled fits of a few parameters: the tolerances sit a
+/// few orders above round-off, so a fit stops on them rather than on the machine-precision limit.
 struct LevenbergMarquardtOptions {
-  int max_iterations = 500;           ///< accepted plus rejected steps (-)
-  double gradient_tolerance = 1e-12;  ///< stop when max_j |cos(angle(r, J_j))| <= this (-)
-  double step_tolerance = 1e-14;      ///< stop when ||dp|| <= this * (||p|| + this) (-)
-  double cost_tolerance = 1e-15;      ///< stop when an accepted step lowers cost by < this (rel.)
-  double initial_damping_factor = 1e-3;  ///< mu0, multiplies the scaling D (-)
+  int max_evaluations = 1000;         ///< residual evaluations, the start included (maxfev) (-)
+  double gradient_tolerance = 1e-12;  ///< stop when max_j |cos(angle(r, J_j))| <= this (gtol) (-)
+  double step_tolerance = 1e-12;      ///< stop when the trust region <= this * ||D p|| (xtol) (-)
+  double cost_tolerance = 1e-14;      ///< stop when actual and predicted relative decrease of
+                                      ///< ||r||^2 are both <= this (ftol) (-)
+  double initial_step_bound = 100.0;  ///< first trust region = this * ||D p0|| (factor) (-)
 
   /// Throws std::invalid_argument naming the first option out of range.
   void validate() const;
@@ -46,11 +49,13 @@ struct LevenbergMarquardtOptions {
 
 /// How the Levenberg-Marquardt solver stopped.
 enum class LevenbergMarquardtTermination {
-  gradient_small,  ///< first-order optimality reached
-  step_small,      ///< the parameter update became negligible
-  cost_stalled,    ///< accepted steps no longer lower the cost
-  max_iterations,  ///< iteration limit hit: NOT converged
-  non_finite,      ///< the model returned NaN/Inf at the start: NOT converged
+  gradient_small,     ///< first-order optimality reached (gtol)
+  step_small,         ///< the trust region shrank below step_tolerance (xtol, or xtol and ftol)
+  cost_stalled,       ///< the cost no longer decreases by more than cost_tolerance (ftol)
+  machine_precision,  ///< a tolerance below round-off: no further progress is possible at the
+                      ///< optimum found (MINPACK info 6-8); converged to working precision
+  max_evaluations,    ///< evaluation limit hit: NOT converged
+  non_finite,         ///< the model returned NaN/Inf at the start or a Jacobian: NOT converged
 };
 
 /// Text name of a termination reason, e.g. "gradient_small".
@@ -61,24 +66,23 @@ struct LevenbergMarquardtResult {
   Eigen::VectorXd parameters;  ///< best parameters found (model units)
   Eigen::VectorXd residuals;   ///< r at the best parameters (residual units)
   double rms_residual = 0.0;   ///< sqrt(||r||^2 / m) (residual units)
-  int iterations = 0;          ///< steps tried, accepted or rejected (-)
-  LevenbergMarquardtTermination termination = LevenbergMarquardtTermination::max_iterations;
-  /// True unless the iteration limit was hit or the model was not finite.
+  int iterations = 0;          ///< accepted steps (-)
+  int evaluations = 0;         ///< residual evaluations, the start included (-)
+  LevenbergMarquardtTermination termination = LevenbergMarquardtTermination::max_evaluations;
+  /// True unless the evaluation limit was hit or the model was not finite.
   bool converged() const {
-    return termination != LevenbergMarquardtTermination::max_iterations &&
+    return termination != LevenbergMarquardtTermination::max_evaluations &&
            termination != LevenbergMarquardtTermination::non_finite;
   }
 };
 
 /// Minimises 0.5 ||r(p)||^2 from `initial_parameters` by Levenberg-Marquardt (Levenberg 1944,
-/// Marquardt 1963) with Marquardt's diagonal scaling D = diag(J^T J), kept non-decreasing over
-/// the run as in MINPACK (More 1978), and the gain-ratio damping update of Nielsen (1999) as
-/// presented in Madsen, Nielsen & Tingleff, "Methods for non-linear least squares problems"
-/// (IMM, DTU, 2004), section 3.2. Each step solves the damped problem
-///   min || [J; sqrt(mu D)] dp + [r; 0] ||
-/// by QR rather than forming (J^T J + mu D) dp = -J^T r. A step is accepted when it lowers the
-/// cost. Throws std::invalid_argument if the model is incomplete, the sizes disagree, or there
-/// are fewer residuals than parameters. Does not throw on non-convergence: check `converged()`.
+/// Marquardt 1963) in More's trust-region form (More 1978, "The Levenberg-Marquardt algorithm:
+/// implementation and theory"), as implemented by MINPACK's lmder and ported to C++ in Eigen's
+/// unsupported NonLinearOptimization module: scaling D by the column norms of J, kept
+/// non-decreasing; each step from a QR of J. Throws std::invalid_argument if the model is
+/// incomplete, the sizes disagree, or there are fewer residuals than parameters. Does not throw on
+/// non-convergence: check `converged()`.
 LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresModel& model,
                                              const Eigen::VectorXd& initial_parameters,
                                              const LevenbergMarquardtOptions& options = {});

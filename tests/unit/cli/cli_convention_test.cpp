@@ -43,6 +43,11 @@ TEST_P(CliConvention, InputErrorsExitTwoWithABlockdemMessageAndWriteNothing) {
 }
 
 const std::string kScenario = std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/examples/column.toml";
+const std::string kRockMass = std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/examples/tunnel.toml";
+const std::string kNormalData =
+    std::string(BLOCKDEM_SOURCE_DIR) + "/data/synthetic/column_compression_eq4.csv";
+const std::string kShearData =
+    std::string(BLOCKDEM_SOURCE_DIR) + "/data/synthetic/direct_shear_eq5.csv";
 
 INSTANTIATE_TEST_SUITE_P(
     EverySubcommand, CliConvention,
@@ -67,7 +72,35 @@ INSTANTIATE_TEST_SUITE_P(
                    "calibrate normal --data /no/such/file.csv --modulus 5.6e9 --height 0.138 "
                    "--joints 3 --out OUT"},
         BadCommand{"calibrate_bad_option", "calibrate normal --no-such-option --out OUT"},
-        BadCommand{"no_subcommand_bad_option", "--no-such-option"}),
+        BadCommand{"no_subcommand_bad_option", "--no-such-option"},
+        // Every subcommand: a missing file (where it reads one), an unknown option and a value
+        // that is not a number.
+        BadCommand{"run_bad_value", "run '" + kScenario + "' --out OUT --threads two"},
+        BadCommand{"generate_missing_file", "generate /no/such/file.toml --out OUT"},
+        BadCommand{"generate_bad_option",
+                   "generate '" + kRockMass + "' --out OUT --no-such-option"},
+        BadCommand{"generate_bad_value", "generate '" + kScenario + "' --out OUT"},
+        BadCommand{"reproduce_bad_number", "reproduce boon2015 --jobs two --out OUT"},
+        BadCommand{"analytic_bad_number",
+                   "analytic voussoir --span long --depth 0.046 --density 1207 --gravity 9.81 "
+                   "--modulus 4.6e8"},
+        BadCommand{"lab_shear_bad_option", "lab shear --no-such-option --out OUT"},
+        BadCommand{"lab_shear_bad_value",
+                   "lab shear --shear 'law=linear,stiffness=1e9,friction_deg=40' "
+                   "--normal-stress 1e6 --max-shear-displacement 1e-3 --steps many --out OUT"},
+        BadCommand{"lab_figures_bad_option", "lab figures --no-such-option --out OUT"},
+        BadCommand{"calibrate_bad_value",
+                   "calibrate normal --data '" + kNormalData +
+                       "' --modulus stiff --height 0.138 --joints 3 --out OUT"},
+        BadCommand{"calibrate_shear_missing_file", "calibrate shear --data /no/such.csv --out OUT"},
+        BadCommand{"calibrate_shear_bad_option",
+                   "calibrate shear --data '" + kShearData + "' --no-such-option --out OUT"},
+        BadCommand{"calibrate_cy_missing_file",
+                   "calibrate cy --data /no/such.csv --stiffness-coefficient 1.9e6 "
+                   "--stiffness-exponent 0.7 --out OUT"},
+        BadCommand{"calibrate_cy_bad_value",
+                   "calibrate cy --data '" + kShearData +
+                       "' --stiffness-coefficient 1.9e6 --stiffness-exponent half --out OUT"}),
     [](const ::testing::TestParamInfo<BadCommand>& p) { return std::string(p.param.name); });
 
 TEST(CliConvention, HelpAndVersionExitZero) {

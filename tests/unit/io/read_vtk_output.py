@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Reads a run's vtk/ folder with VTK's own XML readers and checks it (used by vtu_output_test).
 
-Usage: read_vtk_output.py OUT_DIR BLOCK_COUNT WEIGHT_N
+Usage: read_vtk_output.py OUT_DIR BLOCK_COUNT WEIGHT_N VTK_INTERVAL
 Checks: every frame of blocks.pvd and contacts.pvd opens with vtkXMLUnstructuredGridReader;
-model times increase; each block is one polyhedron cell whose volume (vtkCellSizeFilter) is the
+model times increase, frames within the stage are VTK_INTERVAL steps apart (the time step from
+time_history.csv), the last frame is at the stage end of time_history.csv's last row, and each
+frame's TimeValue field is its .pvd time; each block is one polyhedron cell whose volume (vtkCellSizeFilter) is the
 block's volume from blocks.csv's size (boxes: the product of the sizes, given via VOLUMES); the
 fields have their components; in the last frame the contact normal forces carry WEIGHT_N
 (statics, 1e-4), statuses are 0..3 and displacements equal blocks.csv's last rows.
-Exit 0 when all holds, 1 with a message otherwise, 77 when vtk cannot be imported.
+Exit 0 when all holds, 1 with a message otherwise (python3-vtk9 missing included: the test
+fails rather than skips; scripts/install-deps.sh installs it).
 """
 import csv
 import os
@@ -18,8 +21,9 @@ try:
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
 except ImportError:
-    print("python3-vtk9 is not installed")
-    sys.exit(77)
+    print("FAIL: VTK's Python module cannot be imported by %s: install python3-vtk9 "
+          "(scripts/install-deps.sh)" % sys.executable)
+    sys.exit(1)
 
 
 def fail(msg):
@@ -47,6 +51,33 @@ def read(path):
     return r.GetOutput()
 
 
+def time_value(grid, path):
+    a = grid.GetFieldData().GetArray("TimeValue")
+    if a is None or a.GetNumberOfTuples() != 1:
+        fail(path + ": no TimeValue field")
+    return a.GetValue(0)
+
+
+def check_times(out, pvd_frames, interval):
+    """The frames' model times against time_history.csv (an independent writer of the same run)."""
+    with open(os.path.join(out, "time_history.csv")) as fh:
+        rows = list(csv.DictReader(fh))
+    dts = {float(r["time_step_s"]) for r in rows}
+    if len(dts) != 1:
+        fail("the check assumes a constant time step, time_history.csv has %s" % sorted(dts))
+    dt = dts.pop()
+    times = [t for t, _ in pvd_frames]
+    # Frames every `interval` steps: consecutive times differ by interval * dt (round-off of the
+    # summed time, 1e-9 relative).
+    for a, b in zip(times[:-2], times[1:-1]):
+        if abs((b - a) - interval * dt) > 1e-9 * interval * dt:
+            fail("frames %.17g and %.17g are not %d steps of %.17g s apart" % (a, b, interval, dt))
+    # The last frame is the stage end, the instant of time_history.csv's last row (12 digits).
+    end = float(rows[-1]["time_s"])
+    if abs(times[-1] - end) > 1e-11 * end:
+        fail("last frame at %.17g s, the stage ends at %.17g s" % (times[-1], end))
+
+
 def array(data, name, comps):
     a = data.GetArray(name)
     if a is None:
@@ -58,12 +89,20 @@ def array(data, name, comps):
 
 def main():
     out, nblocks, weight = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+    interval = int(sys.argv[4])
     volumes = [float(v) for v in os.environ["VOLUMES"].split(",")]
     vtkdir = os.path.join(out, "vtk")
     block_frames = frames(os.path.join(vtkdir, "blocks.pvd"))
     contact_frames = frames(os.path.join(vtkdir, "contacts.pvd"))
     if [t for t, _ in block_frames] != [t for t, _ in contact_frames]:
         fail("blocks.pvd and contacts.pvd list different times")
+    if len(block_frames) < 3:
+        fail("expected frames every %d steps and at the stage end, found %d"
+             % (interval, len(block_frames)))
+    check_times(out, block_frames, interval)
+    for t, f in block_frames + contact_frames:
+        if time_value(read(os.path.join(vtkdir, f)), f) != t:
+            fail("%s: TimeValue differs from its .pvd time %.17g" % (f, t))
     for _, f in block_frames:
         g = read(os.path.join(vtkdir, f))
         if g.GetNumberOfCells() != nblocks:
@@ -120,7 +159,8 @@ def main():
         for k, axis in enumerate("xyz"):
             if abs(1e3 * disp[i][k] - float(r["u%s_mm" % axis])) > 1e-9 + 1e-9 * abs(disp[i][k]):
                 fail("block %d displacement %s differs from blocks.csv" % (i, axis))
-    print("OK: %d frames" % len(block_frames))
+    print("OK: %d frames, %.6g s to %.6g s" % (len(block_frames), block_frames[0][0],
+                                               block_frames[-1][0]))
 
 
 main()

@@ -105,11 +105,11 @@ TEST(LevenbergMarquardt, ReportsIterationLimitAndNonFiniteStart) {
   const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(8, 0.0, 6e-5);
   const Eigen::VectorXd sigma = (5e4 * ((7e4 * u.array()).exp() - 1.0)).matrix();
   LevenbergMarquardtOptions options;
-  options.max_iterations = 1;
+  options.max_evaluations = 2;
   const LevenbergMarquardtResult limited =
       levenberg_marquardt(exponential_law_model(u, sigma), Eigen::Vector2d(1e4, 1e4), options);
   EXPECT_FALSE(limited.converged());
-  EXPECT_EQ(limited.termination, LevenbergMarquardtTermination::max_iterations);
+  EXPECT_EQ(limited.termination, LevenbergMarquardtTermination::max_evaluations);
 
   const LevenbergMarquardtResult nan_start =
       levenberg_marquardt(exponential_law_model(u, sigma), Eigen::Vector2d(std::nan(""), 1e4));
@@ -118,7 +118,7 @@ TEST(LevenbergMarquardt, ReportsIterationLimitAndNonFiniteStart) {
 
   LeastSquaresModel incomplete;
   EXPECT_THROW(levenberg_marquardt(incomplete, Eigen::Vector2d(1, 1)), std::invalid_argument);
-  options.max_iterations = 0;
+  options.max_evaluations = 1;
   EXPECT_THROW(levenberg_marquardt(exponential_law_model(u, sigma), Eigen::Vector2d(1, 1), options),
                std::invalid_argument);
 }

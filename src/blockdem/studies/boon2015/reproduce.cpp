@@ -58,10 +58,8 @@ std::vector<Boon2015CaseRun> select_boon2015_cases(const Boon2015Selection& sel)
   return runs;
 }
 
-void run_boon2015_cases(
-    std::vector<Boon2015CaseRun>& runs, const std::filesystem::path& out, int jobs,
-    const std::function<void(const Boon2015CaseRun&)>& case_done,
-    const std::function<void(const std::string&, const std::string&)>& stage_done) {
+void run_boon2015_cases(std::vector<Boon2015CaseRun>& runs, const std::filesystem::path& out,
+                        int jobs, const Boon2015Callbacks& callbacks) {
   std::filesystem::create_directories(out);
   // Cores (OMP_NUM_THREADS, else every core) are shared: cases run side by side, and each case
   // gets the cores left over (one thread each when there are at least as many cases as cores).
@@ -75,11 +73,21 @@ void run_boon2015_cases(
   auto worker = [&] {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
       auto& r = runs[i];
+      {
+        std::lock_guard<std::mutex> lock(io);
+        if (callbacks.case_started) callbacks.case_started(r);
+      }
       RunCallbacks cb;
       cb.stage_done = [&](const std::string& line) {
         std::lock_guard<std::mutex> lock(io);
-        if (stage_done) stage_done(r.spec.id, line);
+        if (callbacks.stage_done) callbacks.stage_done(r.spec.id, line);
       };
+      if (callbacks.progress) {
+        cb.progress = [&](const std::string& line) {
+          std::lock_guard<std::mutex> lock(io);
+          callbacks.progress(r.spec.id, line);
+        };
+      }
       try {
         r.result = run_scenario(r.scenario, out / r.spec.id, cb);
       } catch (const std::exception& e) {
@@ -88,7 +96,7 @@ void run_boon2015_cases(
         r.result.exit_code = 1;
       }
       std::lock_guard<std::mutex> lock(io);
-      if (case_done) case_done(r);
+      if (callbacks.case_done) callbacks.case_done(r);
     }
   };
   std::vector<std::thread> pool;
