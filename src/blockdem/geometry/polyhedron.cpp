@@ -69,7 +69,7 @@ double polygon_area(std::span<const Eigen::Vector3d> points, const Eigen::Vector
 
 Polyhedron Polyhedron::from_planes(std::span<const Halfspace> planes) {
   Polyhedron p;
-  p.build(std::vector<Halfspace>(planes.begin(), planes.end()));
+  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()));
   return p;
 }
 
@@ -151,7 +151,17 @@ Polyhedron Polyhedron::from_vertices(std::span<const Eigen::Vector3d> points) {
   return from_planes(planes);
 }
 
-void Polyhedron::build(std::vector<Halfspace> planes) {
+Polyhedron::Polyhedron() {
+  // One empty shape for every default-constructed polyhedron.
+  static const std::shared_ptr<const Data> empty = std::make_shared<const Data>();
+  data_ = empty;
+}
+
+std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace> planes) {
+  auto data = std::make_shared<Data>();
+  auto& vertices = data->vertices;
+  auto& kept_planes = data->planes;
+  auto& faces = data->faces;
   if (planes.size() < 4) {
     throw GeometryError("a bounded polyhedron needs at least 4 planes, got " +
                         std::to_string(planes.size()));
@@ -188,52 +198,52 @@ void Polyhedron::build(std::vector<Halfspace> planes) {
     }
   }
 
-  vertices_ = enumerate_vertices(planes, tol);
-  if (vertices_.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
+  vertices = enumerate_vertices(planes, tol);
+  if (vertices.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
 
   // Faces: the vertices on each plane, ordered counter-clockwise about its outward normal.
   // Planes that touch fewer than three vertices (redundant) or repeat another face are dropped.
-  planes_.clear();
-  faces_.clear();
+  kept_planes.clear();
+  faces.clear();
   std::vector<std::vector<int>> seen;
   for (const auto& h : planes) {
     std::vector<int> on;
-    for (int v = 0; v < static_cast<int>(vertices_.size()); ++v) {
-      if (std::abs(h.signed_distance(vertices_[v])) <= 10 * tol) on.push_back(v);
+    for (int v = 0; v < static_cast<int>(vertices.size()); ++v) {
+      if (std::abs(h.signed_distance(vertices[v])) <= 10 * tol) on.push_back(v);
     }
     if (on.size() < 3) continue;
     if (std::find(seen.begin(), seen.end(), on) != seen.end()) continue;
     seen.push_back(on);
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (int v : on) centre += vertices_[v];
+    for (int v : on) centre += vertices[v];
     centre /= static_cast<double>(on.size());
-    const Eigen::Vector3d u = (vertices_[on[0]] - centre).normalized();
+    const Eigen::Vector3d u = (vertices[on[0]] - centre).normalized();
     const Eigen::Vector3d w = h.normal.cross(u);
-    std::vector<double> angle(vertices_.size());
+    std::vector<double> angle(vertices.size());
     for (int v : on) {
-      const Eigen::Vector3d r = vertices_[v] - centre;
+      const Eigen::Vector3d r = vertices[v] - centre;
       angle[v] = std::atan2(r.dot(w), r.dot(u));
     }
     std::sort(on.begin(), on.end(), [&](int a, int b) { return angle[a] < angle[b]; });
-    faces_.push_back(Face{static_cast<int>(planes_.size()), on});
-    planes_.push_back(h);
+    faces.push_back(Face{static_cast<int>(kept_planes.size()), on});
+    kept_planes.push_back(h);
   }
-  if (faces_.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
+  if (faces.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
 
   // Mass properties: fan each face into triangles and form tetrahedra with an interior point c.
   // For a tetrahedron p0..p3: V = (p1-p0)·((p2-p0)×(p3-p0))/6 and
   // ∫ x xᵀ dV = V/20 (Σ p_i p_iᵀ + s sᵀ), s = Σ p_i (about the origin, here c).
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& v : vertices_) c += v;
-  c /= static_cast<double>(vertices_.size());
+  for (const auto& v : vertices) c += v;
+  c /= static_cast<double>(vertices.size());
   double vol = 0.0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-  for (const auto& f : faces_) {
-    const Eigen::Vector3d a = vertices_[f.vertices[0]] - c;
+  for (const auto& f : faces) {
+    const Eigen::Vector3d a = vertices[f.vertices[0]] - c;
     for (std::size_t i = 1; i + 1 < f.vertices.size(); ++i) {
-      const Eigen::Vector3d b = vertices_[f.vertices[i]] - c;
-      const Eigen::Vector3d d = vertices_[f.vertices[i + 1]] - c;
+      const Eigen::Vector3d b = vertices[f.vertices[i]] - c;
+      const Eigen::Vector3d d = vertices[f.vertices[i + 1]] - c;
       const double v6 = a.dot(b.cross(d));
       const double v = v6 / 6.0;
       const Eigen::Vector3d s = a + b + d;
@@ -244,29 +254,30 @@ void Polyhedron::build(std::vector<Halfspace> planes) {
     }
   }
   if (!(vol > std::pow(1e-6 * scale, 3))) throw GeometryError("the shape has zero volume");
-  volume_ = vol;
+  data->volume = vol;
   const Eigen::Vector3d g = first / vol;
-  centroid_ = c + g;
+  data->centroid = c + g;
   const Eigen::Matrix3d cov = second - vol * g * g.transpose();
-  unit_inertia_ = cov.trace() * Eigen::Matrix3d::Identity() - cov;
-  bounding_radius_ = 0.0;
-  for (const auto& v : vertices_)
-    bounding_radius_ = std::max(bounding_radius_, (v - centroid_).norm());
+  data->unit_inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
+  data->bounding_radius = 0.0;
+  for (const auto& v : vertices)
+    data->bounding_radius = std::max(data->bounding_radius, (v - data->centroid).norm());
+  return data;
 }
 
 double Polyhedron::face_area(int f) const {
-  const auto& face = faces_.at(f);
+  const auto& face = data_->faces.at(f);
   std::vector<Eigen::Vector3d> pts;
   pts.reserve(face.vertices.size());
-  for (int v : face.vertices) pts.push_back(vertices_[v]);
-  return polygon_area(pts, planes_[face.plane].normal);
+  for (int v : face.vertices) pts.push_back(data_->vertices[v]);
+  return polygon_area(pts, data_->planes[face.plane].normal);
 }
 
 Polyhedron Polyhedron::transformed(const Eigen::Matrix3d& rotation,
                                    const Eigen::Vector3d& translation) const {
   std::vector<Halfspace> moved;
-  moved.reserve(planes_.size());
-  for (const auto& h : planes_) {
+  moved.reserve(data_->planes.size());
+  for (const auto& h : data_->planes) {
     Halfspace m;
     m.normal = (rotation * h.normal).normalized();
     m.offset = h.offset + m.normal.dot(translation);

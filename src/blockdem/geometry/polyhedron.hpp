@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@ struct Face {
 /// A bounded convex polyhedron {x : n_i · x <= d_i}. Construction derives vertices and faces,
 /// drops redundant planes and computes mass properties for unit density exactly (signed
 /// tetrahedra from an interior point). Throws GeometryError on a bad shape.
+/// A polyhedron is immutable: copies share one set of planes, vertices and faces (a copy costs
+/// a reference count), so blocks of one shape hold its data once.
 class Polyhedron {
  public:
   /// From planes (unit outward normals; redundant planes are dropped).
@@ -30,16 +33,29 @@ class Polyhedron {
   /// input is rejected as non-convex.
   static Polyhedron from_vertices(std::span<const Eigen::Vector3d> points);
 
-  const std::vector<Halfspace>& planes() const { return planes_; }
-  const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
-  const std::vector<Face>& faces() const { return faces_; }
+  /// An empty polyhedron (no planes, zero volume), to be assigned a shape.
+  Polyhedron();
+  Polyhedron(const Polyhedron&) = default;
+  Polyhedron& operator=(const Polyhedron&) = default;
+  // A move shares too: the source keeps its shape and stays usable.
+  Polyhedron(Polyhedron&& other) noexcept : data_(other.data_) {}
+  Polyhedron& operator=(Polyhedron&& other) noexcept {
+    data_ = other.data_;
+    return *this;
+  }
 
-  double volume() const { return volume_; }                      ///< (m^3)
-  const Eigen::Vector3d& centroid() const { return centroid_; }  ///< (m)
+  const std::vector<Halfspace>& planes() const { return data_->planes; }
+  const std::vector<Eigen::Vector3d>& vertices() const { return data_->vertices; }
+  const std::vector<Face>& faces() const { return data_->faces; }
+
+  double volume() const { return data_->volume; }                      ///< (m^3)
+  const Eigen::Vector3d& centroid() const { return data_->centroid; }  ///< (m)
   /// Inertia tensor about the centroid for unit density (m^5; multiply by density for kg m^2).
-  const Eigen::Matrix3d& unit_inertia() const { return unit_inertia_; }
+  const Eigen::Matrix3d& unit_inertia() const { return data_->unit_inertia; }
   /// Largest distance from the centroid to a vertex (m).
-  double bounding_radius() const { return bounding_radius_; }
+  double bounding_radius() const { return data_->bounding_radius; }
+  /// Whether this and `other` share their data (one is a copy of the other).
+  bool shares_data_with(const Polyhedron& other) const { return data_ == other.data_; }
   /// Area of face f (m^2).
   double face_area(int f) const;
 
@@ -47,15 +63,18 @@ class Polyhedron {
   Polyhedron transformed(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation) const;
 
  private:
-  void build(std::vector<Halfspace> planes);
+  struct Data {
+    std::vector<Halfspace> planes;
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<Face> faces;
+    double volume = 0.0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d unit_inertia = Eigen::Matrix3d::Zero();
+    double bounding_radius = 0.0;
+  };
+  static std::shared_ptr<const Data> build(std::vector<Halfspace> planes);
 
-  std::vector<Halfspace> planes_;
-  std::vector<Eigen::Vector3d> vertices_;
-  std::vector<Face> faces_;
-  double volume_ = 0.0;
-  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d unit_inertia_ = Eigen::Matrix3d::Zero();
-  double bounding_radius_ = 0.0;
+  std::shared_ptr<const Data> data_;  ///< never null; shared by copies
 };
 
 /// Area-weighted polygon area of ordered 3D points (m^2).

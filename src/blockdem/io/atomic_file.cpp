@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
 namespace blockdem {
 namespace {
@@ -73,6 +75,22 @@ std::string read_file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path.string());
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+FileDigest file_digest(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  FileDigest d;
+  d.fnv1a64 = fnv1a64({});
+  std::vector<char> chunk(1 << 16);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    d.bytes += got;
+    d.fnv1a64 = fnv1a64(std::string_view(chunk.data(), got), d.fnv1a64);
+  }
+  if (in.bad()) throw std::runtime_error("cannot read " + path.string());
+  return d;
 }
 
 }  // namespace blockdem

@@ -24,4 +24,12 @@ std::string hex64(std::uint64_t value);
 /// The whole content of a file; throws std::runtime_error naming it when it cannot be read.
 std::string read_file_bytes(const std::filesystem::path& path);
 
+/// A file's size and FNV-1a hash, read in chunks (the file is never held in memory whole): the
+/// same as read_file_bytes(path).size() and fnv1a64(read_file_bytes(path)).
+struct FileDigest {
+  std::uint64_t bytes = 0;
+  std::uint64_t fnv1a64 = 0;
+};
+FileDigest file_digest(const std::filesystem::path& path);
+
 }  // namespace blockdem

@@ -61,8 +61,8 @@ nlohmann::json run_files_record(const std::filesystem::path& out,
     if (rel == "summary.json" || rel == kCheckpointName || rel == kPreviousCheckpointName ||
         foreign.count(rel))
       continue;
-    const std::string bytes = read_file_bytes(out / rel);
-    files.push_back({{"path", rel}, {"bytes", bytes.size()}, {"fnv1a64", hex64(fnv1a64(bytes))}});
+    const FileDigest d = file_digest(out / rel);
+    files.push_back({{"path", rel}, {"bytes", d.bytes}, {"fnv1a64", hex64(d.fnv1a64)}});
   }
   return files;
 }

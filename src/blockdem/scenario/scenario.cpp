@@ -3,7 +3,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -58,7 +61,24 @@ Eigen::Matrix3d read_rotation(const CheckedTable& t) {
   return Eigen::AngleAxisd(deg_to_rad(angle), axis.normalized()).toRotationMatrix();
 }
 
-Block read_block(const CheckedTable& t, const std::map<std::string, double>& materials) {
+/// Box blocks already made, by the bits of (size, rotation, density): identical boxes are built
+/// once (vertex enumeration, principal axes) and share one body-frame shape. The key is the exact
+/// bit pattern, so a block from the cache is the block the computation would give.
+using BoxKey = std::array<std::uint64_t, 13>;
+using BoxCache = std::map<BoxKey, Block>;
+
+BoxKey box_key(const Eigen::Vector3d& size, const Eigen::Matrix3d& rot, double density) {
+  BoxKey k{};
+  for (int i = 0; i < 3; ++i)
+    k[static_cast<std::size_t>(i)] = std::bit_cast<std::uint64_t>(size[i]);
+  for (int i = 0; i < 9; ++i)
+    k[static_cast<std::size_t>(3 + i)] = std::bit_cast<std::uint64_t>(rot.data()[i]);
+  k[12] = std::bit_cast<std::uint64_t>(density);
+  return k;
+}
+
+Block read_block(const CheckedTable& t, const std::map<std::string, double>& materials,
+                 BoxCache& boxes) {
   const std::string name = t.string("name");
   const std::string group = t.string("group", "default");
   double density = 0.0;
@@ -76,13 +96,21 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   const Eigen::Matrix3d rot = read_rotation(t);
   const Eigen::Vector3d pos = t.vec3("position", Eigen::Vector3d::Zero());
   Polyhedron poly;
+  const Block* made = nullptr;  // an identical box made before
+  BoxKey key{};
   try {
     if (shape == "box") {
       const Eigen::Vector3d size = t.vec3("size");
       for (int i = 0; i < 3; ++i) {
         if (!(size[i] > 0.0)) t.fail("size", "box sides must be positive");
       }
-      poly = Polyhedron::box(size);
+      key = box_key(size, rot, density);
+      const auto it = boxes.find(key);
+      if (it != boxes.end()) {
+        made = &it->second;
+      } else {
+        poly = Polyhedron::box(size);
+      }
     } else if (shape == "planes") {
       std::vector<Halfspace> planes;
       for (const auto& r : t.rows("planes", 4)) {
@@ -120,8 +148,15 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   try {
     // The mass properties come from the shape in its own coordinates, then the block is moved:
     // its body frame does not depend on where it sits (full precision far from the origin).
-    poly = poly.transformed(rot, Eigen::Vector3d::Zero());
-    b = make_block(poly, density, name, group);
+    if (made) {
+      b = *made;
+      b.name = name;
+      b.group = group;
+    } else {
+      poly = poly.transformed(rot, Eigen::Vector3d::Zero());
+      b = make_block(poly, density, name, group);
+      if (shape == "box") boxes.emplace(key, b);
+    }
     b.position += pos;
     b.initial_position = b.position;
   } catch (const GeometryError& e) {
@@ -422,8 +457,11 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
   }
 
   std::set<std::string> names, groups;
-  for (const auto& bt : t.tables("blocks")) {
-    Block b = read_block(bt, materials);
+  BoxCache boxes;
+  const std::vector<CheckedTable> block_tables = t.tables("blocks");
+  sc.blocks.reserve(block_tables.size());
+  for (const auto& bt : block_tables) {
+    Block b = read_block(bt, materials, boxes);
     if (names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
     names.insert(b.name);
     groups.insert(b.group);
@@ -513,6 +551,9 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
       }
     }
   }
+  // The scenario's blocks are the recipe of a world: World::add_block derives each block's world
+  // planes again, so these copies do not keep theirs (the shapes are shared, not copied).
+  for (auto& b : sc.blocks) std::vector<Halfspace>().swap(b.world_planes);
   return sc;
 }
 
@@ -551,6 +592,7 @@ World build_world(const Scenario& sc) {
   World w(sc.settings);
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
+  w.reserve_blocks(sc.blocks.size());
   for (const auto& b : sc.blocks) w.add_block(b);
   for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
     if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);

@@ -36,23 +36,25 @@ struct Contact {
   int a = -1;    ///< first block (the normal points from a to b)
   int b = -1;    ///< second block
   int law = -1;  ///< index into World::joint_laws()
+  // The flags sit together beside the indices (no padding between doubles: the pair store holds
+  // a Contact for every candidate pair).
+  bool has_history = false;  ///< false on the step the contact forms
+  bool integrated = false;   ///< the force came from face integration (else point contact)
+  bool sliding = false;      ///< the shear law yielded this step
 
   ContactGeometryRecord geometry;  ///< this step's geometry
   ShearState shear;                ///< shear history (force on b, plastic slip)
   TwistState twist;                ///< twisting moment about the normal (on b)
-  bool has_history = false;        ///< false on the step the contact forms
   Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
 
   double normal_stress = 0.0;  ///< σ_n (Pa); face-integrated: mean over the compressed area
   /// Where the normal and shear forces act (m): x_c in mode boon2012, the centre of pressure
   /// of an integrated face contact.
   Eigen::Vector3d force_point = Eigen::Vector3d::Zero();
-  bool integrated = false;       ///< the force came from face integration (else point contact)
   double compressed_area = 0.0;  ///< area carrying stress (m^2); boon2012: the slice area
   double peak_stress = 0.0;      ///< largest normal stress over the contact (Pa)
   double peak_closure = 0.0;     ///< largest closure over the contact (m)
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
-  bool sliding = false;          ///< the shear law yielded this step
   double shear_stiffness = 0.0;  ///< k_s A of the last shear update, for its energy (N/m)
 
   /// Warm start of the narrow phase between steps. Kept for candidate pairs that do not touch too.

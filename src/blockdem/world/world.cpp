@@ -57,6 +57,11 @@ int World::add_block(Block block) {
   return blocks_.back().index;
 }
 
+void World::reserve_blocks(std::size_t count) {
+  blocks_.reserve(count);
+  max_face_area_.reserve(count);
+}
+
 int World::add_joint_law(JointLaw law) {
   validate(law.normal);
   validate(law.shear);

@@ -110,6 +110,9 @@ class World {
 
   /// Adds a block (its index is set) and returns the index.
   int add_block(Block block);
+  /// Room for `count` blocks in all, so that adding them does not reallocate (the block array of
+  /// a large scene would otherwise grow to twice its size).
+  void reserve_blocks(std::size_t count);
   int add_joint_law(JointLaw law);
   /// Replaces joint law `index` (validated), e.g. with reduced strengths; contacts keep their
   /// history.
@@ -199,10 +202,10 @@ class World {
     Contact contact;
     int group_law = -1;            ///< the group rules' law for the pair (-1: none)
     bool broke = false;            ///< the pair's bond broke in this step
+    bool active = false;           ///< a force acts (the contact is in contacts())
     double slip_work = 0.0;        ///< energy dissipated by slip in this step (J)
     double stiffness = 0.0;        ///< k_n A + k_s A of this step, for the time step (N/m)
     double twist_stiffness = 0.0;  ///< k_s J of this step, for the time step (N m/rad)
-    bool active = false;
   };
 
   void update_geometry(int threads);

@@ -158,5 +158,25 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
       "flat");
 }
 
+TEST(Polyhedron, CopiesShareTheShapeAndAMovedFromPolyhedronKeepsIt) {
+  // A polyhedron is immutable: a copy (or a move) refers to the same planes, vertices and faces.
+  const Eigen::Vector3d s(0.3, 0.5, 0.7);
+  Polyhedron p = Polyhedron::box(s);
+  const Polyhedron copy = p;
+  EXPECT_TRUE(copy.shares_data_with(p));
+  EXPECT_EQ(&copy.vertices(), &p.vertices());
+  const Polyhedron moved = std::move(p);
+  EXPECT_TRUE(moved.shares_data_with(copy));
+  EXPECT_NEAR(p.volume(), s.prod(), 1e-15);  // NOLINT(bugprone-use-after-move): still usable
+  // Built separately from the same planes: equal, not shared.
+  const Polyhedron other = Polyhedron::box(s);
+  EXPECT_FALSE(other.shares_data_with(copy));
+  EXPECT_EQ(other.vertices(), copy.vertices());
+  // The default polyhedron is empty.
+  const Polyhedron empty;
+  EXPECT_TRUE(empty.planes().empty());
+  EXPECT_EQ(empty.volume(), 0.0);
+}
+
 }  // namespace
 }  // namespace blockdem
