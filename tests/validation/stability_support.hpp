@@ -2,6 +2,8 @@
 // incline angle psi (the same statics as a box on a plane dipping psi under vertical gravity).
 #pragma once
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -41,7 +43,8 @@ inline std::string incline_scenario(double psi_deg, double phi_deg, double b, do
 /// Runs scenario text into a fresh temporary folder, kept for inspection until the next run.
 inline RunResult run_text(const std::string& text, const std::string& name) {
   const Scenario sc = parse_scenario(text, name + ".toml");
-  const auto out = std::filesystem::temp_directory_path() / ("blockdem_" + name);
+  const auto out = std::filesystem::temp_directory_path() /
+                   ("blockdem_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(out);
   return run_scenario(sc, out);
 }
