@@ -9,6 +9,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/face_contact.hpp"
+#include "blockdem/collision/face_twist.hpp"
 #include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/geometry/polyhedron.hpp"
 #include "blockdem/world/contact_twist.hpp"
@@ -100,11 +101,84 @@ void BM_ContactFaceIntegratedTwist(benchmark::State& state) {
   }
 }
 
+// The whole shear of a face contact with twist (issue 14, distributed shear): the normal force
+// and the twist spring as above, the shear law's update and the force and moment together
+// against Coulomb's law at every point (interact_shear_twist). Third argument: 0 a joint at 0.15
+// of both limits (the certificate suffices), 1 a joint at 0.8 of both (outside the limit
+// surface: the full-slip quadratures every step, and the return).
+void BM_ContactFaceIntegratedShearTwist(benchmark::State& state) {
+  const Joint j = beam_joint(static_cast<double>(state.range(0)) * 1e-4);
+  const NormalLaw& law = law_of(static_cast<int>(state.range(1)));
+  const double level = state.range(2) == 0 ? 0.15 : 0.8;
+  const ShearLaw shear = LinearShear{};
+  const double mu = strength_of(shear).friction_coefficient;
+  Boon2012Cache cache;
+  const ContactGeometry g0 = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{});
+  if (!g0.touching) state.SkipWithError("no contact");
+  // The joint's limits, once: μ F_n and μ ∫ σ_n r dA.
+  const FaceContactGeometry fc0 = face_contact_geometry(j.a, j.b, g0.point, g0.normal, 0.2);
+  double force0 = 0.0;
+  for (const auto& cell : fc0.cells)
+    force0 += integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures).force;
+  Eigen::Vector3d pressure0 = Eigen::Vector3d::Zero();
+  for (const auto& cell : fc0.cells) {
+    const PolygonStressResultant r =
+        integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
+    if (r.centre_of_pressure) pressure0 += r.force * *r.centre_of_pressure;
+  }
+  const TwistGeometry tg0 = face_twist_geometry(fc0.cells, g0.normal, force0, pressure0 / force0);
+  const double moment0 = mu * face_radial_normal_moment(fc0.cells, law, tg0.centre);
+  const Eigen::Vector3d tangent = g0.normal.unitOrthogonal();
+  for (auto _ : state) {
+    const ContactGeometry g = boon2012_contact(j.a, j.b, 0.2, Boon2012Settings{}, &cache);
+    const FaceContactGeometry fc = face_contact_geometry(j.a, j.b, g.point, g.normal, 0.2);
+    double force = 0.0, area = 0.0;
+    Eigen::Vector3d pressure = Eigen::Vector3d::Zero();
+    for (const auto& cell : fc.cells) {
+      const PolygonStressResultant r =
+          integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
+      force += r.force;
+      area += r.compressed_area;
+      if (r.centre_of_pressure) pressure += r.force * *r.centre_of_pressure;
+    }
+    const Eigen::Vector3d xp = pressure / force;
+    TwistGeometry tg = face_twist_geometry(fc.cells, g.normal, force, xp);
+    ShearState shear_state;
+    shear_state.force = level * mu * force0 * tangent;
+    TwistState twist;
+    twist.moment = level * moment0;
+    const double turn = 1e-9, stress = force / area;
+    advance_contact_twist(
+        twist, shear, shear_state, stress, tg, turn,
+        [&] { return tg.radial_normal_moment = face_radial_normal_bound(fc.cells, law, tg); },
+        [&] {
+          tg.exact = true;
+          return tg.radial_normal_moment = face_radial_normal_moment(fc.cells, law, tg.centre);
+        });
+    ShearIncrement inc;
+    inc.displacement = -1e-9 * tangent;
+    inc.normal_force = force;
+    inc.normal_stress = stress;
+    inc.contact_area = area;
+    inc.normal = g.normal;
+    update_shear(shear, shear_state, inc);
+    const ShearTwistResult st = interact_shear_twist(
+        shear_state, twist, shear, stress, force, area, tg, xp, g.normal, inc.displacement, turn,
+        [&] { return face_radial_normal_bound(fc.cells, law, tg); },
+        [&](const SlipCentre& c) { return face_full_slip(fc.cells, law, g.normal, xp, c); });
+    benchmark::DoNotOptimize(st);
+    benchmark::DoNotOptimize(shear_state.force);
+    benchmark::DoNotOptimize(twist.moment);
+  }
+}
+
 // Arguments: tilt in 1e-4 rad (0: closed joint; 5: partly open), law (0 linear, 1 exponential).
 BENCHMARK(BM_ContactPoint)->ArgsProduct({{0, 5}, {0, 1}});
 BENCHMARK(BM_ContactFaceIntegrated)->ArgsProduct({{0, 5}, {0, 1}});
 // Third argument: 0 an elastic turn (the bound suffices), 1 a turn that slips (exact moment).
 BENCHMARK(BM_ContactFaceIntegratedTwist)->ArgsProduct({{0, 5}, {0, 1}, {0, 1}});
+// Third argument: 0 well inside both limits, 1 outside the limit surface (full slip).
+BENCHMARK(BM_ContactFaceIntegratedShearTwist)->ArgsProduct({{0, 5}, {0, 1}, {0, 1}});
 
 }  // namespace
 }  // namespace blockdem

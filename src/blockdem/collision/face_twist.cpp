@@ -32,21 +32,17 @@ Node mix(const Node& a, const Node& b, const Node& c, double la, double lb, doub
   return {la * a.x + lb * b.x + lc * c.x, la * a.g + lb * b.g + lc * c.g};
 }
 
-// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its 16 similar sub-triangles.
-double radial_stress_moment(const Node& a, const Node& b, const Node& c, const NormalLaw& law,
-                            const Eigen::Vector3d& centre) {
-  constexpr int kSplit = 4;  // sub-triangles along each edge
-  const double area = 0.5 * (b.x - a.x).cross(c.x - a.x).norm() / (kSplit * kSplit);
-  double sum = 0.0;
+// Calls f(y, w) at every point y of the rule (weight w, summing to 1 per sub-triangle) on the
+// triangle's 16 similar sub-triangles, and returns a sub-triangle's area: ∫ f dA = area Σ w f.
+template <class F>
+double integrate_split(const Node& a, const Node& b, const Node& c, F&& f) {
+  constexpr int kSplit = 4;      // sub-triangles along each edge
   auto at = [&](int i, int j) {  // lattice node i, j
     const double li = static_cast<double>(i) / kSplit, lj = static_cast<double>(j) / kSplit;
     return mix(a, b, c, 1.0 - li - lj, li, lj);
   };
   auto integrate = [&](const Node& p, const Node& q, const Node& r) {
-    for (const auto& w : kRule) {
-      const Node y = mix(p, q, r, w.l0, w.l1, w.l2);
-      sum += w.weight * normal_stress(law, y.g) * (y.x - centre).norm();
-    }
+    for (const auto& w : kRule) f(mix(p, q, r, w.l0, w.l1, w.l2), w.weight);
   };
   for (int i = 0; i < kSplit; ++i) {
     for (int j = 0; i + j < kSplit; ++j) {
@@ -54,6 +50,16 @@ double radial_stress_moment(const Node& a, const Node& b, const Node& c, const N
       if (i + j + 1 < kSplit) integrate(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
     }
   }
+  return 0.5 * (b.x - a.x).cross(c.x - a.x).norm() / (kSplit * kSplit);
+}
+
+// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its 16 similar sub-triangles.
+double radial_stress_moment(const Node& a, const Node& b, const Node& c, const NormalLaw& law,
+                            const Eigen::Vector3d& centre) {
+  double sum = 0.0;
+  const double area = integrate_split(a, b, c, [&](const Node& y, double weight) {
+    sum += weight * normal_stress(law, y.g) * (y.x - centre).norm();
+  });
   return sum * area;
 }
 
@@ -97,6 +103,35 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
     }
   }
   return m;
+}
+
+FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law,
+                        const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                        const SlipCentre& centre) {
+  FullSlip s;
+  for (const ClosureCell& cell : cells) {
+    const auto& v = cell.vertices;
+    const auto& g = cell.closures;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+      FullSlip t;  // this triangle's sums Σ w f
+      const double area = integrate_split(
+          {v[0], g[0]}, {v[k], g[k]}, {v[k + 1], g[k + 1]}, [&](const Node& y, double weight) {
+            const double sigma = normal_stress(law, y.g);
+            // w = s n × (y - p): the slip of B at y; the traction on B opposes it.
+            const Eigen::Vector3d w = centre.sense * normal.cross(y.x - centre.point);
+            const double speed = w.norm();
+            if (!(sigma > 0.0) || !(speed > 0.0)) return;
+            const Eigen::Vector3d traction = (weight * sigma / speed) * w;
+            t.force -= traction;
+            t.moment -= (y.x - force_point).cross(traction).dot(normal);
+            t.power += weight * sigma * speed;
+          });
+      s.force += area * t.force;
+      s.moment += area * t.moment;
+      s.power += area * t.power;
+    }
+  }
+  return s;
 }
 
 }  // namespace blockdem

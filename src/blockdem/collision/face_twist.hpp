@@ -7,6 +7,7 @@
 
 #include "blockdem/collision/face_contact.hpp"
 #include "blockdem/contact/normal_laws.hpp"
+#include "blockdem/contact/shear_twist.hpp"
 
 namespace blockdem {
 
@@ -36,5 +37,13 @@ struct ClosurePolarMoments {
 };
 ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cells,
                                                const Eigen::Vector3d& centre);
+
+/// Full slip of B about the instantaneous centre `centre` (SlipCentre) over the cells, per unit
+/// friction coefficient (FullSlip: force, moment about `force_point`, power), by the same rule
+/// as face_twist_moments (7 points on each of 16 sub-triangles of every fan triangle; the slip
+/// direction is smooth except at the centre, so about 1e-4 relative under uniform closure).
+FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law,
+                        const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                        const SlipCentre& centre);
 
 }  // namespace blockdem

@@ -11,6 +11,7 @@
 #include "blockdem/collision/slice_polygon.hpp"
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
+#include "blockdem/contact/shear_twist.hpp"
 #include "blockdem/contact/twist.hpp"
 #include "blockdem/contact/twist_law.hpp"
 
@@ -83,6 +84,80 @@ double advance_contact_twist(TwistState& twist, const ShearLaw& law, const Shear
     }
   }
   return step_contact_twist(twist, terms, geometry, spin);
+}
+
+/// What the joint's force and moment together did in a step (interact_shear_twist).
+struct ShearTwistResult {
+  bool slipped = false;     ///< returned to full slip
+  bool integrated = false;  ///< a full-slip quadrature ran (the certificate did not suffice)
+};
+
+/// After the shear law's update and the torsional spring's: the shear force F (at the force
+/// point x_p) and the moment M of a face contact held against the limit surface of Coulomb's law
+/// applied at every point of the contact (shear_twist.hpp). Nothing to do for a translation
+/// (M = 0: the law's cap is the limit), a pure turn (F = 0: the spring's cap is), while a bond
+/// holds (force and moment capped apart), or when μ = 0; nor when `certified_inside` shows the
+/// state inside from the lower bound `geometry.radial_normal_moment` of ∫ σ_n |y - c| dA
+/// (sharpened by `better_bound()` when not exact). Otherwise, by `full_slip_at(SlipCentre)`
+/// (the quadrature, per unit μ):
+/// 1. along the step's own slip (`slip` du at x_p, m; `turn` dθ about n, rad): if the state
+///    spends more power against it than full slip about its centre x_p + n × du / dθ can, it
+///    becomes that full slip (the instantaneous-centre solution of the motion);
+/// 2. else along the slip the state itself stands for (slip_centre): the same test and return.
+/// μ is the law's at the state after its update (twist_law_terms). `normal_force` F_n (N),
+/// `area` the compressed area (m^2), `normal_stress` the mean σ_n (Pa).
+template <class BetterBound, class FullSlipAt>
+ShearTwistResult interact_shear_twist(ShearState& shear, TwistState& twist, const ShearLaw& law,
+                                      double normal_stress, double normal_force, double area,
+                                      TwistGeometry geometry, const Eigen::Vector3d& force_point,
+                                      const Eigen::Vector3d& normal, const Eigen::Vector3d& slip,
+                                      double turn, BetterBound&& better_bound,
+                                      FullSlipAt&& full_slip_at) {
+  ShearTwistResult r;
+  if (twist.moment == 0.0 || shear.force.squaredNorm() == 0.0) return r;
+  if (strength_of(law).cohesion > 0.0 && !shear.broken()) return r;
+  const double mu = twist_law_terms(law, shear, normal_stress).friction_coefficient;
+  if (!(mu > 0.0)) return r;
+  const double offset = normal_force * (geometry.centre - force_point).norm();
+  const double force = shear.force.norm(), limit = mu * normal_force;
+  if (certified_inside(force, twist.moment, limit, mu * (geometry.radial_normal_moment - offset)))
+    return r;
+  if (!geometry.exact &&
+      certified_inside(force, twist.moment, limit, mu * (better_bound() - offset)))
+    return r;
+  // The test and return along a slip about `centre`.
+  const auto slip_about = [&](const SlipCentre& centre) {
+    const FullSlip full = full_slip_at(centre);
+    r.integrated = true;
+    if (!exceeds_full_slip(shear.force, twist.moment, centre, force_point, normal, full, mu))
+      return false;
+    shear.force = mu * full.force;
+    twist.moment = mu * full.moment;
+    r.slipped = true;
+    return true;
+  };
+  // 1. The step's own slip: the springs' response -(A du, J dθ) has its centre where the motion
+  // is still. A translation (dθ = 0, or a centre very far) has the law's limit |F| <= μ F_n.
+  if (slip.squaredNorm() > 0.0 || turn != 0.0) {
+    const SlipCentre motion =
+        slip_centre(-area * slip, -geometry.polar_moment * turn, normal, force_point,
+                    geometry.polar_moment, area, geometry.max_radius);
+    if (!motion.translation && slip_about(motion)) return r;
+    if (motion.translation && slip.squaredNorm() > 0.0) {
+      const Eigen::Vector3d along = slip.normalized();
+      if (-shear.force.dot(along) > limit) {
+        shear.force = -limit * along;
+        twist.moment = 0.0;
+        r.slipped = true;
+        return r;
+      }
+    }
+  }
+  // 2. The slip the state stands for.
+  const SlipCentre own = slip_centre(shear.force, twist.moment, normal, force_point,
+                                     geometry.polar_moment, area, geometry.max_radius);
+  if (!own.translation) slip_about(own);
+  return r;
 }
 
 }  // namespace blockdem

@@ -7,7 +7,9 @@
 #include <exception>
 #include <iterator>
 #include <limits>
+#include <optional>
 
+#include "blockdem/collision/face_twist.hpp"
 #include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/world/contact_twist.hpp"
 #include "blockdem/world/face_laws.hpp"
@@ -162,16 +164,21 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   // Twist (the contact's state before this step's shear update: bond and plastic slip): B's spin
   // relative to A about n turns the torsional spring.
   const bool twist = settings_.twist_enabled() && advance_shear;
+  double spin = 0.0;  // dθ of this step (rad)
   const auto advance_twist = [&](const TwistGeometry& tg, auto&& better_bound,
                                  auto&& exact_radial) {
-    const double spin =
-        ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
+    spin = ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
     slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
                                                  tg, spin, better_bound, exact_radial);
   };
-  if (settings_.contact_mode == ContactMode::face_integrated) {
-    const FaceContactGeometry fc = face_contact_geometry(
-        a.world_planes, b.world_planes, ct.geometry.point, n, extent, settings_.face_contact);
+  // A face contact's cells and the area terms of its twist, for the shear-twist interaction.
+  const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
+  const FaceContactGeometry fc =
+      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, ct.geometry.point, n,
+                                        extent, settings_.face_contact)
+                : FaceContactGeometry{};
+  std::optional<TwistGeometry> face_twist;
+  if (face_mode) {
     if (fc.face_type) {
       double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
       Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -198,10 +205,19 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
       ct.peak_closure = closure;
       ct.force_point = moment / force;
       if (twist) {
-        const TwistGeometry tg = face_twist_geometry(fc.cells, n, force, ct.force_point);
+        face_twist = face_twist_geometry(fc.cells, n, force, ct.force_point);
+        TwistGeometry& tg = *face_twist;
+        // The spring's cap sharpens the radial moment only as far as it needs; keep the value.
         advance_twist(
-            tg, [&] { return face_radial_normal_bound(fc.cells, law.normal, tg); },
-            [&] { return face_radial_normal_moment(fc.cells, law.normal, tg.centre); });
+            tg,
+            [&] {
+              return tg.radial_normal_moment = face_radial_normal_bound(fc.cells, law.normal, tg);
+            },
+            [&] {
+              tg.exact = true;
+              return tg.radial_normal_moment =
+                         face_radial_normal_moment(fc.cells, law.normal, tg.centre);
+            });
       }
     }
   }
@@ -245,6 +261,23 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
   slot.slip_work = sr.plastic_work;
+  // Force and moment together against Coulomb's law at every point of a face contact.
+  if (face_twist) {
+    const double stored = ct.shear.force.squaredNorm();
+    const ShearTwistResult st = interact_shear_twist(
+        ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area,
+        *face_twist, xf, n, inc.displacement, spin,
+        [&] { return face_radial_normal_bound(fc.cells, law.normal, *face_twist); },
+        [&](const SlipCentre& centre) {
+          return face_full_slip(fc.cells, law.normal, n, xf, centre);
+        });
+    if (st.slipped) {
+      ct.sliding = true;
+      // The shear spring's energy released by the return (the ledger's elastic term).
+      if (sr.stiffness > 0.0)
+        slot.slip_work += 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
+    }
+  }
   ct.shear_stiffness = sr.stiffness;
   ct.previous_normal = n;
   ct.has_history = true;
