@@ -62,7 +62,7 @@ nlohmann::json comparable_summary(const fs::path& p) {
 /// stage cut short, whose outputs are still written) and checks that every output file
 /// is byte-identical to the single process's (summary.json: as comparable_summary). Returns the
 /// summaries of the runs on 2 and 3 processes. The one-process run is the oracle: the
-/// distributed step gathers every contact byte for byte and sums loads in the serial order.
+/// distributed step moves contacts byte for byte and sums loads in the serial order.
 std::vector<nlohmann::json> expect_same_outputs(const fs::path& dir, const std::string& args,
                                                 const std::string& env = "", int code = 0) {
   std::vector<fs::path> outs;
@@ -130,9 +130,19 @@ TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
   for (const auto& s : summaries) {
     // Each process evaluated a share of the pairs and saw other processes' blocks as ghosts.
     ASSERT_EQ(s.at("distribution").size(), s.at("ranks").get<std::size_t>());
+    const auto ranks = s.at("ranks").get<double>();
+    double pairs = 0.0;
+    for (const auto& rank : s.at("distribution")) pairs += rank.at("pairs_per_step").get<double>();
     for (const auto& rank : s.at("distribution")) {
       EXPECT_GT(rank.at("pairs_per_step").get<double>(), 0.0);
       EXPECT_GT(rank.at("ghost_blocks_per_step").get<double>(), 0.0);
+      // The neighbour exchange against an all-gather of every other process's pair slots (504
+      // bytes each), which every process would receive every step: at most half of it here.
+      const double all_gather = 504.0 * pairs * (ranks - 1.0) / ranks;
+      EXPECT_LT(rank.at("bytes_received_per_step").get<double>(), 0.5 * all_gather);
+      // The whole world is gathered only at the stage's checks (every 10 steps), history rows
+      // (every 100), divergence checkpoints (every 200) and the stage's start and end.
+      EXPECT_LE(rank.at("replica_refreshes").get<int>(), 1000 / 10 + 1000 / 100 + 1000 / 200 + 2);
     }
   }
 }

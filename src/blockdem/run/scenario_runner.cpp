@@ -327,14 +327,27 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     // After every step: a checkpoint when one is due or a stop is asked for.
     const AfterStepFn after_step = [&](const StageResume& at) {
       const bool stop = stop_requested();
-      const bool due =
+      bool due =
           stop ||
           (control.checkpoint_every > 0 && world.step_count() % control.checkpoint_every == 0) ||
           (control.checkpoint_seconds > 0.0 &&
            std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
                    .count() >= control.checkpoint_seconds);
-      if (due && !beam) write_checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
+      // A distributed world is made whole (collectively) for a checkpoint: every process must
+      // agree that one is due (the clock and a signal may differ between processes).
+      if (distribution && !beam) due = distribution->sum({due ? 1 : 0})[0] > 0;
+      if (due && !beam) {
+        world.synchronize();
+        write_checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
+      }
       return stop;
+    };
+    // What the step callback reads: the history and the VTK frames, only when they are due.
+    StageSync sync;
+    sync.after_step_synchronizes = true;
+    sync.on_step_reads = [&](const World& w) {
+      return history->due(w) ||
+             (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0);
     };
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
@@ -345,7 +358,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
             history->after_step(w, s.name);
             if (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0)
               recorder.write_frame(w, level);
-          });
+          },
+          &sync);
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;
