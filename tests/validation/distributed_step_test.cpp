@@ -88,8 +88,9 @@ Record run(World w, int steps, std::vector<int>* owners_early, std::vector<int>*
     w.step();
     if ((k + 1) % every != 0) {
       // Between refreshes only this process's part is exact, and the world says so.
-      if (w.settings().distribution && !w.replica_complete())
+      if (w.settings().distribution && !w.replica_complete()) {
         EXPECT_THROW(w.equilibrium(), std::logic_error);
+      }
       continue;
     }
     w.synchronize();

@@ -299,10 +299,13 @@ void World::exchange_ghosts() {
   const auto k = static_cast<std::size_t>(dist.size());
   const std::size_t n = blocks_.size();
   // The own blocks' boxes at their new poses (as the next step's geometry pass computes them;
-  // the blocks keep this step's planes and boxes, as in one process).
+  // the blocks keep this step's planes and boxes, as in one process). A process's subdomain is
+  // published as the union of its movable blocks' boxes plus the box of each fixed block, so that
+  // a base plate under the whole model does not make the union the whole model.
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf), hi = Eigen::Vector3d::Constant(-inf);
   std::vector<Eigen::Vector3d> next_min(n, lo), next_max(n, hi);
+  std::vector<char> box;
   for (std::size_t i = 0; i < n; ++i) {
     if (own_[i] == 0) continue;
     const Block& b = blocks_[i];
@@ -312,18 +315,24 @@ void World::exchange_ghosts() {
       next_min[i] = next_min[i].cwiseMin(w);
       next_max[i] = next_max[i].cwiseMax(w);
     }
-    lo = lo.cwiseMin(next_min[i]);
-    hi = hi.cwiseMax(next_max[i]);
+    if (b.motion == Motion::fixed) {
+      put3(box, next_min[i]);
+      put3(box, next_max[i]);
+    } else {
+      lo = lo.cwiseMin(next_min[i]);
+      hi = hi.cwiseMax(next_max[i]);
+    }
   }
-  std::vector<char> box;
   put3(box, lo);
   put3(box, hi);
   std::vector<std::size_t> counts;
   const std::vector<char> boxes = dist.all_gather(box, counts);
-  std::vector<Eigen::Vector3d> box_lo(k), box_hi(k);
+  std::vector<std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> subdomain(k);
+  std::size_t begin = 0;
   for (std::size_t r = 0; r < k; ++r) {
-    box_lo[r] = get3(boxes, r * box.size());
-    box_hi[r] = get3(boxes, r * box.size() + 24);
+    for (std::size_t at = begin; at + 48 <= begin + counts[r]; at += 48)
+      subdomain[r].emplace_back(get3(boxes, at), get3(boxes, at + 24));
+    begin += counts[r];
   }
   // (own block, destination) pairs: by the boxes, then the other owners of its pairs; each
   // message lists its blocks in index order.
@@ -331,9 +340,13 @@ void World::exchange_ghosts() {
   for (std::size_t i = 0; i < n; ++i) {
     if (own_[i] == 0) continue;
     for (std::size_t r = 0; r < k; ++r) {
-      if (static_cast<int>(r) != rank &&
-          boxes_overlap(next_min[i], next_max[i], box_lo[r], box_hi[r]))
-        sends.emplace_back(static_cast<std::int64_t>(i), static_cast<int>(r));
+      if (static_cast<int>(r) == rank) continue;
+      for (const auto& [box_lo, box_hi] : subdomain[r]) {
+        if (boxes_overlap(next_min[i], next_max[i], box_lo, box_hi)) {
+          sends.emplace_back(static_cast<std::int64_t>(i), static_cast<int>(r));
+          break;
+        }
+      }
     }
   }
   for (const auto& s : slots_) {
