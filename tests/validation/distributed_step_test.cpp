@@ -1,7 +1,8 @@
-// The distributed step without MPI: K worlds in K threads share their pair work through an
-// in-process all-gather (the role MPI plays between processes). Every world ends every step in
-// the same state, bit for bit, as one world alone (the oracle), also while the blocks are
-// partitioned again every 25 steps so that blocks and contacts change owner.
+// The distributed step without MPI: K worlds in K threads exchange pair slots, ghost blocks and
+// their parts of the global sums through an in-process all-gather (the role MPI plays between
+// processes). Every world, made whole, is in the same state, bit for bit, as one world alone
+// (the oracle), also while the blocks are partitioned again every 25 steps so that blocks and
+// contacts change owner (migration).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -76,13 +78,37 @@ void append(std::vector<char>& out, const double* p, std::size_t n) {
   out.insert(out.end(), c, c + n * sizeof(double));
 }
 
-Record run(World w, int steps, std::vector<int>* owners_early, std::vector<int>* owners_late) {
+/// Runs `steps` steps and records the state after every `every`-th one. every > 1: the world is
+/// made whole only then (a deferred replica), as the scenario runner does between its checks.
+Record run(World w, int steps, std::vector<int>* owners_early, std::vector<int>* owners_late,
+           int every = 1, DistributionStats* stats = nullptr) {
   Record rec;
+  if (every > 1) w.set_deferred_replica(true);
   for (int k = 0; k < steps; ++k) {
     w.step();
+    if ((k + 1) % every != 0) {
+      // Between refreshes only this process's part is exact, and the world says so.
+      if (w.settings().distribution && !w.replica_complete()) {
+        EXPECT_THROW(w.equilibrium(), std::logic_error);
+      }
+      continue;
+    }
+    w.synchronize();
     std::vector<char> r;
     const double t = w.time();
     append(r, &t, 1);
+    const EnergyBudget& e = w.energy_budget();
+    for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
+                     e.friction_dissipation, e.damping_dissipation, e.initial})
+      append(r, &v, 1);
+    const EquilibriumMeasures m = w.equilibrium();
+    append(r, &m.unbalanced_force_ratio, 1);
+    append(r, &m.kinetic_energy_ratio, 1);
+    const double counts[2] = {static_cast<double>(w.contact_count()),
+                              static_cast<double>(w.candidate_pair_count())};
+    append(r, counts, 2);
+    const double dt = w.next_time_step();
+    append(r, &dt, 1);
     for (const Block& b : w.blocks()) {
       append(r, b.position.data(), 3);
       append(r, b.velocity.data(), 3);
@@ -91,10 +117,16 @@ Record run(World w, int steps, std::vector<int>* owners_early, std::vector<int>*
       append(r, b.force.data(), 3);
       append(r, b.torque.data(), 3);
     }
+    for (const Contact* c : w.contacts()) {
+      append(r, c->geometry.point.data(), 3);
+      append(r, &c->normal_force, 1);
+      append(r, c->shear.force.data(), 3);
+    }
     rec.push_back(std::move(r));
-    if (k == 10 && owners_early) *owners_early = w.block_owners();
+    if (k + 1 >= 10 && owners_early && owners_early->empty()) *owners_early = w.block_owners();
   }
   if (owners_late) *owners_late = w.block_owners();
+  if (stats) *stats = w.distribution_stats();
   return rec;
 }
 
@@ -135,6 +167,55 @@ TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
         EXPECT_NE(std::count(late[k].begin(), late[k].end(), q), 0) << parts << " parts";
     }
     EXPECT_NE(early[0], late[0]) << "no block changed owner with " << parts << " parts";
+  }
+}
+
+// The replica made whole only every 10 steps (as the runner does at its checks): the steps in
+// between exchange only pair slots across subdomain boundaries, ghost blocks and the parts of
+// the global sums, and the world at every refresh is still bit for bit the one-world state
+// (blocks, loads, contacts, energy budget, equilibrium ratios, next time step). The per-step
+// exchange must be smaller than the whole-world gather it replaces.
+TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: blocks cross the boundaries
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  s.damping = 0.1;
+  const BrickPile pile;
+  const int steps = 150, every = 10;
+  const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr, every);
+  for (int parts : {2, 3}) {
+    auto meeting = std::make_shared<Meeting>(parts);
+    std::vector<Record> records(static_cast<std::size_t>(parts));
+    std::vector<DistributionStats> stats(static_cast<std::size_t>(parts));
+    std::vector<std::vector<int>> late(static_cast<std::size_t>(parts));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < parts; ++r) {
+      WorldSettings sr = s;
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      threads.emplace_back([&, r, sr] {
+        const auto k = static_cast<std::size_t>(r);
+        records[k] = run(pile.world(sr, 20.0), steps, nullptr, &late[k], every, &stats[k]);
+      });
+    }
+    for (auto& t : threads) t.join();
+    for (int r = 0; r < parts; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      ASSERT_EQ(records[k].size(), oracle.size());
+      for (std::size_t q = 0; q < oracle.size(); ++q)
+        ASSERT_TRUE(records[k][q] == oracle[q])
+            << parts << " parts, part " << r << ": first difference at step " << (q + 1) * every;
+      const DistributionStats& d = stats[k];
+      EXPECT_EQ(d.steps, steps);
+      // Refreshes: one per record, plus the partitions every 25 steps and the 200-step
+      // checkpoint (none within 150 steps).
+      EXPECT_LE(d.replica_refreshes, steps / every + steps / 25);
+      // A whole-world refresh moves every block and slot; a step moves only a boundary's worth.
+      const double per_step = static_cast<double>(d.bytes_received) / static_cast<double>(d.steps);
+      const double per_refresh =
+          static_cast<double>(d.replica_bytes_received) / static_cast<double>(d.replica_refreshes);
+      EXPECT_LT(per_step, 0.5 * per_refresh) << parts << " parts, part " << r;
+    }
   }
 }
 

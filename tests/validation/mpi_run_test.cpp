@@ -62,7 +62,7 @@ nlohmann::json comparable_summary(const fs::path& p) {
 /// stage cut short, whose outputs are still written) and checks that every output file
 /// is byte-identical to the single process's (summary.json: as comparable_summary). Returns the
 /// summaries of the runs on 2 and 3 processes. The one-process run is the oracle: the
-/// distributed step gathers every contact byte for byte and sums loads in the serial order.
+/// distributed step moves contacts byte for byte and sums loads in the serial order.
 std::vector<nlohmann::json> expect_same_outputs(const fs::path& dir, const std::string& args,
                                                 const std::string& env = "", int code = 0) {
   std::vector<fs::path> outs;
@@ -121,8 +121,8 @@ class MpiRun : public ::testing::Test {
 };
 
 // A 4-layer pile of 362 cubes with small initial velocities settling under gravity on a fixed
-// plate, 1000 steps: positions (blocks.csv), contacts and the energies in summary.json (printed
-// to 17 digits) as from one process.
+// plate, two stages of 1000 steps: positions (blocks.csv), contacts and the energies in
+// summary.json (printed to 17 digits) as from one process.
 TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
   const fs::path scenario =
       write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 1000));
@@ -130,9 +130,21 @@ TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
   for (const auto& s : summaries) {
     // Each process evaluated a share of the pairs and saw other processes' blocks as ghosts.
     ASSERT_EQ(s.at("distribution").size(), s.at("ranks").get<std::size_t>());
+    const auto ranks = s.at("ranks").get<double>();
+    double pairs = 0.0;
+    for (const auto& rank : s.at("distribution")) pairs += rank.at("pairs_per_step").get<double>();
     for (const auto& rank : s.at("distribution")) {
       EXPECT_GT(rank.at("pairs_per_step").get<double>(), 0.0);
       EXPECT_GT(rank.at("ghost_blocks_per_step").get<double>(), 0.0);
+      // The neighbour exchange against an all-gather of every other process's pair slots (504
+      // bytes each), which every process would receive every step: at most half of it here.
+      const double all_gather = 504.0 * pairs * (ranks - 1.0) / ranks;
+      EXPECT_LT(rank.at("bytes_received_per_step").get<double>(), 0.5 * all_gather);
+      // The whole world is gathered only at the stages' checks (every 10 steps), history rows
+      // (every 100), divergence checkpoints (every 200) and the stages' starts and ends: two
+      // stages of 1000 steps, against 2000 refreshes if it were gathered after every step.
+      EXPECT_LE(rank.at("replica_refreshes").get<int>(),
+                2 * (1000 / 10 + 1000 / 100 + 1000 / 200 + 2));
     }
   }
 }

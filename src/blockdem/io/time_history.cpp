@@ -75,11 +75,13 @@ void TimeHistoryWriter::coarsen() {
   next_coarsening_ += std::max<std::int64_t>(1, (options_.max_rows - next_coarsening_) / 2);
 }
 
-void TimeHistoryWriter::after_step(const World& world, const std::string& stage) {
+bool TimeHistoryWriter::due(const World& world) const {
   const std::int64_t level = world.step_count() - 1;
-  const bool due =
-      interval_time_ > 0.0 ? world.level_time() >= next_time_ : level % interval_steps_ == 0;
-  if (due) write(world, stage);
+  return interval_time_ > 0.0 ? world.level_time() >= next_time_ : level % interval_steps_ == 0;
+}
+
+void TimeHistoryWriter::after_step(const World& world, const std::string& stage) {
+  if (due(world)) write(world, stage);
 }
 
 void TimeHistoryWriter::write(const World& world, const std::string& stage) {

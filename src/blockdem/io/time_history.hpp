@@ -33,6 +33,8 @@ class TimeHistoryWriter {
 
   /// Called after every step: writes a row when the interval has passed.
   void after_step(const World& world, const std::string& stage);
+  /// Whether after_step writes a row now (it reads only the world's time and step counters).
+  bool due(const World& world) const;
   /// Writes a row at the world's current level unless one was just written (a stage end).
   void write(const World& world, const std::string& stage);
 

@@ -27,15 +27,20 @@ bool mpi_built() {
 
 nlohmann::json distribution_json(const DistributionStats& s) {
   const double steps = s.steps > 0 ? static_cast<double>(s.steps) : 1.0;
-  return {{"steps", s.steps},
-          {"partitions", s.partitions},
-          {"pairs_per_step", static_cast<double>(s.owned_pairs) / steps},
-          {"ghost_blocks_per_step", static_cast<double>(s.ghost_blocks) / steps},
-          {"bytes_sent_per_step", static_cast<double>(s.bytes_sent) / steps},
-          {"bytes_received_per_step", static_cast<double>(s.bytes_received) / steps},
-          {"pair_seconds_per_step", s.pair_seconds / steps},
-          {"exchange_seconds_per_step", s.exchange_seconds / steps},
-          {"last_imbalance", s.last_imbalance}};
+  return {
+      {"steps", s.steps},
+      {"partitions", s.partitions},
+      {"pairs_per_step", static_cast<double>(s.owned_pairs) / steps},
+      {"ghost_blocks_per_step", static_cast<double>(s.ghost_blocks) / steps},
+      {"bytes_sent_per_step", static_cast<double>(s.bytes_sent) / steps},
+      {"bytes_received_per_step", static_cast<double>(s.bytes_received) / steps},
+      {"replica_refreshes", s.replica_refreshes},
+      {"replica_bytes_sent_per_step", static_cast<double>(s.replica_bytes_sent) / steps},
+      {"replica_bytes_received_per_step", static_cast<double>(s.replica_bytes_received) / steps},
+      {"pair_seconds_per_step", s.pair_seconds / steps},
+      {"exchange_seconds_per_step", s.exchange_seconds / steps},
+      {"replica_seconds_per_step", s.replica_seconds / steps},
+      {"last_imbalance", s.last_imbalance}};
 }
 
 nlohmann::json gather_distribution_json(PairDistribution& distribution,
@@ -103,7 +108,87 @@ class MpiPairDistribution final : public PairDistribution {
     return all;
   }
 
+  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& to) override {
+    // Byte counts to every process (one integer each), then a message only where there are
+    // bytes: point to point, received into per-sender buffers, so the order of arrival does not
+    // matter.
+    const auto k = static_cast<std::size_t>(size_);
+    if (to.size() != k) throw std::logic_error("exchange: one part per process expected");
+    std::vector<int> send_counts(k, 0), recv_counts(k, 0);
+    for (std::size_t r = 0; r < k; ++r) {
+      if (static_cast<int>(r) == rank_) continue;
+      if (to[r].size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw std::runtime_error("exchange: more than 2 GB to one process");
+      send_counts[r] = static_cast<int>(to[r].size());
+    }
+    MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::vector<std::vector<char>> from(k);
+    std::vector<MPI_Request> requests;
+    requests.reserve(2 * k);
+    for (std::size_t r = 0; r < k; ++r) {
+      if (recv_counts[r] == 0) continue;
+      from[r].resize(static_cast<std::size_t>(recv_counts[r]));
+      requests.emplace_back();
+      MPI_Irecv(from[r].data(), recv_counts[r], MPI_BYTE, static_cast<int>(r), kExchangeTag,
+                MPI_COMM_WORLD, &requests.back());
+    }
+    for (std::size_t r = 0; r < k; ++r) {
+      if (send_counts[r] == 0) continue;
+      requests.emplace_back();
+      MPI_Isend(to[r].data(), send_counts[r], MPI_BYTE, static_cast<int>(r), kExchangeTag,
+                MPI_COMM_WORLD, &requests.back());
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    return from;
+  }
+  std::vector<double> min(const std::vector<double>& mine) override {
+    std::vector<double> out(mine.size());
+    MPI_Allreduce(mine.data(), out.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_MIN,
+                  MPI_COMM_WORLD);
+    return out;
+  }
+  std::vector<std::int64_t> sum(const std::vector<std::int64_t>& mine) override {
+    static_assert(sizeof(long long) == sizeof(std::int64_t));
+    std::vector<std::int64_t> out(mine.size());
+    MPI_Allreduce(mine.data(), out.data(), static_cast<int>(mine.size()), MPI_LONG_LONG, MPI_SUM,
+                  MPI_COMM_WORLD);
+    return out;
+  }
+  std::vector<char> gather(const std::vector<char>& mine,
+                           std::vector<std::size_t>& counts) override {
+    if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::runtime_error("gather: more than 2 GB from one process");
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> all_counts(static_cast<std::size_t>(size_), 0);
+    MPI_Gather(&count, 1, MPI_INT, all_counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::vector<int> displs(static_cast<std::size_t>(size_), 0);
+    long long total = 0;
+    counts.clear();
+    if (rank_ == 0) {
+      for (int r = 0; r < size_; ++r) {
+        if (total > std::numeric_limits<int>::max())
+          throw std::runtime_error("gather: more than 2 GB in one step");
+        displs[static_cast<std::size_t>(r)] = static_cast<int>(total);
+        counts.push_back(static_cast<std::size_t>(all_counts[static_cast<std::size_t>(r)]));
+        total += all_counts[static_cast<std::size_t>(r)];
+      }
+    }
+    std::vector<char> all(static_cast<std::size_t>(total));
+    MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), all_counts.data(), displs.data(),
+                MPI_BYTE, 0, MPI_COMM_WORLD);
+    return all;
+  }
+  void broadcast(std::vector<char>& bytes) override {
+    unsigned long long n = bytes.size();
+    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    if (n > static_cast<unsigned long long>(std::numeric_limits<int>::max()))
+      throw std::runtime_error("broadcast: more than 2 GB");
+    bytes.resize(static_cast<std::size_t>(n));
+    MPI_Bcast(bytes.data(), static_cast<int>(n), MPI_BYTE, 0, MPI_COMM_WORLD);
+  }
+
  private:
+  static constexpr int kExchangeTag = 17;
   int rank_;
   int size_;
   std::int64_t interval_ = 0;

@@ -196,6 +196,9 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   // alone writes the file): the checkpoint does not depend on the number of processes.
   auto checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
                         const World* before) {
+    // A distributed world is made whole first (collectively: every process calls this at the
+    // same steps, see poll()).
+    world.synchronize();
     if (control.write_checkpoint_files) write_checkpoint(level, at, monitor, before);
     last_checkpoint = std::chrono::steady_clock::now();
   };
@@ -344,6 +347,13 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       if (due && !beam) checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
       return now.stop;
     };
+    // What the step callback reads: the history and the VTK frames, only when they are due.
+    StageSync sync;
+    sync.after_step_synchronizes = true;
+    sync.on_step_reads = [&](const World& w) {
+      return history->due(w) ||
+             (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0);
+    };
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {
@@ -353,7 +363,8 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
             history->after_step(w, s.name);
             if (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0)
               recorder.write_frame(w, level);
-          });
+          },
+          &sync);
     } catch (const DivergenceError& e) {
       diverged = true;
       result.name = stage.name;

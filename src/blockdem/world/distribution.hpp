@@ -1,5 +1,6 @@
-// The hook through which a world spreads its per-pair work over processes (MPI ranks): which
-// process owns which block, and an all-gather of bytes. Implemented in parallel/ (floor 4).
+// The hook through which a world spreads its step over processes (MPI ranks): which process owns
+// which block, point-to-point exchanges with neighbours, reductions and an all-gather of bytes.
+// Implemented in parallel/ (floor 4).
 #pragma once
 
 #include <Eigen/Core>
@@ -10,8 +11,9 @@
 namespace blockdem {
 
 /// What the world needs from a group of processes that run the same scenario in lockstep. Every
-/// process holds the whole world; each evaluates the contacts it owns, and the results are
-/// gathered so that every process ends the step with the same, complete state.
+/// process owns the blocks of its subdomain and the contacts the ownership rule gives it; it
+/// steps those, with ghost copies of its neighbours' blocks, and the whole world is gathered to
+/// every process only when asked (World::synchronize).
 class PairDistribution {
  public:
   virtual ~PairDistribution() = default;
@@ -28,19 +30,45 @@ class PairDistribution {
   /// process's byte count.
   virtual std::vector<char> all_gather(const std::vector<char>& mine,
                                        std::vector<std::size_t>& counts) = 0;
+
+  // The operations below have implementations built on all_gather (correct, but every process
+  // then receives everything); parallel/mpi_run overrides them with point-to-point messages and
+  // MPI reductions, whose volume follows the subdomains' surfaces.
+
+  /// Collective: `to[r]` goes to process r (an empty part sends nothing; to[rank()] is ignored);
+  /// returns what each process sent to this one, indexed by sender.
+  virtual std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& to);
+  /// Collective: the element-wise minimum over every process (exact: independent of order).
+  virtual std::vector<double> min(const std::vector<double>& mine);
+  /// Collective: the element-wise sum over every process (exact: integers).
+  virtual std::vector<std::int64_t> sum(const std::vector<std::int64_t>& mine);
+  /// Collective: every process's bytes, concatenated in rank order, on process 0 only (empty on
+  /// the others); `counts` receives each process's byte count on process 0.
+  virtual std::vector<char> gather(const std::vector<char>& mine, std::vector<std::size_t>& counts);
+  /// Collective: process 0's bytes replace `bytes` on every process.
+  virtual void broadcast(std::vector<char>& bytes);
 };
 
 /// Per-step figures of the distributed pair work, for the scaling measurements (this process).
 struct DistributionStats {
-  std::int64_t steps = 0;           ///< distributed steps taken (-)
-  std::int64_t partitions = 0;      ///< partitions computed (the first one and rebalances) (-)
-  std::int64_t owned_pairs = 0;     ///< candidate pairs this process evaluated, summed over steps
-  std::int64_t ghost_blocks = 0;    ///< other processes' blocks in this process's pairs, summed
-  std::int64_t bytes_sent = 0;      ///< bytes this process contributed to the exchanges (B)
-  std::int64_t bytes_received = 0;  ///< bytes it received from the other processes (B)
-  double pair_seconds = 0.0;        ///< time in its own pair work (s)
-  double exchange_seconds = 0.0;    ///< time in the exchanges, waiting included (s)
-  double last_imbalance = 1.0;      ///< slowest process's pair time over the mean, last step (-)
+  std::int64_t steps = 0;         ///< distributed steps taken (-)
+  std::int64_t partitions = 0;    ///< partitions computed (the first one and rebalances) (-)
+  std::int64_t owned_pairs = 0;   ///< candidate pairs this process evaluated, summed over steps
+  std::int64_t ghost_blocks = 0;  ///< other processes' blocks in this process's pairs, summed
+  /// Bytes this process sent to its neighbours every step: pair slots to the other block's owner,
+  /// its blocks' states to the processes that hold them as ghosts, and its part of the fixed-order
+  /// sums (B).
+  std::int64_t bytes_sent = 0;
+  std::int64_t bytes_received = 0;  ///< bytes it received in those exchanges (B)
+  /// Replica refreshes (every block and pair slot to every process: partitions, divergence
+  /// checkpoints, and whenever the caller reads the whole world) and their bytes (B).
+  std::int64_t replica_refreshes = 0;
+  std::int64_t replica_bytes_sent = 0;
+  std::int64_t replica_bytes_received = 0;
+  double pair_seconds = 0.0;      ///< time in its own pair work (s)
+  double exchange_seconds = 0.0;  ///< time in the per-step exchanges, waiting included (s)
+  double replica_seconds = 0.0;   ///< time in the replica refreshes, waiting included (s)
+  double last_imbalance = 1.0;    ///< slowest process's pair time over the mean, last step (-)
 };
 
 }  // namespace blockdem

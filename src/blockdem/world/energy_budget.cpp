@@ -43,48 +43,76 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
 void EnergyLedger::after_integration(const std::vector<Block>& blocks,
                                      const Eigen::Vector3d& gravity, double damping, double dt,
                                      double elastic, double slip_work) {
+  prepare(blocks.size());
+  std::vector<BlockEnergyTerms> terms(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    terms[i] = block_terms(i, blocks[i], gravity, damping, dt);
+  add_step(terms, elastic, slip_work);
+}
+
+void EnergyLedger::prepare(std::size_t blocks) {
+  level_velocity_.resize(blocks);
+  level_angular_velocity_.resize(blocks);
+}
+
+BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
+                                           const Eigen::Vector3d& gravity, double damping,
+                                           double dt) {
+  BlockEnergyTerms t;
+  Previous& p = previous_[i];
+  const Eigen::Vector3d& u = p.velocity;          // v_{n-1/2}
+  const Eigen::Vector3d& w = p.angular_velocity;  // ω_{n-1/2}
+  level_velocity_[i] = 0.5 * (u + b.velocity);
+  level_angular_velocity_[i] = 0.5 * (w + b.angular_velocity);
+  if (b.is_dynamic()) {
+    // This step's impulses; the damping force is what local_damping took off the load.
+    const Eigen::Vector3d ig = dt * b.mass * gravity;
+    const Eigen::Vector3d il = dt * b.external_force;
+    const Eigen::Vector3d tl = dt * b.external_torque;
+    const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
+    const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
+    t.dynamic = 1.0;
+    t.gravity = 0.5 * u.dot(ig + p.gravity);
+    t.load = 0.5 * (u.dot(il + p.load) + w.dot(tl + p.load_torque));
+    t.damping = 0.5 * (u.dot(id + p.damping) + w.dot(td + p.damping_torque));
+    t.kinetic = 0.5 * b.mass * u.dot(b.velocity) +
+                0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
+    p.gravity = ig;
+    p.load = il;
+    p.load_torque = tl;
+    p.damping = id;
+    p.damping_torque = td;
+  } else {
+    // A moving boundary does work -F·dx on the model through the contact force F it feels.
+    const Eigen::Vector3d ic = dt * b.contact_force;
+    const Eigen::Vector3d tc = dt * b.torque;
+    t.boundary = 0.5 * (u.dot(ic + p.contact) + w.dot(tc + p.contact_torque));
+    p.contact = ic;
+    p.contact_torque = tc;
+  }
+  p.velocity = b.velocity;
+  p.angular_velocity = b.angular_velocity;
+  p.angular_momentum = b.angular_momentum;
+  return t;
+}
+
+void EnergyLedger::add_step(const std::vector<BlockEnergyTerms>& terms, double elastic,
+                            double slip_work) {
   EnergyBudget& e = budget_;
   const double carried = started_ ? 0.0 : e.residual();
+  // The sums in block order (a fixed order, whatever process computed each term).
   double kinetic = 0.0;
-  level_velocity_.resize(blocks.size());
-  level_angular_velocity_.resize(blocks.size());
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    const Block& b = blocks[i];
-    Previous& p = previous_[i];
-    const Eigen::Vector3d& u = p.velocity;          // v_{n-1/2}
-    const Eigen::Vector3d& w = p.angular_velocity;  // ω_{n-1/2}
-    level_velocity_[i] = 0.5 * (u + b.velocity);
-    level_angular_velocity_[i] = 0.5 * (w + b.angular_velocity);
-    if (b.is_dynamic()) {
-      // This step's impulses; the damping force is what local_damping took off the load.
-      const Eigen::Vector3d ig = dt * b.mass * gravity;
-      const Eigen::Vector3d il = dt * b.external_force;
-      const Eigen::Vector3d tl = dt * b.external_torque;
-      const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
-      const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
+  for (const BlockEnergyTerms& t : terms) {
+    if (t.dynamic != 0.0) {
       if (started_) {
-        e.gravity_work += 0.5 * u.dot(ig + p.gravity);
-        e.load_work += 0.5 * (u.dot(il + p.load) + w.dot(tl + p.load_torque));
-        e.damping_dissipation += 0.5 * (u.dot(id + p.damping) + w.dot(td + p.damping_torque));
+        e.gravity_work += t.gravity;
+        e.load_work += t.load;
+        e.damping_dissipation += t.damping;
       }
-      kinetic += 0.5 * b.mass * u.dot(b.velocity) +
-                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
-      p.gravity = ig;
-      p.load = il;
-      p.load_torque = tl;
-      p.damping = id;
-      p.damping_torque = td;
-    } else {
-      // A moving boundary does work -F·dx on the model through the contact force F it feels.
-      const Eigen::Vector3d ic = dt * b.contact_force;
-      const Eigen::Vector3d tc = dt * b.torque;
-      if (started_) e.boundary_work -= 0.5 * (u.dot(ic + p.contact) + w.dot(tc + p.contact_torque));
-      p.contact = ic;
-      p.contact_torque = tc;
+      kinetic += t.kinetic;
+    } else if (started_) {
+      e.boundary_work -= t.boundary;
     }
-    p.velocity = b.velocity;
-    p.angular_velocity = b.angular_velocity;
-    p.angular_momentum = b.angular_momentum;
   }
   e.kinetic = kinetic;
   e.elastic = elastic;
@@ -95,6 +123,25 @@ void EnergyLedger::after_integration(const std::vector<Block>& blocks,
     e.initial = 0.0;
     e.initial = e.residual() - carried;
     started_ = true;
+  }
+}
+
+void EnergyLedger::block_record(std::size_t i, double* out) const {
+  const Previous& p = previous_[i];
+  for (const Eigen::Vector3d* v :
+       {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load, &p.load_torque,
+        &p.damping, &p.damping_torque, &p.contact, &p.contact_torque, &level_velocity_[i],
+        &level_angular_velocity_[i]}) {
+    for (int k = 0; k < 3; ++k) *out++ = (*v)[k];
+  }
+}
+
+void EnergyLedger::set_block_record(std::size_t i, const double* in) {
+  Previous& p = previous_[i];
+  for (Eigen::Vector3d* v : {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity,
+                             &p.load, &p.load_torque, &p.damping, &p.damping_torque, &p.contact,
+                             &p.contact_torque, &level_velocity_[i], &level_angular_velocity_[i]}) {
+    for (int k = 0; k < 3; ++k) (*v)[k] = *in++;
   }
 }
 

@@ -40,6 +40,16 @@ struct EnergyBudget {
 /// Elastic energy of one joint, ½ F_n δ + |F_s|² / (2 k_s A) (J).
 double joint_elastic_energy(const Contact& contact);
 
+/// One block's part of a step's budget sums (J), added in block order.
+struct BlockEnergyTerms {
+  double gravity = 0.0;   ///< to gravity_work (free blocks)
+  double load = 0.0;      ///< to load_work (free blocks)
+  double damping = 0.0;   ///< to damping_dissipation (free blocks)
+  double kinetic = 0.0;   ///< to kinetic (free blocks)
+  double boundary = 0.0;  ///< subtracted from boundary_work (other blocks)
+  double dynamic = 0.0;   ///< 1: a free block (-)
+};
+
 /// Keeps an EnergyBudget up to date, one world step at a time. Works use the trapezoidal rule of
 /// central differences: in the step that evaluates forces at level n,
 ///   W += ½ v_{n-1/2} · (Δt_n F_n + Δt_{n-1} F_{n-1}),
@@ -54,6 +64,23 @@ class EnergyLedger {
   /// `elastic` the joints' energy at level n, `slip_work` the energy dissipated by slip in it.
   void after_integration(const std::vector<Block>& blocks, const Eigen::Vector3d& gravity,
                          double damping, double dt, double elastic, double slip_work);
+  /// after_integration in parts, for a world whose blocks are spread over processes: `prepare`
+  /// once (sizes the per-block records), `block_terms` for each block (updates its records),
+  /// then `add_step` with every block's terms in block order, as after_integration adds them.
+  void prepare(std::size_t blocks);
+  BlockEnergyTerms block_terms(std::size_t i, const Block& b, const Eigen::Vector3d& gravity,
+                               double damping, double dt);
+  void add_step(const std::vector<BlockEnergyTerms>& terms, double elastic, double slip_work);
+  /// The budget computed by another process, for a step whose add_step ran there.
+  void set_budget(const EnergyBudget& budget) {
+    budget_ = budget;
+    started_ = true;
+  }
+  /// A block's records (previous step, level velocities) as doubles, to move between processes.
+  static constexpr std::size_t kBlockRecordDoubles = 36;
+  void block_record(std::size_t i, double* out) const;
+  void set_block_record(std::size_t i, const double* in);
+
   /// Blocks were removed: the next step starts the accounting again, carrying the residual.
   void restart() { started_ = false; }
 

@@ -91,8 +91,17 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
                       std::optional<MotionMonitor>* monitor, const AfterStepFn& after_step,
-                      const StageResume* resume, const StepFn& on_step) {
+                      const StageResume* resume, const StepFn& on_step, const StageSync* sync) {
   stage.validate();
+  // A distributed world is made whole only where the stage or its callbacks read it.
+  world.synchronize();
+  const bool deferred =
+      sync != nullptr && world.settings().distribution != nullptr && sync->after_step_synchronizes;
+  struct Deferral {
+    World& world;
+    ~Deferral() { world.set_deferred_replica(false); }
+  } deferral{world};
+  world.set_deferred_replica(deferred);
   if (resume && !(monitor && monitor->has_value()))
     throw std::logic_error("run_stage: resuming a stage needs its motion monitor");
   const Eigen::Vector3d gravity_before = resume ? resume->gravity_before : world.settings().gravity;
@@ -111,8 +120,10 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     }
     world.step();
     r.steps = k;
-    if (on_step) on_step(world, stage, k);
     const bool check = k % stage.check_interval == 0;
+    if (deferred && (check || (on_step && (!sync->on_step_reads || sync->on_step_reads(world)))))
+      world.synchronize();
+    if (on_step) on_step(world, stage, k);
     if (check) watch->observe(world, ramping);
     if (progress && check) {
       const auto now = std::chrono::steady_clock::now();
@@ -144,6 +155,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       break;
     }
     if (k >= stage.max_steps) {
+      world.synchronize();
       const EquilibriumMeasures m = world.equilibrium();
       r.message = "no equilibrium after " + std::to_string(k) + " steps: unbalanced force ratio " +
                   std::to_string(m.unbalanced_force_ratio) + " (tolerance " +
@@ -159,6 +171,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       break;
     }
   }
+  world.synchronize();
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.servo.hold = true;

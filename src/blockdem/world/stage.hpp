@@ -103,6 +103,17 @@ using ProgressFn = std::function<void(const Stage&, std::int64_t, const Equilibr
 /// Called after every step of a stage with (stage, steps taken in it); e.g. a time-history writer.
 using StepFn = std::function<void(const World&, const Stage&, std::int64_t)>;
 
+/// For a world spread over processes (WorldSettings::distribution): when the callbacks read the
+/// whole world, so that run_stage completes it (World::synchronize) only then. Without it a
+/// distributed world is completed after every step.
+struct StageSync {
+  /// Whether on_step reads more than the world's time and step counters after this step (the
+  /// same answer on every process).
+  std::function<bool(const World&)> on_step_reads;
+  /// after_step calls World::synchronize itself, on every process alike, before it reads the world.
+  bool after_step_synchronizes = false;
+};
+
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.
 /// `monitor`, when given, is created at the stage start and observed at every check, so that
 /// after a DivergenceError it still holds the last observation before the blow-up.
@@ -111,7 +122,7 @@ using StepFn = std::function<void(const World&, const Stage&, std::int64_t)>;
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress = {},
                       std::optional<MotionMonitor>* monitor = nullptr,
                       const AfterStepFn& after_step = {}, const StageResume* resume = nullptr,
-                      const StepFn& on_step = {});
+                      const StepFn& on_step = {}, const StageSync* sync = nullptr);
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

@@ -118,6 +118,7 @@ int World::thread_count() const {
 }
 
 std::vector<const Contact*> World::contacts() const {
+  require_replica("contacts");
   std::vector<const Contact*> out;
   out.reserve(active_count_);
   for (const auto& s : slots_) {
@@ -183,9 +184,10 @@ double World::critical_time_step() const {
   return dt / settings_.safety_factor;
 }
 
-void World::apply_servos(double dt) {
+void World::apply_servos(double dt, const std::vector<char>* only) {
   for (auto& b : blocks_) {
     if (b.motion != Motion::servo) continue;
+    if (only && (*only)[static_cast<std::size_t>(b.index)] == 0) continue;
     Servo& s = b.servo;
     if (s.hold) {
       b.velocity.setZero();
@@ -241,9 +243,16 @@ void World::check_divergence() {
 }
 
 void World::step() {
-  if (!checkpoint_.valid) save_checkpoint();
+  if (!checkpoint_.valid) {
+    synchronize();
+    save_checkpoint();
+  }
   const double dt = next_time_step();
   const int threads = thread_count();
+  if (settings_.distribution) {
+    step_distributed(dt, threads);
+    return;
+  }
   // 1. World planes, boxes and the loads that do not come from contacts (parallel per block).
   update_geometry(threads);
   // 2-5. Contacts: broad phase, per-pair work in parallel, loads scattered in a fixed order.
@@ -273,6 +282,7 @@ void World::step() {
 }
 
 EquilibriumMeasures World::equilibrium() const {
+  require_replica("equilibrium");
   EquilibriumMeasures m;
   // Every sum runs in (a, b) order or block order, whatever the number of threads.
   double contact_sum = 0.0, energy = 0.0;
@@ -312,6 +322,7 @@ EquilibriumMeasures World::equilibrium() const {
 }
 
 void World::save_checkpoint() {
+  require_replica("save_checkpoint");
   checkpoint_.blocks.resize(blocks_.size());
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& b = blocks_[i];
@@ -380,6 +391,9 @@ void World::restore_checkpoint() {
   step_count_ = checkpoint_.step_count;
   broken_bonds_ = checkpoint_.broken_bonds;
   energy_ = checkpoint_.energy;
+  // The checkpoint is whole on every process: so is the world now.
+  replica_complete_ = true;
+  overlap_key_ = std::numeric_limits<double>::infinity();
 }
 
 World::LevelState World::level_state(int block) const {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -195,6 +196,16 @@ class World {
   const std::vector<int>& block_owners() const { return owner_; }
   const DistributionStats& distribution_stats() const { return dist_stats_; }
 
+  /// With settings().distribution, a step leaves exact only this process's blocks and pairs and
+  /// its ghosts (docs/scaling.md). Collective: gathers every block's state and every pair slot to
+  /// every process, bit for bit those of one process. Nothing to do when already complete.
+  void synchronize();
+  /// Whether every block and pair slot here is exact (always without a distribution).
+  bool replica_complete() const { return replica_complete_; }
+  /// Off (the default): a distributed step ends with synchronize(). On: the caller calls
+  /// synchronize() on every process before it reads more than the time and step counters.
+  void set_deferred_replica(bool on) { deferred_replica_ = on; }
+
  private:
   /// One candidate pair: its contact (active when the blocks touch and a force acts) or, for a
   /// near pair, only the narrow-phase warm start kept in contact.narrow_cache.
@@ -215,10 +226,16 @@ class World {
   void evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const;
   bool evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const;
   void evaluate_pairs(double dt, bool advance_shear, int threads);
-  void evaluate_pairs_distributed(double dt, int threads);  // world_distributed.cpp
+  // world_distributed.cpp
+  void step_distributed(double dt, int threads);
   void partition_blocks();
+  int pair_owner(const Contact& c) const;
+  void exchange_ghosts();
+  void require_replica(const char* what) const;
+
   void scatter_loads();
-  void apply_servos(double dt);
+  /// `only`: servos of these blocks only (per block, nonzero: apply); null: every block.
+  void apply_servos(double dt, const std::vector<char>* only = nullptr);
   void check_divergence();
   double a_priori_time_step() const;
 
@@ -246,6 +263,13 @@ class World {
   std::vector<int> owner_;
   std::int64_t partition_step_ = -1;
   DistributionStats dist_stats_;
+  bool replica_complete_ = true;  ///< every block and slot exact on this process
+  bool deferred_replica_ = false;
+  std::vector<char> own_;    ///< per block: owned by this process
+  std::vector<char> local_;  ///< per block: exact here (owned, or a ghost received this step)
+  double overlap_key_ =
+      std::numeric_limits<double>::infinity();  ///< a N + b of the first too-deep contact
+  std::vector<BlockEnergyTerms> energy_terms_;
 
   double time_ = 0.0;
   std::int64_t step_count_ = 0;

@@ -28,6 +28,7 @@ const std::vector<int>& World::face_laws(int block) const {
 }
 
 void World::remove_blocks(const std::vector<int>& indices) {
+  require_replica("remove_blocks");
   std::vector<int> new_index(blocks_.size(), 0);
   for (int i : indices) {
     if (i < 0 || i >= static_cast<int>(blocks_.size()))

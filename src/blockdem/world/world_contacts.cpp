@@ -35,10 +35,7 @@ void World::compute_contacts(double dt, int threads) {
       pairs_, threads);
   keep_open_bonds();
   merge_pairs();
-  if (settings_.distribution)
-    evaluate_pairs_distributed(dt, threads);
-  else
-    evaluate_pairs(dt, true, threads);
+  evaluate_pairs(dt, true, threads);
   scatter_loads();
 }
 

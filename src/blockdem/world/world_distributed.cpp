@@ -1,22 +1,66 @@
-// The per-pair work of a step spread over processes (settings().distribution): every process
-// holds the whole world, evaluates the candidate pairs it owns, and receives the others' slots
-// byte for byte, so that every process ends the step with the same state as a single process.
+// A step spread over processes (settings().distribution). Each process owns the blocks of its
+// subdomain (recursive coordinate bisection) and the pairs the ownership rule gives it; it finds
+// the pairs of its own blocks, evaluates its own pairs, sends each pair slot to the owner of the
+// pair's other block, sums the loads on its own blocks in the serial (a, b) order, integrates
+// them, and sends their new states to the processes that hold them as ghosts. Global quantities
+// are reduced exactly (minima, integer sums) or summed in block order on process 0. Every
+// exact block and slot is bit for bit what one process computes; synchronize() gathers the
+// whole world when a caller reads it.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
+#include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
 namespace {
 
-/// A process's part of an exchange starts with its measured pair time and its slot count.
-struct ExchangeHeader {
+/// A process's figures of one step, gathered to every process (a few bytes per process).
+struct StepHeader {
   double seconds = 0.0;      ///< time in this step's own pair work (s)
-  std::uint64_t slots = 0;   ///< number of slots that follow (-)
-  std::uint64_t failed = 0;  ///< 1: a pair of this process threw (its slots are not sent)
+  std::uint64_t slots = 0;   ///< pairs it evaluated (-)
+  std::uint64_t failed = 0;  ///< 1: a pair of this process threw
+};
+
+/// A block's state as a ghost needs it: the pose and the velocities at the half step.
+struct GhostState {
+  std::int64_t index = 0;
+  double position[3];
+  double orientation[4];
+  double velocity[3];
+  double angular_velocity[3];
+  double angular_momentum[3];
+};
+
+/// A block's whole step state, for a replica refresh.
+struct ReplicaBlock {
+  GhostState state;
+  double force[3];
+  double torque[3];
+  double contact_force[3];
+  double stiffness = 0.0;
+  double rotational_stiffness = 0.0;
+  double energy[EnergyLedger::kBlockRecordDoubles];
+  double aabb_min[3];  ///< the box and the world planes (which follow) of the step's start pose
+  double aabb_max[3];
+  std::uint64_t planes = 0;
+};
+
+/// One block's or one contact's part of the fixed-order energy sums.
+struct BlockTermsEntry {
+  std::int64_t index = 0;
+  BlockEnergyTerms terms;
+};
+struct PairEnergyEntry {
+  double key = 0.0;  ///< a N + b: the (a, b) order
+  double elastic = 0.0;
+  double slip_work = 0.0;
 };
 
 /// Rebalance when the slowest process's pair work exceeds the mean by this factor (-)...
@@ -30,9 +74,80 @@ constexpr double kMinImbalanceSeconds = 1e-3;
 /// pair counts, so only then can a new partition help (and counts carry no timing noise).
 constexpr double kPairCountThreshold = 1.1;
 
+void put_bytes(std::vector<char>& out, const void* p, std::size_t n) {
+  const std::size_t at = out.size();
+  out.resize(at + n);
+  std::memcpy(out.data() + at, p, n);
+}
+
+template <class T>
+void put(std::vector<char>& out, const T& value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  put_bytes(out, &value, sizeof(T));
+}
+
+template <class T>
+T get(const std::vector<char>& in, std::size_t offset) {
+  T value;
+  std::memcpy(static_cast<void*>(&value), in.data() + offset, sizeof(T));
+  return value;
+}
+
+void put3(std::vector<char>& out, const Eigen::Vector3d& v) {
+  for (int k = 0; k < 3; ++k) put(out, v[k]);
+}
+
+Eigen::Vector3d get3(const std::vector<char>& in, std::size_t offset) {
+  return {get<double>(in, offset), get<double>(in, offset + 8), get<double>(in, offset + 16)};
+}
+
+GhostState ghost_of(const Block& b) {
+  GhostState g;
+  g.index = b.index;
+  for (int k = 0; k < 3; ++k) {
+    g.position[k] = b.position[k];
+    g.velocity[k] = b.velocity[k];
+    g.angular_velocity[k] = b.angular_velocity[k];
+    g.angular_momentum[k] = b.angular_momentum[k];
+  }
+  for (int k = 0; k < 4; ++k) g.orientation[k] = b.orientation.coeffs()[k];
+  return g;
+}
+
+void set_ghost(Block& b, const GhostState& g) {
+  for (int k = 0; k < 3; ++k) {
+    b.position[k] = g.position[k];
+    b.velocity[k] = g.velocity[k];
+    b.angular_velocity[k] = g.angular_velocity[k];
+    b.angular_momentum[k] = g.angular_momentum[k];
+  }
+  for (int k = 0; k < 4; ++k) b.orientation.coeffs()[k] = g.orientation[k];
+}
+
+bool boxes_overlap(const Eigen::Vector3d& min_a, const Eigen::Vector3d& max_a,
+                   const Eigen::Vector3d& min_b, const Eigen::Vector3d& max_b) {
+  return (min_a.array() <= max_b.array()).all() && (min_b.array() <= max_a.array()).all();
+}
+
 }  // namespace
 
+void World::require_replica(const char* what) const {
+  if (!replica_complete_)
+    throw std::logic_error(std::string(what) +
+                           ": the distributed world is not whole here; call synchronize() first");
+}
+
+int World::pair_owner(const Contact& c) const {
+  // One owner per pair, by a rule on the blocks' global indices: the owner of the block that
+  // can move when only one can; otherwise of a when a + b is odd, of b when even (so that pairs
+  // across a subdomain boundary split about evenly between the two sides).
+  const bool da = blocks_[c.a].is_dynamic(), db = blocks_[c.b].is_dynamic();
+  if (da != db) return owner_[da ? c.a : c.b];
+  return owner_[((c.a + c.b) & 1) != 0 ? c.a : c.b];
+}
+
 void World::partition_blocks() {
+  require_replica("partition");
   // Weight: one for the block plus one per candidate pair it is in (the narrow phase's work).
   std::vector<Eigen::Vector3d> points(blocks_.size());
   std::vector<double> weights(blocks_.size(), 1.0);
@@ -44,46 +159,292 @@ void World::partition_blocks() {
   owner_ = settings_.distribution->partition(points, weights);
   if (owner_.size() != blocks_.size())
     throw std::logic_error("partition: one owner per block expected");
+  const int rank = settings_.distribution->rank();
+  own_.assign(blocks_.size(), 0);
+  for (std::size_t i = 0; i < blocks_.size(); ++i) own_[i] = owner_[i] == rank ? 1 : 0;
   partition_step_ = step_count_;
   ++dist_stats_.partitions;
 }
 
-void World::evaluate_pairs_distributed(double dt, int threads) {
+void World::synchronize() {
+  if (!settings_.distribution || replica_complete_) return;
   // A slot travels as raw bytes: Contact and PairSlot hold fixed-size data only (no pointers,
   // no heap storage), and every process runs the same program.
   static_assert(std::is_trivially_destructible_v<PairSlot>, "PairSlot must be plain data");
+  static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
   PairDistribution& dist = *settings_.distribution;
   const int rank = dist.rank();
-  if (owner_.size() != blocks_.size()) partition_blocks();
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = blocks_.size();
+  energy_.prepare(n);
 
-  // One owner per pair, by a rule on the blocks' global indices: the owner of the block that
-  // can move when only one can; otherwise of a when a + b is odd, of b when even (so that pairs
-  // across a subdomain boundary split about evenly between the two sides).
-  auto pair_owner = [&](const Contact& c) {
-    const bool da = blocks_[c.a].is_dynamic(), db = blocks_[c.b].is_dynamic();
-    if (da != db) return owner_[da ? c.a : c.b];
-    return owner_[((c.a + c.b) & 1) != 0 ? c.a : c.b];
+  // This process's blocks, then the pairs it owns (the two counts first).
+  std::vector<char> out;
+  std::uint64_t own_count = 0, slot_count = 0;
+  for (std::size_t i = 0; i < n; ++i) own_count += own_[i];
+  for (const auto& s : slots_) slot_count += pair_owner(s.contact) == rank ? 1 : 0;
+  put(out, own_count);
+  put(out, slot_count);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (own_[i] == 0) continue;
+    const Block& b = blocks_[i];
+    ReplicaBlock r;
+    r.state = ghost_of(b);
+    for (int k = 0; k < 3; ++k) {
+      r.force[k] = b.force[k];
+      r.torque[k] = b.torque[k];
+      r.contact_force[k] = b.contact_force[k];
+    }
+    r.stiffness = i < stiffness_.size() ? stiffness_[i] : 0.0;
+    r.rotational_stiffness = i < rotational_stiffness_.size() ? rotational_stiffness_[i] : 0.0;
+    energy_.block_record(i, r.energy);
+    for (int k = 0; k < 3; ++k) {
+      r.aabb_min[k] = b.aabb_min[k];
+      r.aabb_max[k] = b.aabb_max[k];
+    }
+    r.planes = b.world_planes.size();
+    put(out, r);
+    for (const Halfspace& h : b.world_planes) {
+      put3(out, h.normal);
+      put(out, h.offset);
+    }
+  }
+  for (const auto& s : slots_) {
+    if (pair_owner(s.contact) != rank) continue;
+    put_bytes(out, &s, sizeof(PairSlot));
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<char> all = dist.all_gather(out, counts);
+
+  // Every process's blocks into place, every owned slot into one list sorted by (a, b).
+  stiffness_.resize(n, 0.0);
+  rotational_stiffness_.resize(n, 0.0);
+  std::vector<PairSlot> slots;
+  std::size_t begin = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    const auto blocks_in = get<std::uint64_t>(all, begin);
+    const auto slots_in = get<std::uint64_t>(all, begin + 8);
+    std::size_t at = begin + 16;
+    for (std::uint64_t k = 0; k < blocks_in; ++k) {
+      if (at + sizeof(ReplicaBlock) > begin + counts[r])
+        throw std::logic_error("replica refresh: a process sent a malformed part");
+      const auto rb = get<ReplicaBlock>(all, at);
+      at += sizeof(ReplicaBlock);
+      const auto i = static_cast<std::size_t>(rb.state.index);
+      Block& b = blocks_[i];
+      if (i >= n || rb.planes != b.shape.planes().size() || at + rb.planes * 32 > begin + counts[r])
+        throw std::logic_error("replica refresh: a process sent a malformed block");
+      if (static_cast<int>(r) != rank) {
+        b.world_planes.resize(rb.planes);
+        for (Halfspace& h : b.world_planes) {
+          h.normal = get3(all, at);
+          h.offset = get<double>(all, at + 24);
+          at += 32;
+        }
+        for (int c = 0; c < 3; ++c) {
+          b.aabb_min[c] = rb.aabb_min[c];
+          b.aabb_max[c] = rb.aabb_max[c];
+        }
+        set_ghost(b, rb.state);
+        for (int c = 0; c < 3; ++c) {
+          b.force[c] = rb.force[c];
+          b.torque[c] = rb.torque[c];
+          b.contact_force[c] = rb.contact_force[c];
+        }
+        stiffness_[i] = rb.stiffness;
+        rotational_stiffness_[i] = rb.rotational_stiffness;
+        energy_.set_block_record(i, rb.energy);
+      } else {
+        at += rb.planes * 32;
+      }
+    }
+    if (at + slots_in * sizeof(PairSlot) != begin + counts[r])
+      throw std::logic_error("replica refresh: a process sent a malformed part");
+    for (std::uint64_t k = 0; k < slots_in; ++k, at += sizeof(PairSlot)) {
+      slots.emplace_back();
+      std::memcpy(static_cast<void*>(&slots.back()), all.data() + at, sizeof(PairSlot));
+    }
+    begin += counts[r];
+  }
+  std::sort(slots.begin(), slots.end(), [](const PairSlot& x, const PairSlot& y) {
+    return x.contact.a < y.contact.a || (x.contact.a == y.contact.a && x.contact.b < y.contact.b);
+  });
+  slots_ = std::move(slots);
+  overlap_violation_ = -1;
+  if (std::isfinite(overlap_key_)) {
+    for (std::size_t k = 0; k < slots_.size(); ++k) {
+      const Contact& c = slots_[k].contact;
+      if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == overlap_key_) {
+        overlap_violation_ = static_cast<std::int64_t>(k);
+        break;
+      }
+    }
+  }
+  local_.assign(n, 1);
+  replica_complete_ = true;
+  dist_stats_.replica_refreshes += 1;
+  dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out.size());
+  dist_stats_.replica_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.replica_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void World::exchange_ghosts() {
+  // After integration: each process's own blocks to every process whose subdomain box (the union
+  // of its blocks' boxes) their box touches, and to the owners of their pairs' other blocks (an
+  // open bond keeps a pair whose boxes have parted). A process then holds, exactly, every block
+  // whose box can touch one of its own: its next broad phase and pair work need no other.
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto k = static_cast<std::size_t>(dist.size());
+  const std::size_t n = blocks_.size();
+  // The own blocks' boxes at their new poses (as the next step's geometry pass computes them;
+  // the blocks keep this step's planes and boxes, as in one process). A process's subdomain is
+  // published as the union of its movable blocks' boxes plus the box of each fixed block, so that
+  // a base plate under the whole model does not make the union the whole model.
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf), hi = Eigen::Vector3d::Constant(-inf);
+  std::vector<Eigen::Vector3d> next_min(n, lo), next_max(n, hi);
+  std::vector<char> box;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (own_[i] == 0) continue;
+    const Block& b = blocks_[i];
+    const Eigen::Matrix3d rot = b.rotation();
+    for (const auto& v : b.shape.vertices()) {
+      const Eigen::Vector3d w = b.position + rot * v;
+      next_min[i] = next_min[i].cwiseMin(w);
+      next_max[i] = next_max[i].cwiseMax(w);
+    }
+    if (b.motion == Motion::fixed) {
+      put3(box, next_min[i]);
+      put3(box, next_max[i]);
+    } else {
+      lo = lo.cwiseMin(next_min[i]);
+      hi = hi.cwiseMax(next_max[i]);
+    }
+  }
+  put3(box, lo);
+  put3(box, hi);
+  std::vector<std::size_t> counts;
+  const std::vector<char> boxes = dist.all_gather(box, counts);
+  std::vector<std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>> subdomain(k);
+  std::size_t begin = 0;
+  for (std::size_t r = 0; r < k; ++r) {
+    for (std::size_t at = begin; at + 48 <= begin + counts[r]; at += 48)
+      subdomain[r].emplace_back(get3(boxes, at), get3(boxes, at + 24));
+    begin += counts[r];
+  }
+  // (own block, destination) pairs: by the boxes, then the other owners of its pairs; each
+  // message lists its blocks in index order.
+  std::vector<std::pair<std::int64_t, int>> sends;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (own_[i] == 0) continue;
+    for (std::size_t r = 0; r < k; ++r) {
+      if (static_cast<int>(r) == rank) continue;
+      for (const auto& [box_lo, box_hi] : subdomain[r]) {
+        if (boxes_overlap(next_min[i], next_max[i], box_lo, box_hi)) {
+          sends.emplace_back(static_cast<std::int64_t>(i), static_cast<int>(r));
+          break;
+        }
+      }
+    }
+  }
+  for (const auto& s : slots_) {
+    const int a = s.contact.a, b = s.contact.b;
+    if (own_[a] != 0 && owner_[b] != rank) sends.emplace_back(a, owner_[b]);
+    if (own_[b] != 0 && owner_[a] != rank) sends.emplace_back(b, owner_[a]);
+  }
+  std::sort(sends.begin(), sends.end());
+  sends.erase(std::unique(sends.begin(), sends.end()), sends.end());
+  std::vector<std::vector<char>> to(k);
+  for (const auto& [i, r] : sends)
+    put(to[static_cast<std::size_t>(r)], ghost_of(blocks_[static_cast<std::size_t>(i)]));
+  const std::vector<std::vector<char>> from = dist.exchange(to);
+  for (std::size_t i = 0; i < n; ++i) local_[i] = own_[i];
+  for (std::size_t r = 0; r < k; ++r) {
+    if (from[r].size() % sizeof(GhostState) != 0)
+      throw std::logic_error("ghost exchange: a process sent a malformed part");
+    for (std::size_t at = 0; at < from[r].size(); at += sizeof(GhostState)) {
+      const auto g = get<GhostState>(from[r], at);
+      const auto i = static_cast<std::size_t>(g.index);
+      if (i >= n || owner_[i] != static_cast<int>(r))
+        throw std::logic_error("ghost exchange: a block came from a process that does not own it");
+      set_ghost(blocks_[i], g);
+      local_[i] = 1;
+    }
+    dist_stats_.bytes_received += static_cast<std::int64_t>(from[r].size());
+  }
+  for (std::size_t r = 0; r < k; ++r)
+    dist_stats_.bytes_sent += static_cast<std::int64_t>(to[r].size());
+  dist_stats_.bytes_sent += static_cast<std::int64_t>(box.size());
+  dist_stats_.bytes_received += static_cast<std::int64_t>(boxes.size() - box.size());
+}
+
+void World::step_distributed(double dt, int threads) {
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto k_ranks = static_cast<std::size_t>(dist.size());
+  const std::size_t n = blocks_.size();
+  if (owner_.size() != n) {
+    synchronize();
+    partition_blocks();
+  }
+  if (replica_complete_) local_.assign(n, 1);
+  // Time spent in the exchanges and reductions, waiting included (s).
+  using Clock = std::chrono::steady_clock;
+  double waiting = 0.0;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
   };
+
+  // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts).
+  box_min_.resize(n);
+  box_max_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (local_[i] == 0) continue;
+    Block& b = blocks_[i];
+    b.update_world_geometry();
+    box_min_[i] = b.aabb_min;
+    box_max_[i] = b.aabb_max;
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
+                             : Eigen::Vector3d::Zero();
+    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
+    b.contact_force.setZero();
+  }
+  // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots.
+  broad_phase_.find_pairs(
+      box_min_, box_max_,
+      [&](int a, int b) {
+        return local_[a] != 0 && local_[b] != 0 && (own_[a] != 0 || own_[b] != 0) &&
+               (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
+               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
+      },
+      pairs_, threads);
+  keep_open_bonds();
+  std::erase_if(pairs_, [&](const std::pair<int, int>& p) {
+    return own_[p.first] == 0 && own_[p.second] == 0;
+  });
+  merge_pairs();
+
+  // 4. This process's pairs (in parallel over its threads; each writes only its own slot).
   std::vector<int> slot_owner(slots_.size());
   std::vector<std::int64_t> mine;
-  std::vector<char> ghost(blocks_.size(), 0);
+  std::vector<char> ghost(n, 0);
   for (std::size_t k = 0; k < slots_.size(); ++k) {
-    slot_owner[k] = pair_owner(slots_[k].contact);
+    const Contact& c = slots_[k].contact;
+    slot_owner[k] = pair_owner(c);
     if (slot_owner[k] != rank) continue;
     mine.push_back(static_cast<std::int64_t>(k));
-    const Contact& c = slots_[k].contact;
-    if (owner_[c.a] != rank) ghost[c.a] = 1;
-    if (owner_[c.b] != rank) ghost[c.b] = 1;
+    if (own_[c.a] == 0) ghost[c.a] = 1;
+    if (own_[c.b] == 0) ghost[c.b] = 1;
   }
   for (char g : ghost) dist_stats_.ghost_blocks += g;
-
-  // This process's pairs (in parallel over its threads; each writes only its own slot).
   const auto t0 = std::chrono::steady_clock::now();
-  const std::int64_t n = static_cast<std::int64_t>(mine.size());
-  std::int64_t failed = n;
+  const std::int64_t count = static_cast<std::int64_t>(mine.size());
+  std::int64_t failed = count;
   std::exception_ptr error;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
-  for (std::int64_t i = 0; i < n; ++i) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && count > 64)
+  for (std::int64_t i = 0; i < count; ++i) {
     try {
       evaluate_pair(slots_[static_cast<std::size_t>(mine[static_cast<std::size_t>(i)])], dt, true);
     } catch (...) {
@@ -94,71 +455,219 @@ void World::evaluate_pairs_distributed(double dt, int threads) {
       }
     }
   }
-  // A pair that throws: the exchange still runs, and every process then stops alike.
-  if (error) mine.clear();
   const auto t1 = std::chrono::steady_clock::now();
 
-  ExchangeHeader header;
+  // Every process's figures (pair time and count, failure): all decide alike on failures and
+  // on rebalancing.
+  StepHeader header;
   header.seconds = std::chrono::duration<double>(t1 - t0).count();
-  header.slots = static_cast<std::uint64_t>(mine.size());
+  header.slots = static_cast<std::uint64_t>(count);
   header.failed = error ? 1 : 0;
-  std::vector<char> out(sizeof(ExchangeHeader) + mine.size() * sizeof(PairSlot));
-  std::memcpy(out.data(), &header, sizeof header);
-  for (std::size_t i = 0; i < mine.size(); ++i) {
-    std::memcpy(out.data() + sizeof header + i * sizeof(PairSlot),
-                static_cast<const void*>(&slots_[static_cast<std::size_t>(mine[i])]),
-                sizeof(PairSlot));
-  }
+  std::vector<char> head;
+  put(head, header);
   std::vector<std::size_t> counts;
-  const std::vector<char> all = dist.all_gather(out, counts);
-  const auto t2 = std::chrono::steady_clock::now();
-
-  if (error) std::rethrow_exception(error);
-  // Every other process's slots, in rank order; each process's slots come in slot order.
-  std::vector<std::size_t> begin(counts.size() + 1, 0);
-  for (std::size_t r = 0; r < counts.size(); ++r) begin[r + 1] = begin[r] + counts[r];
-  std::vector<std::size_t> next(counts.size());
+  auto tw = Clock::now();
+  const std::vector<char> heads = dist.all_gather(head, counts);
+  waiting += seconds_since(tw);
   double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    ExchangeHeader h;
-    std::memcpy(&h, all.data() + begin[r], sizeof h);
-    if (h.failed != 0)
+  for (std::size_t r = 0; r < k_ranks; ++r) {
+    const auto h = get<StepHeader>(heads, r * sizeof(StepHeader));
+    if (h.failed != 0) {
+      if (error) std::rethrow_exception(error);
       throw std::runtime_error("contact evaluation failed on process " + std::to_string(r));
-    if (sizeof h + h.slots * sizeof(PairSlot) != counts[r])
-      throw std::logic_error("pair exchange: a process sent a malformed part");
+    }
     slowest = std::max(slowest, h.seconds);
     total += h.seconds;
     most_pairs = std::max(most_pairs, static_cast<double>(h.slots));
     total_pairs += static_cast<double>(h.slots);
-    next[r] = begin[r] + sizeof h;
-  }
-  for (std::size_t k = 0; k < slots_.size(); ++k) {
-    const auto r = static_cast<std::size_t>(slot_owner[k]);
-    if (next[r] + sizeof(PairSlot) > begin[r + 1])
-      throw std::logic_error("pair exchange: a process sent fewer pairs than it owns");
-    if (slot_owner[k] != rank)
-      std::memcpy(static_cast<void*>(&slots_[k]), all.data() + next[r], sizeof(PairSlot));
-    next[r] += sizeof(PairSlot);
   }
 
+  // Each evaluated slot to the owner of the pair's other block, byte for byte.
+  std::vector<std::vector<char>> to(k_ranks);
+  for (std::int64_t i : mine) {
+    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
+    for (int block : {s.contact.a, s.contact.b}) {
+      const int r = owner_[static_cast<std::size_t>(block)];
+      if (r == rank) continue;
+      put_bytes(to[static_cast<std::size_t>(r)], &s, sizeof(PairSlot));
+    }
+  }
+  tw = Clock::now();
+  const std::vector<std::vector<char>> from = dist.exchange(to);
+  waiting += seconds_since(tw);
+  for (std::size_t r = 0; r < k_ranks; ++r) {
+    if (from[r].size() % sizeof(PairSlot) != 0)
+      throw std::logic_error("pair exchange: a process sent a malformed part");
+    for (std::size_t at = 0; at < from[r].size(); at += sizeof(PairSlot)) {
+      PairSlot received;
+      std::memcpy(static_cast<void*>(&received), from[r].data() + at, sizeof(PairSlot));
+      const int ab[2] = {received.contact.a, received.contact.b};
+      const auto it =
+          std::lower_bound(slots_.begin(), slots_.end(), std::pair<int, int>(ab[0], ab[1]),
+                           [](const PairSlot& s, const std::pair<int, int>& key) {
+                             return s.contact.a < key.first ||
+                                    (s.contact.a == key.first && s.contact.b < key.second);
+                           });
+      if (it == slots_.end() || it->contact.a != ab[0] || it->contact.b != ab[1])
+        throw std::logic_error("pair exchange: a process sent a pair this one does not have");
+      *it = received;
+    }
+    dist_stats_.bytes_sent += static_cast<std::int64_t>(to[r].size());
+    dist_stats_.bytes_received += static_cast<std::int64_t>(from[r].size());
+  }
+  dist_stats_.bytes_sent += static_cast<std::int64_t>(head.size());
+  dist_stats_.bytes_received += static_cast<std::int64_t>(heads.size() - head.size());
+
+  // 5. Loads: every slot of an own block is exact here, so its sums are the serial ones. The
+  // counts over pairs and the time-step minimum count only what this process owns.
+  const std::int64_t broken_before = broken_bonds_;
+  scatter_loads();
+  std::int64_t active = 0, broke = 0;
+  double overlap_key = std::numeric_limits<double>::infinity();
+  for (std::int64_t i : mine) {
+    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
+    broke += s.broke ? 1 : 0;
+    if (!s.active) continue;
+    ++active;
+    const Block& a = blocks_[s.contact.a];
+    const Block& b = blocks_[s.contact.b];
+    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+    if (std::isinf(overlap_key) &&
+        s.contact.geometry.overlap > settings_.max_overlap_fraction * size)
+      overlap_key = static_cast<double>(s.contact.a) * static_cast<double>(n) + s.contact.b;
+  }
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Block& bl = blocks_[i];
+    if (own_[i] == 0 || !bl.is_dynamic() || stiffness_[i] <= 0.0) continue;
+    dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[i]));
+    dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
+  }
+
+  // 6. Servos and integration of the own blocks.
+  apply_servos(dt, &own_);
+  energy_.before_integration(blocks_);
+  std::vector<std::int64_t> own_list;
+  for (std::size_t i = 0; i < n; ++i)
+    if (own_[i] != 0) own_list.push_back(static_cast<std::int64_t>(i));
+  const std::int64_t n_own = static_cast<std::int64_t>(own_list.size());
+  const double damping = settings_.damping;
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n_own > 256)
+  for (std::int64_t i = 0; i < n_own; ++i)
+    integrate_block(blocks_[static_cast<std::size_t>(own_list[static_cast<std::size_t>(i)])], dt,
+                    damping);
+
+  // 7. The energy budget: terms of the own blocks and pairs, summed in block and (a, b) order on
+  // process 0, which sends the budget back.
+  energy_.prepare(n);
+  std::vector<char> terms;
+  put(terms, static_cast<std::uint64_t>(n_own));
+  for (std::int64_t i : own_list) {
+    const auto bi = static_cast<std::size_t>(i);
+    put(terms,
+        BlockTermsEntry{i, energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt)});
+  }
+  for (std::int64_t i : mine) {
+    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
+    if (!s.active) continue;
+    put(terms,
+        PairEnergyEntry{static_cast<double>(s.contact.a) * static_cast<double>(n) + s.contact.b,
+                        joint_elastic_energy(s.contact), s.slip_work});
+  }
+  tw = Clock::now();
+  const std::vector<char> all_terms = dist.gather(terms, counts);
+  waiting += seconds_since(tw);
+  std::vector<char> budget;
+  if (rank == 0) {
+    energy_terms_.assign(n, BlockEnergyTerms{});
+    std::vector<PairEnergyEntry> pairs;
+    std::size_t begin = 0;
+    for (std::size_t count_r : counts) {
+      const auto blocks_in = get<std::uint64_t>(all_terms, begin);
+      std::size_t at = begin + 8;
+      for (std::uint64_t q = 0; q < blocks_in; ++q, at += sizeof(BlockTermsEntry)) {
+        const auto e = get<BlockTermsEntry>(all_terms, at);
+        energy_terms_[static_cast<std::size_t>(e.index)] = e.terms;
+      }
+      for (; at < begin + count_r; at += sizeof(PairEnergyEntry))
+        pairs.push_back(get<PairEnergyEntry>(all_terms, at));
+      begin += count_r;
+    }
+    std::sort(pairs.begin(), pairs.end(),
+              [](const PairEnergyEntry& x, const PairEnergyEntry& y) { return x.key < y.key; });
+    double elastic = 0.0, slip_work = 0.0;
+    for (const auto& p : pairs) {
+      elastic += p.elastic;
+      slip_work += p.slip_work;
+    }
+    energy_.add_step(energy_terms_, elastic, slip_work);
+    put(budget, energy_.budget());
+  }
+  tw = Clock::now();
+  dist.broadcast(budget);
+  waiting += seconds_since(tw);
+  if (rank != 0) energy_.set_budget(get<EnergyBudget>(budget, 0));
+  dist_stats_.bytes_sent += static_cast<std::int64_t>(terms.size());
+  dist_stats_.bytes_received += static_cast<std::int64_t>(budget.size());
+  if (rank == 0) {
+    dist_stats_.bytes_received += static_cast<std::int64_t>(all_terms.size() - terms.size());
+    dist_stats_.bytes_sent += static_cast<std::int64_t>(budget.size() * (k_ranks - 1));
+  }
+  time_ += dt;
+  ++step_count_;
+  last_dt_ = dt;
+
+  // 8. Ghosts for the next step, then the global checks: exact reductions (minima of
+  // indices and time steps, integer sums).
+  tw = Clock::now();
+  exchange_ghosts();
+  double first_bad = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n && std::isinf(first_bad); ++i) {
+    if (own_[i] == 0) continue;
+    const Block& b = blocks_[i];
+    if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
+        !b.orientation.coeffs().allFinite() || b.velocity.norm() > settings_.max_speed)
+      first_bad = static_cast<double>(i);
+  }
+  const std::vector<double> minima = dist.min({dt_min, overlap_key, first_bad});
+  const std::vector<std::int64_t> sums = dist.sum({active, broke});
+  waiting += seconds_since(tw);
+  contact_dt_ = std::isfinite(minima[0]) ? settings_.safety_factor * minima[0] : 0.0;
+  overlap_key_ = minima[1];
+  active_count_ = static_cast<std::size_t>(sums[0]);
+  broken_bonds_ = broken_before + sums[1];
+  replica_complete_ = false;
   dist_stats_.steps += 1;
-  dist_stats_.owned_pairs += n;
-  dist_stats_.bytes_sent += static_cast<std::int64_t>(out.size());
-  dist_stats_.bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.owned_pairs += count;
   dist_stats_.pair_seconds += header.seconds;
-  dist_stats_.exchange_seconds += std::chrono::duration<double>(t2 - t1).count();
-  // Rebalancing: every process sees the same measured times, so all decide alike. The answers do
-  // not depend on the partition, only the speed does.
-  const double mean = total / static_cast<double>(counts.size());
+  dist_stats_.exchange_seconds += waiting;
+
+  // A failed check: the whole world on every process, and the serial check (which restores
+  // the last checkpoint and throws, alike everywhere).
+  if (std::isfinite(minima[1]) || std::isfinite(minima[2])) {
+    synchronize();
+    check_divergence();
+  }
+  if (step_count_ % 200 == 0) {
+    synchronize();
+    save_checkpoint();
+  }
+
+  // Rebalancing: every process sees the same measured figures, so all decide alike. The answers
+  // do not depend on the partition, only the speed does.
+  const double mean = total / static_cast<double>(k_ranks);
   dist_stats_.last_imbalance = mean > 0.0 ? slowest / mean : 1.0;
-  const std::int64_t since = step_count_ + 1 - partition_step_;
+  const std::int64_t since = step_count_ - partition_step_;
   const std::int64_t every = dist.repartition_interval();
-  const double mean_pairs = total_pairs / static_cast<double>(counts.size());
+  const double mean_pairs = total_pairs / static_cast<double>(k_ranks);
   const bool uneven_pairs = most_pairs > kPairCountThreshold * mean_pairs;
   if ((dist_stats_.last_imbalance > kImbalanceThreshold && slowest - mean > kMinImbalanceSeconds &&
        uneven_pairs && since >= kMinStepsBetweenPartitions) ||
-      (every > 0 && since >= every))
+      (every > 0 && since >= every)) {
+    synchronize();  // migration: blocks and pairs reach their new owners with the whole world
     partition_blocks();
+  }
+  if (!deferred_replica_) synchronize();
 }
 
 }  // namespace blockdem

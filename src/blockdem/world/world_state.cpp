@@ -162,6 +162,7 @@ std::vector<double> read_doubles(StateReader& r) {
 }  // namespace
 
 void World::save_state(StateWriter& w) const {
+  require_replica("save_state");
   // Settings a stage changes.
   w.vec(settings_.gravity);
   w.pod(settings_.damping);
@@ -246,6 +247,9 @@ void World::save_state(StateWriter& w) const {
 }
 
 void World::load_state(StateReader& r) {
+  // Loaded alike on every process: the world is whole, and is partitioned again at its next step.
+  replica_complete_ = true;
+  owner_.clear();
   settings_.gravity = r.vec();
   r.pod(settings_.damping);
   if (r.size() != laws_.size())
