@@ -2,6 +2,7 @@
 #include "blockdem/geometry/polygon_moments.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace blockdem {
@@ -52,6 +53,10 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
     m.radial_moment += sign * h * h * h / 3.0 * (integral_sec3(t2) - integral_sec3(t1));
     m.polar_moment += sign * h * h * h * h / 4.0 * (integral_sec4(t2) - integral_sec4(t1));
   }
+  // Both moments are integrals of non-negative functions; for a sliver polygon the signed sums
+  // can cancel to a round-off below zero.
+  m.radial_moment = std::max(0.0, m.radial_moment);
+  m.polar_moment = std::max(0.0, m.polar_moment);
   m.centroid = pole + first / m.area;
   return m;
 }
