@@ -270,6 +270,11 @@ void World::synchronize() {
     return x.contact.a < y.contact.a || (x.contact.a == y.contact.a && x.contact.b < y.contact.b);
   });
   slots_ = std::move(slots);
+  // The candidate list as one process leaves it after a step: the pairs of the slots, in order
+  // (this process found only its own blocks' pairs; a checkpoint saves the list).
+  pairs_.resize(slots_.size());
+  for (std::size_t k = 0; k < slots_.size(); ++k)
+    pairs_[k] = {slots_[k].contact.a, slots_[k].contact.b};
   overlap_violation_ = -1;
   if (std::isfinite(overlap_key_)) {
     for (std::size_t k = 0; k < slots_.size(); ++k) {
