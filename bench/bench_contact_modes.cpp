@@ -164,7 +164,7 @@ void BM_ContactFaceIntegratedShearTwist(benchmark::State& state) {
     update_shear(shear, shear_state, inc);
     const ShearTwistResult st = interact_shear_twist(
         shear_state, twist, shear, stress, force, area, tg, xp, g.normal, inc.displacement, turn,
-        [&] { return face_radial_normal_bound(fc.cells, law, tg); },
+        [&] { return face_pressure_radial_bound(fc.cells, law, tg, force, xp); },
         [&](const SlipCentre& c) { return face_full_slip(fc.cells, law, g.normal, xp, c); });
     benchmark::DoNotOptimize(st);
     benchmark::DoNotOptimize(shear_state.force);

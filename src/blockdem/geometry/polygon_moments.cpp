@@ -25,9 +25,11 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
   PolygonMoments m;
   const std::size_t n = vertices.size();
   if (n < 3) return m;
-  // Unit normal of the polygon's plane from its vector area.
+  // Unit normal of the polygon's plane from its vector area, summed about a vertex: about the
+  // origin, the terms of a sliver far from it cancel to round-off and may turn the normal over.
   Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < n; ++i) vector_area += vertices[i].cross(vertices[(i + 1) % n]);
+  for (std::size_t i = 1; i + 1 < n; ++i)
+    vector_area += (vertices[i] - vertices[0]).cross(vertices[i + 1] - vertices[0]);
   if (!(vector_area.norm() > 0.0)) return m;
   const Eigen::Vector3d normal = vector_area.normalized();
 
@@ -53,11 +55,13 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
     m.radial_moment += sign * h * h * h / 3.0 * (integral_sec3(t2) - integral_sec3(t1));
     m.polar_moment += sign * h * h * h * h / 4.0 * (integral_sec4(t2) - integral_sec4(t1));
   }
-  // Both moments are integrals of non-negative functions; for a sliver polygon the signed sums
-  // can cancel to a round-off below zero.
-  m.radial_moment = std::max(0.0, m.radial_moment);
-  m.polar_moment = std::max(0.0, m.polar_moment);
+  // A polygon of no area within round-off (a sliver of a contact touching along an edge) has no
+  // moments: the signed fan may sum to a few ulps below zero, never a physical value.
+  if (!(m.area > 0.0)) return PolygonMoments{};
   m.centroid = pole + first / m.area;
+  // Both integrands are non-negative; round-off in the signed fan must not make them negative.
+  m.polar_moment = std::max(0.0, m.polar_moment);
+  m.radial_moment = std::max(0.0, m.radial_moment);
   return m;
 }
 

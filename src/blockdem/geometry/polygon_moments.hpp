@@ -19,7 +19,8 @@ struct PolygonMoments {
 /// far edge lies at distance h from the pole and spans angles ψ1..ψ2 from the foot of the
 /// perpendicular has ∫ r² dA = (h⁴/4) ∫ sec⁴ψ dψ and ∫ r dA = (h³/3) ∫ sec³ψ dψ, both in closed
 /// form; each triangle is signed by its orientation, so a pole outside the polygon works too.
-/// Fewer than three vertices give zero moments.
+/// Fewer than three vertices, or a polygon whose area is zero within round-off (its signed fan
+/// not positive), give zero moments; J and ∫ r dA are never negative.
 PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
                                const Eigen::Vector3d& pole);
 

@@ -58,6 +58,26 @@ double face_radial_normal_bound(std::span<const ClosureCell> cells, const Normal
   return std::max(geometry.radial_normal_moment, bound);
 }
 
+double face_pressure_radial_bound(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                  const TwistGeometry& geometry, double force,
+                                  const Eigen::Vector3d& pressure_centre) {
+  const double d = (geometry.centre - pressure_centre).norm();
+  // About c, less the offset: r_p >= r_c - d (the bound this one sharpens).
+  const double about_centroid = geometry.radial_normal_moment - force * d;
+  if (!(geometry.max_radius > 0.0)) return about_centroid;
+  const ClosurePolarMoments m = face_closure_polar_moments(cells, geometry.centre);
+  if (!(m.polar_moment > 0.0)) return about_centroid;
+  // Directly about x_p: ∫ σ_n r_p dA >= ∫ σ_n r_p² dA / r_max,p, and with ∫ σ_n (y - c) dA =
+  // F_n (x_p - c), ∫ σ_n r_p² dA = ∫ σ_n r_c² dA - F_n d² >= J σ_n(ḡ) - F_n d² (Jensen, as in
+  // face_radial_normal_bound). r_max,p <= r_max + d: no vertex loop needed.
+  const double mean_closure = m.closure_polar_moment / m.polar_moment;
+  const double second = normal_stress(law, mean_closure) * m.polar_moment;
+  const double about_pressure = (second - force * d * d) / (geometry.max_radius + d);
+  const double about_centre =
+      std::max(geometry.radial_normal_moment, second / geometry.max_radius) - force * d;
+  return std::max(about_pressure, about_centre);
+}
+
 double face_radial_normal_moment(std::span<const ClosureCell> cells, const NormalLaw& law,
                                  const Eigen::Vector3d& centre) {
   return face_twist_moments(cells, law, centre).radial_normal_moment;

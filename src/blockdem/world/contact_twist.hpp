@@ -45,6 +45,16 @@ TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eige
 double face_radial_normal_bound(std::span<const ClosureCell> cells, const NormalLaw& law,
                                 const TwistGeometry& geometry);
 
+/// A lower bound of ∫ σ_n |y - x_p| dA over the cells (N m), the twisting capacity about the
+/// centre of pressure x_p (`pressure_centre`, m; `force` F_n, N): the larger of the bound about c
+/// less F_n |x_p - c| (r_p >= r_c - d) and (J σ_n(ḡ) - F_n d²) / (r_max + d), from
+/// ∫ σ_n r_p² dA = ∫ σ_n r_c² dA - F_n d² (d = |x_p - c|, ∫ σ_n (y - c) dA = F_n (x_p - c)),
+/// Jensen's inequality as above and r_p <= r_max + d. The second does not lose F_n d at first
+/// order: on a partly open joint, whose x_p lies off c, it can still certify a state inside.
+double face_pressure_radial_bound(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                  const TwistGeometry& geometry, double force,
+                                  const Eigen::Vector3d& pressure_centre);
+
 /// The exact ∫ σ_n r dA over the cells about `centre` (face_twist_moments) (N m).
 double face_radial_normal_moment(std::span<const ClosureCell> cells, const NormalLaw& law,
                                  const Eigen::Vector3d& centre);
@@ -97,8 +107,9 @@ struct ShearTwistResult {
 /// applied at every point of the contact (shear_twist.hpp). Nothing to do for a translation
 /// (M = 0: the law's cap is the limit), a pure turn (F = 0: the spring's cap is), while a bond
 /// holds (force and moment capped apart), or when μ = 0; nor when `certified_inside` shows the
-/// state inside from the lower bound `geometry.radial_normal_moment` of ∫ σ_n |y - c| dA
-/// (sharpened by `better_bound()` when not exact). Otherwise, by `full_slip_at(SlipCentre)`
+/// state inside from the lower bound `geometry.radial_normal_moment` of ∫ σ_n |y - c| dA less
+/// F_n |x_p - c|, or, when that is not exact, from `better_bound()`, a lower bound of
+/// ∫ σ_n |y - x_p| dA (face_pressure_radial_bound). Otherwise, by `full_slip_at(SlipCentre)`
 /// (the quadrature, per unit μ):
 /// 1. along the step's own slip (`slip` du at x_p, m; `turn` dθ about n, rad): if the state
 ///    spends more power against it than full slip about its centre x_p + n × du / dθ can, it
@@ -122,8 +133,7 @@ ShearTwistResult interact_shear_twist(ShearState& shear, TwistState& twist, cons
   const double force = shear.force.norm(), limit = mu * normal_force;
   if (certified_inside(force, twist.moment, limit, mu * (geometry.radial_normal_moment - offset)))
     return r;
-  if (!geometry.exact &&
-      certified_inside(force, twist.moment, limit, mu * (better_bound() - offset)))
+  if (!geometry.exact && certified_inside(force, twist.moment, limit, mu * better_bound()))
     return r;
   // The test and return along a slip about `centre`.
   const auto slip_about = [&](const SlipCentre& centre) {

@@ -264,7 +264,9 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
     const ShearTwistResult st = interact_shear_twist(
         ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area,
         *face_twist, xf, n, inc.displacement, spin,
-        [&] { return face_radial_normal_bound(fc.cells, law.normal, *face_twist); },
+        [&] {
+          return face_pressure_radial_bound(fc.cells, law.normal, *face_twist, ct.normal_force, xf);
+        },
         [&](const SlipCentre& centre) {
           return face_full_slip(fc.cells, law.normal, n, xf, centre);
         });

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -63,6 +64,40 @@ TEST(PolygonMoments, RightTriangleAboutItsRightAngle) {
   const PolygonMoments m = polygon_moments(tri, Eigen::Vector3d::Zero());
   EXPECT_NEAR(m.polar_moment / (b * h * (b * b + h * h) / 12.0), 1.0, 1e-12);
   EXPECT_NEAR(m.area / (b * h / 2), 1.0, 1e-14);
+}
+
+// A contact's slice polygon from a rock mass: four vertices within 1e-4 m of each other on a line
+// 4 m from the origin (area ~1e-20 m^2). Reference: area, J and ∫ r dA are non-negative and at
+// most A, A r_max^2, A r_max (r <= r_max, the largest vertex distance from the centroid).
+TEST(PolygonMoments, SliverFarFromTheOriginHasNoNegativeMoments) {
+  const std::vector<Eigen::Vector3d> sliver{
+      {0.34469002147367228, 3.901192148904558, 3.707867359884772},
+      {0.3431131844982383, 3.9015020344654556, 3.7076894924050996},
+      {0.34728046484483183, 3.9006830658417213, 3.7081595623386989},
+      {0.34728046484483199, 3.9006830658417218, 3.7081595623386985}};
+  const PolygonMoments m = polygon_moments_about_centroid(sliver);
+  EXPECT_GE(m.area, 0.0);
+  EXPECT_GE(m.polar_moment, 0.0);
+  EXPECT_GE(m.radial_moment, 0.0);
+  double r_max = 0.0;
+  for (const auto& v : sliver) r_max = std::max(r_max, (v - sliver[0]).norm());
+  EXPECT_LE(m.polar_moment, m.area * r_max * r_max + 1e-30);
+  EXPECT_LE(m.radial_moment, m.area * r_max + 1e-30);
+}
+
+// A thin rectangle a x b (b = 1e-6 a) 1000 m from the origin: closed form J = A (a² + b²) / 12
+// about its centre, relative 1e-6 (the vector area summed about a vertex, not the origin).
+TEST(PolygonMoments, ThinRectangleFarFromTheOrigin) {
+  const double a = 0.5, b = 0.5e-6;
+  const Eigen::Vector3d t(1000.0, -700.0, 300.0);
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  const std::vector<Eigen::Vector3d> v{
+      t + r * Eigen::Vector3d(-a / 2, -b / 2, 0), t + r * Eigen::Vector3d(a / 2, -b / 2, 0),
+      t + r * Eigen::Vector3d(a / 2, b / 2, 0), t + r * Eigen::Vector3d(-a / 2, b / 2, 0)};
+  const PolygonMoments m = polygon_moments_about_centroid(v);
+  EXPECT_NEAR(m.area / (a * b), 1.0, 1e-6);
+  EXPECT_NEAR(m.polar_moment / (a * b * (a * a + b * b) / 12.0), 1.0, 1e-6);
 }
 
 }  // namespace
