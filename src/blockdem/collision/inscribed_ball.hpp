@@ -30,6 +30,10 @@ struct InscribedBall {
   /// start; the first `num_active` entries are valid. A vertex solution has 4.
   std::array<int, 4> active = {-1, -1, -1, -1};
   int num_active = 0;  ///< number of valid entries in `active` (0..4) (-)
+  /// True if a warm start was given up and the primal method restarted from a single plane at
+  /// the previous centre or the dual simplex's last vertex (a diagnostic of the warm path; a cold
+  /// solve leaves it false).
+  bool restarted = false;
 };
 
 /// Cold solve. `planes` holds unit outward normals (the caller's contract: normalised, finite).
