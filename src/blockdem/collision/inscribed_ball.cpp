@@ -25,6 +25,9 @@
 // (b) An optimum with fewer than 4 tight planes (face-to-face contact: a segment or polygon of
 // optimal centres) is re-entered at the nearest point where those planes are tight again; if it
 // is feasible, the primal method continues from there, usually only confirming optimality.
+// A vertex whose multipliers are no longer all non-negative (a zero multiplier of a degenerate
+// vertex, as in face contact, that turned slightly negative) is re-entered the same way, and the
+// primal method drops the planes with negative multipliers.
 // Anything else restarts the primal method from the previous centre.
 #include "blockdem/collision/inscribed_ball.hpp"
 
@@ -454,6 +457,22 @@ bool projected_start(Problem& pb, const InscribedBall& previous, State& st, Work
   return min_gap - st.y[3] >= -pb.feasibility_tol;
 }
 
+// The planes of a 4-plane warm set whose multipliers mu = B^-T c are positive with the new plane
+// data (the whole set if B is singular).
+InscribedBall positive_multiplier_set(const Problem& pb, const InscribedBall& previous) {
+  Mat4 b;
+  for (int i = 0; i < 4; ++i) b.row(i) = pb.row(previous.active[i]).transpose();
+  const Mat4 b_inv = b.inverse();
+  if (!b_inv.allFinite()) return previous;
+  InscribedBall reduced = previous;
+  reduced.num_active = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (b_inv(3, i) > kMultiplierTol) reduced.active[reduced.num_active++] = previous.active[i];
+  }
+  for (int i = reduced.num_active; i < 4; ++i) reduced.active[i] = -1;
+  return reduced.num_active > 0 ? reduced : previous;
+}
+
 }  // namespace
 
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes) {
@@ -469,12 +488,28 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
     State st;
     st.y.setConstant(std::numeric_limits<double>::quiet_NaN());  // no vertex reached yet
     if (valid_warm_set(previous, pb.m)) {
+      bool try_projected = previous.num_active < 4;
       if (previous.num_active == 4) {
         st.working = previous.active;
         st.size = 4;
         if (solve_dual(pb, st)) return make_result(pb, st, true);
+        // Rejected before any pivot (not dual feasible: a multiplier that was zero at a
+        // degenerate vertex, as in face contact, turned slightly negative; or ill-conditioned):
+        // re-enter at the vertex like a smaller set; the primal method then drops the planes
+        // with negative multipliers.
+        try_projected = !st.y.allFinite();
+      }
+      if (!try_projected) {
+        // the dual simplex pivoted and stalled: primal from its last vertex, below
       } else if (WorkingBasis basis; projected_start(pb, previous, st, basis)) {
         const bool bounded = solve_primal(pb, st, basis);
+        return make_result(pb, st, bounded);
+      } else if (WorkingBasis reduced_basis;
+                 previous.num_active == 4 &&
+                 projected_start(pb, positive_multiplier_set(pb, previous), st, reduced_basis)) {
+        // The vertex itself became infeasible: re-enter where only its planes with positive
+        // multipliers (in face contact, the two touching faces) are tight.
+        const bool bounded = solve_primal(pb, st, reduced_basis);
         return make_result(pb, st, bounded);
       } else {
         st.y.setConstant(std::numeric_limits<double>::quiet_NaN());
@@ -485,7 +520,9 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
     // centre.
     const Eigen::Vector3d x_start =
         st.y.allFinite() ? Eigen::Vector3d(st.y.head<3>()) : previous.center;
-    return solve_cold(pb, x_start, st.iterations);
+    InscribedBall out = solve_cold(pb, x_start, st.iterations);
+    out.restarted = true;
+    return out;
   });
 }
 

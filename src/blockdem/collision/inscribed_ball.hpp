@@ -30,6 +30,10 @@ struct InscribedBall {
   /// start; the first `num_active` entries are valid. A vertex solution has 4.
   std::array<int, 4> active = {-1, -1, -1, -1};
   int num_active = 0;  ///< number of valid entries in `active` (0..4) (-)
+  /// True if a warm start was given up and the primal method restarted from a single plane at
+  /// the previous centre or the dual simplex's last vertex (a diagnostic of the warm path; a cold
+  /// solve leaves it false).
+  bool restarted = false;
 };
 
 /// Cold solve. `planes` holds unit outward normals (the caller's contract: normalised, finite).
@@ -43,11 +47,13 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes);
 /// have the same order as then (e.g. the planes of A, then those of B); the planes may have moved.
 /// If `previous` has a full active set (4 planes) that is still dual feasible (non-negative
 /// multipliers) with the new planes, a dual simplex repairs primal feasibility, usually in 0-2
-/// pivots. A smaller active set (a non-vertex optimum, e.g. face-to-face contact) is re-entered
-/// at the nearest point where its planes are tight, if that point is feasible. Otherwise the
-/// primal active-set method restarts from `previous.center`. Any `previous` is safe (an
-/// unrelated one only costs time). The optimum radius is the same as a cold solve gives (to
-/// round-off, within 1e-13 of the planes' extent); the centre may differ where it is not unique.
+/// pivots. A smaller active set (a non-vertex optimum, e.g. face-to-face contact), or a vertex
+/// whose multipliers are no longer all non-negative, is re-entered at the nearest point where its
+/// planes (failing that, a vertex's planes with positive multipliers) are tight, if that point is
+/// feasible. Otherwise the primal active-set method restarts from `previous.center` (`restarted`).
+/// Any `previous` is safe (an unrelated one only costs time). The optimum radius is the same as a
+/// cold solve gives (to round-off, within 1e-13 of the planes' extent); the centre may differ where
+/// it is not unique.
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous);
 
