@@ -2,10 +2,10 @@
 #include "blockdem/numerics/exact_sum.hpp"
 
 #include <bit>
-#include <string>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace blockdem {
 namespace {

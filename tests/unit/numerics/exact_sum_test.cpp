@@ -84,11 +84,11 @@ TEST(ExactSum, ClosedFormsNaiveSummationGetsWrong) {
 }
 
 TEST(ExactSum, RoundsToNearestTiesToEven) {
-  const double u = std::ldexp(1.0, -53);  // half an ulp of 1
-  EXPECT_EQ(exact({1.0, u}), 1.0);                                   // tie: even (1.0)
-  EXPECT_EQ(exact({1.0 + 2 * u, u}), 1.0 + 4 * u);                   // tie: even (up)
-  EXPECT_EQ(exact({1.0, u, std::ldexp(1.0, -200)}), 1.0 + 2 * u);    // past the tie: up
-  EXPECT_EQ(exact({1.0, u, -std::ldexp(1.0, -200)}), 1.0);           // short of it: down
+  const double u = std::ldexp(1.0, -53);                               // half an ulp of 1
+  EXPECT_EQ(exact({1.0, u}), 1.0);                                     // tie: even (1.0)
+  EXPECT_EQ(exact({1.0 + 2 * u, u}), 1.0 + 4 * u);                     // tie: even (up)
+  EXPECT_EQ(exact({1.0, u, std::ldexp(1.0, -200)}), 1.0 + 2 * u);      // past the tie: up
+  EXPECT_EQ(exact({1.0, u, -std::ldexp(1.0, -200)}), 1.0);             // short of it: down
   EXPECT_EQ(exact({-1.0, -u, -std::ldexp(1.0, -200)}), -1.0 - 2 * u);  // symmetric
 }
 
