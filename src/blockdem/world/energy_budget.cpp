@@ -28,6 +28,43 @@ double joint_elastic_energy(const Contact& c) {
   return normal + shear;
 }
 
+void EnergyStepSums::add_block(const BlockEnergyTerms& t) {
+  if (t.dynamic != 0.0) {
+    gravity.add(t.gravity);
+    load.add(t.load);
+    damping.add(t.damping);
+    kinetic.add(t.kinetic);
+  } else {
+    boundary.add(t.boundary);
+  }
+}
+
+void EnergyStepSums::add_contact(const Contact& contact, double slip) {
+  elastic.add(joint_elastic_energy(contact));
+  slip_work.add(slip);
+}
+
+std::vector<std::int64_t> EnergyStepSums::limbs() const {
+  std::vector<std::int64_t> out;
+  out.reserve(kLimbs);
+  for (const ExactSum* s : {&gravity, &load, &damping, &kinetic, &boundary, &elastic, &slip_work}) {
+    const auto l = s->limbs();
+    out.insert(out.end(), l.begin(), l.end());
+  }
+  return out;
+}
+
+EnergyStepSums EnergyStepSums::from_limbs(std::span<const std::int64_t> limbs) {
+  EnergyStepSums sums;
+  std::size_t at = 0;
+  for (ExactSum* s : {&sums.gravity, &sums.load, &sums.damping, &sums.kinetic, &sums.boundary,
+                      &sums.elastic, &sums.slip_work}) {
+    *s = ExactSum::from_limbs(limbs.subspan(at, ExactSum::kLimbs));
+    at += ExactSum::kLimbs;
+  }
+  return sums;
+}
+
 void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
   if (started_ && previous_.size() == blocks.size()) return;
   // The accounting starts (or starts again) at this level: no previous step to pair with.
@@ -42,12 +79,11 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
 
 void EnergyLedger::after_integration(const std::vector<Block>& blocks,
                                      const Eigen::Vector3d& gravity, double damping, double dt,
-                                     double elastic, double slip_work) {
+                                     EnergyStepSums contacts) {
   prepare(blocks.size());
-  std::vector<BlockEnergyTerms> terms(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i)
-    terms[i] = block_terms(i, blocks[i], gravity, damping, dt);
-  add_step(terms, elastic, slip_work);
+    contacts.add_block(block_terms(i, blocks[i], gravity, damping, dt));
+  add_step(contacts);
 }
 
 void EnergyLedger::prepare(std::size_t blocks) {
@@ -96,28 +132,20 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
   return t;
 }
 
-void EnergyLedger::add_step(const std::vector<BlockEnergyTerms>& terms, double elastic,
-                            double slip_work) {
+void EnergyLedger::add_step(const EnergyStepSums& sums) {
   EnergyBudget& e = budget_;
   const double carried = started_ ? 0.0 : e.residual();
-  // The sums in block order (a fixed order, whatever process computed each term).
-  double kinetic = 0.0;
-  for (const BlockEnergyTerms& t : terms) {
-    if (t.dynamic != 0.0) {
-      if (started_) {
-        e.gravity_work += t.gravity;
-        e.load_work += t.load;
-        e.damping_dissipation += t.damping;
-      }
-      kinetic += t.kinetic;
-    } else if (started_) {
-      e.boundary_work -= t.boundary;
-    }
-  }
-  e.kinetic = kinetic;
-  e.elastic = elastic;
+  // Each sum exact and rounded once: the same bits for any order or split of the terms.
   if (started_) {
-    e.friction_dissipation += slip_work;
+    e.gravity_work += sums.gravity.value();
+    e.load_work += sums.load.value();
+    e.damping_dissipation += sums.damping.value();
+    e.boundary_work -= sums.boundary.value();
+  }
+  e.kinetic = sums.kinetic.value();
+  e.elastic = sums.elastic.value();
+  if (started_) {
+    e.friction_dissipation += sums.slip_work.value();
   } else {
     // Start (or restart) the accounting here, keeping the residual carried so far.
     e.initial = 0.0;

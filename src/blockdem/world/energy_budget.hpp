@@ -3,9 +3,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "blockdem/dynamics/block.hpp"
+#include "blockdem/numerics/exact_sum.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/state_stream.hpp"
 
@@ -40,7 +43,7 @@ struct EnergyBudget {
 /// Elastic energy of one joint, ½ F_n δ + |F_s|² / (2 k_s A) (J).
 double joint_elastic_energy(const Contact& contact);
 
-/// One block's part of a step's budget sums (J), added in block order.
+/// One block's part of a step's budget sums (J).
 struct BlockEnergyTerms {
   double gravity = 0.0;   ///< to gravity_work (free blocks)
   double load = 0.0;      ///< to load_work (free blocks)
@@ -48,6 +51,21 @@ struct BlockEnergyTerms {
   double kinetic = 0.0;   ///< to kinetic (free blocks)
   double boundary = 0.0;  ///< subtracted from boundary_work (other blocks)
   double dynamic = 0.0;   ///< 1: a free block (-)
+};
+
+/// A step's sums for the budget over blocks and contacts (J). Each is exact (ExactSum), so the
+/// sums do not depend on the order of the terms: a world spread over processes adds each
+/// process's part and reduces the parts (limbs()) to the bits of one process.
+struct EnergyStepSums {
+  ExactSum gravity, load, damping, kinetic;  ///< over free blocks
+  ExactSum boundary;                         ///< over the other blocks
+  ExactSum elastic, slip_work;               ///< over active contacts
+  void add_block(const BlockEnergyTerms& terms);
+  void add_contact(const Contact& contact, double slip_work);
+  static constexpr std::size_t kLimbs = 7 * ExactSum::kLimbs;
+  /// Every sum's limbs (ExactSum::limbs), for an integer-sum reduction over processes.
+  std::vector<std::int64_t> limbs() const;
+  static EnergyStepSums from_limbs(std::span<const std::int64_t> limbs);
 };
 
 /// Keeps an EnergyBudget up to date, one world step at a time. Works use the trapezoidal rule of
@@ -61,16 +79,18 @@ class EnergyLedger {
   /// Before the blocks are integrated in a step (after the servos set their velocities).
   void before_integration(const std::vector<Block>& blocks);
   /// After integration: `dt` the step just taken, `gravity` and `damping` those it used,
-  /// `elastic` the joints' energy at level n, `slip_work` the energy dissipated by slip in it.
+  /// `contacts` the joints' energy at level n and the energy dissipated by slip in the step
+  /// (EnergyStepSums::add_contact for every active contact).
   void after_integration(const std::vector<Block>& blocks, const Eigen::Vector3d& gravity,
-                         double damping, double dt, double elastic, double slip_work);
+                         double damping, double dt, EnergyStepSums contacts);
   /// after_integration in parts, for a world whose blocks are spread over processes: `prepare`
-  /// once (sizes the per-block records), `block_terms` for each block (updates its records),
-  /// then `add_step` with every block's terms in block order, as after_integration adds them.
+  /// once (sizes the per-block records), `block_terms` for each of its blocks (updates their
+  /// records), then `add_step` with the sums over every block and contact (reduced over the
+  /// processes), as after_integration adds them.
   void prepare(std::size_t blocks);
   BlockEnergyTerms block_terms(std::size_t i, const Block& b, const Eigen::Vector3d& gravity,
                                double damping, double dt);
-  void add_step(const std::vector<BlockEnergyTerms>& terms, double elastic, double slip_work);
+  void add_step(const EnergyStepSums& sums);
   /// The budget computed by another process, for a step whose add_step ran there.
   void set_budget(const EnergyBudget& budget) {
     budget_ = budget;

@@ -2,6 +2,7 @@
 #include "blockdem/world/motion_monitor.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -41,23 +42,31 @@ MotionMonitor::MotionMonitor(const World& world, const MechanismCriteria& criter
 
 void MotionMonitor::observe(const World& world, bool ramping) {
   MotionReport& r = report_;
-  r.max_displacement = 0.0;
-  r.max_speed = 0.0;
-  r.kinetic_energy = 0.0;
-  r.load_work = 0.0;
-  r.moving_blocks.clear();
+  // Maxima, exact sums and the list of moving blocks over the blocks this process counts,
+  // reduced over the processes of a distributed world (World::reduce_partials): the bits of one
+  // process whatever the split.
+  std::array<double, 2> maxima{0.0, 0.0};  // displacement, speed
+  std::array<ExactSum, 2> sums;            // kinetic energy, load work
+  std::vector<int> moving;
   const Eigen::Vector3d g = world.settings().gravity;
-  for (const auto& b : world.blocks()) {
-    if (!b.is_dynamic()) continue;
-    const Eigen::Vector3d d = b.position - start_[static_cast<std::size_t>(b.index)];
-    r.max_displacement = std::max(r.max_displacement, d.norm());
-    r.max_speed = std::max(r.max_speed, b.velocity.norm());
-    r.kinetic_energy += b.kinetic_energy();
+  for (std::size_t i = 0; i < world.blocks().size(); ++i) {
+    const Block& b = world.blocks()[i];
+    if (!b.is_dynamic() || !world.counts_block(i)) continue;
+    const Eigen::Vector3d d = b.position - start_[i];
+    maxima[0] = std::max(maxima[0], d.norm());
+    maxima[1] = std::max(maxima[1], b.velocity.norm());
+    sums[0].add(b.kinetic_energy());
     // Gravity and external forces are constant over a stage (outside a ramp), so their work is
     // the load times the displacement; during a ramp the current gravity overstates it.
-    r.load_work += (b.mass * g + b.external_force).dot(d);
-    if (d.norm() > 0.1 * r.displacement_limit) r.moving_blocks.push_back(b.index);
+    sums[1].add((b.mass * g + b.external_force).dot(d));
+    if (d.norm() > 0.1 * r.displacement_limit) moving.push_back(b.index);
   }
+  world.reduce_partials(sums, maxima, {});
+  r.max_displacement = maxima[0];
+  r.max_speed = maxima[1];
+  r.kinetic_energy = sums[0].value();
+  r.load_work = sums[1].value();
+  r.moving_blocks = world.gather_indices(moving);
   const double critical = world.critical_time_step();
   r.time_step_ratio =
       critical > 0.0 && std::isfinite(critical) ? world.next_time_step() / critical : 0.0;

@@ -2,6 +2,7 @@
 // kinetic energy ratio fall below tolerances, or report the stage as not converged.
 #include "blockdem/world/stage.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -41,13 +42,17 @@ void Stage::validate() const {
 }
 
 bool servos_settled(const World& world) {
-  for (const auto& b : world.blocks()) {
-    if (b.motion != Motion::servo || b.servo.hold) continue;
+  // Counted over the blocks this process counts and summed over the processes (exact).
+  std::array<std::int64_t, 1> unsettled{0};
+  for (std::size_t i = 0; i < world.blocks().size(); ++i) {
+    const Block& b = world.blocks()[i];
+    if (b.motion != Motion::servo || b.servo.hold || !world.counts_block(i)) continue;
     const double reaction = -b.contact_force.dot(b.servo.axis);
     if (std::abs(reaction - b.servo.target_force) > b.servo.tolerance * b.servo.target_force)
-      return false;
+      ++unsettled[0];
   }
-  return true;
+  world.reduce_partials({}, {}, unsettled);
+  return unsettled[0] == 0;
 }
 
 namespace {
@@ -121,14 +126,20 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     world.step();
     r.steps = k;
     const bool check = k % stage.check_interval == 0;
-    if (deferred && (check || (on_step && (!sync->on_step_reads || sync->on_step_reads(world)))))
+    if (deferred && on_step && (!sync->on_step_reads || sync->on_step_reads(world)))
       world.synchronize();
     if (on_step) on_step(world, stage, k);
-    if (check) watch->observe(world, ramping);
+    // The checks read the world through reductions (collective on every process alike when it
+    // is distributed and not whole), not through a whole-world refresh.
+    EquilibriumMeasures measures;
+    if (check) {
+      watch->observe(world, ramping);
+      measures = world.equilibrium();
+    }
     if (progress && check) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_report > std::chrono::milliseconds(250)) {
-        progress(stage, k, world.equilibrium());
+        progress(stage, k, measures);
         last_report = now;
       }
     }
@@ -141,9 +152,10 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       break;
     }
     if (stage.kind == Stage::Kind::equilibrium && check && k >= stage.min_steps && !ramping) {
-      const EquilibriumMeasures m = world.equilibrium();
-      if (m.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
-          m.kinetic_energy_ratio <= stage.kinetic_tolerance && servos_settled(world)) {
+      // servos_settled is collective too: evaluated on every process, not short-circuited.
+      const bool settled = servos_settled(world);
+      if (measures.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
+          measures.kinetic_energy_ratio <= stage.kinetic_tolerance && settled) {
         r.converged = true;
         break;
       }

@@ -3,6 +3,7 @@
 #include "blockdem/world/world.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -266,14 +267,12 @@ void World::step() {
   for (std::int64_t i = 0; i < n; ++i) {
     integrate_block(blocks_[static_cast<std::size_t>(i)], dt, damping);
   }
-  // 7. Energy budget at the level whose forces this step used (serial, in a fixed order).
-  double elastic = 0.0, slip_work = 0.0;
+  // 7. Energy budget at the level whose forces this step used (exact sums).
+  EnergyStepSums contact_sums;
   for (const auto& s : slots_) {
-    if (!s.active) continue;
-    elastic += joint_elastic_energy(s.contact);
-    slip_work += s.slip_work;
+    if (s.active) contact_sums.add_contact(s.contact, s.slip_work);
   }
-  energy_.after_integration(blocks_, settings_.gravity, damping, dt, elastic, slip_work);
+  energy_.after_integration(blocks_, settings_.gravity, damping, dt, std::move(contact_sums));
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;
@@ -282,33 +281,40 @@ void World::step() {
 }
 
 EquilibriumMeasures World::equilibrium() const {
-  require_replica("equilibrium");
   EquilibriumMeasures m;
-  // Every sum runs in (a, b) order or block order, whatever the number of threads.
-  double contact_sum = 0.0, energy = 0.0;
+  // Exact sums over the blocks and contacts this process counts, reduced over the processes of
+  // a distributed world: the result does not depend on the order or the split of the terms.
+  enum { kContactForce, kElastic, kKinetic, kUnbalanced };
+  std::array<ExactSum, 4> sums;
   for (const auto& s : slots_) {
-    if (!s.active) continue;
+    if (!s.active || !counts_contact(s.contact)) continue;
     const Contact& c = s.contact;
-    contact_sum += c.force_on_b().norm();
-    energy += 0.5 * c.normal_force * c.geometry.overlap;
+    sums[kContactForce].add(c.force_on_b().norm());
+    sums[kElastic].add(0.5 * c.normal_force * c.geometry.overlap);
   }
-  m.mean_contact_force =
-      active_count_ == 0 ? 0.0 : contact_sum / static_cast<double>(active_count_);
-  double unbalanced = 0.0;
-  int free_blocks = 0;
-  for (const auto& b : blocks_) {
-    m.kinetic_energy += b.kinetic_energy();
+  std::array<std::int64_t, 1> free_count{0};
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (!counts_block(i)) continue;
+    const Block& b = blocks_[i];
+    sums[kKinetic].add(b.kinetic_energy());
     if (!b.is_dynamic()) continue;
-    ++free_blocks;
+    ++free_count[0];
     // A blocked degree of freedom (a roller, plane motion) carries a reaction, not an unbalance.
     Eigen::Vector3d f = b.force, t = b.torque;
     for (int k = 0; k < 3; ++k) {
       if (b.blocked_translation[k]) f[k] = 0.0;
       if (b.blocked_rotation[k]) t[k] = 0.0;
     }
-    unbalanced += f.norm() + t.norm() / b.shape.bounding_radius();
+    sums[kUnbalanced].add(f.norm() + t.norm() / b.shape.bounding_radius());
   }
-  if (free_blocks == 0) {
+  reduce_partials(sums, {}, free_count);
+  const double contact_sum = sums[kContactForce].value(), energy = sums[kElastic].value();
+  const double unbalanced = sums[kUnbalanced].value();
+  const auto free_blocks = static_cast<double>(free_count[0]);
+  m.kinetic_energy = sums[kKinetic].value();
+  m.mean_contact_force =
+      active_count_ == 0 ? 0.0 : contact_sum / static_cast<double>(active_count_);
+  if (free_count[0] == 0) {
     m.unbalanced_force_ratio = 0.0;
   } else if (m.mean_contact_force > 0.0) {
     m.unbalanced_force_ratio = unbalanced / free_blocks / m.mean_contact_force;

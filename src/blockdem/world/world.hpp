@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
+#include "blockdem/numerics/exact_sum.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/distribution.hpp"
 #include "blockdem/world/energy_budget.hpp"
@@ -156,6 +158,8 @@ class World {
   /// (s): from this step's contact stiffness once contacts exist, else from the joint laws.
   double critical_time_step() const;
 
+  /// Sums exact (ExactSum): the same bits for any number of threads or processes. Collective
+  /// on a distributed world that is not whole (reduce_partials).
   EquilibriumMeasures equilibrium() const;
 
   /// A block's state at time level n, where the last step evaluated forces and contacts (t_n =
@@ -205,6 +209,22 @@ class World {
   /// Off (the default): a distributed step ends with synchronize(). On: the caller calls
   /// synchronize() on every process before it reads more than the time and step counters.
   void set_deferred_replica(bool on) { deferred_replica_ = on; }
+
+  // Global measures without the whole world: each process takes its part (the blocks and the
+  // contacts it counts) and the parts are reduced exactly (docs/scaling.md), so the result is
+  // the same bits as on one process. On a whole world (one process, or after synchronize())
+  // every block and contact counts and the reductions do nothing.
+  /// Whether block i is this process's to count: every block of a whole world, else its own.
+  bool counts_block(std::size_t i) const { return replica_complete_ || own_[i] != 0; }
+  /// Whether a contact is this process's to count: every contact of a whole world, else its own.
+  bool counts_contact(const Contact& contact) const;
+  /// Collective when the world is distributed and not whole (every process at the same point,
+  /// with the same sizes); nothing to do otherwise. Each sum becomes the sum over the processes
+  /// (exact), each maximum the maximum and each count the total.
+  void reduce_partials(std::span<ExactSum> sums, std::span<double> maxima,
+                       std::span<std::int64_t> counts) const;
+  /// Collective like reduce_partials: every process's indices, merged in increasing order.
+  std::vector<int> gather_indices(const std::vector<int>& mine) const;
 
  private:
   /// One candidate pair: its contact (active when the blocks touch and a force acts) or, for a
@@ -262,14 +282,13 @@ class World {
   // Distributed runs (settings_.distribution): block owners, when they were last computed.
   std::vector<int> owner_;
   std::int64_t partition_step_ = -1;
-  DistributionStats dist_stats_;
-  bool replica_complete_ = true;  ///< every block and slot exact on this process
+  mutable DistributionStats dist_stats_;  ///< mutable: const reductions count their bytes
+  bool replica_complete_ = true;          ///< every block and slot exact on this process
   bool deferred_replica_ = false;
   std::vector<char> own_;    ///< per block: owned by this process
   std::vector<char> local_;  ///< per block: exact here (owned, or a ghost received this step)
   double overlap_key_ =
       std::numeric_limits<double>::infinity();  ///< a N + b of the first too-deep contact
-  std::vector<BlockEnergyTerms> energy_terms_;
 
   double time_ = 0.0;
   std::int64_t step_count_ = 0;

@@ -3,7 +3,7 @@
 // the pairs of its own blocks, evaluates its own pairs, sends each pair slot to the owner of the
 // pair's other block, sums the loads on its own blocks in the serial (a, b) order, integrates
 // them, and sends their new states to the processes that hold them as ghosts. Global quantities
-// are reduced exactly (minima, integer sums) or summed in block order on process 0. Every
+// are reduced exactly (minima, integer sums, exact accumulators of doubles). Every
 // exact block and slot is bit for bit what one process computes; synchronize() gathers the
 // whole world when a caller reads it.
 #include <algorithm>
@@ -50,17 +50,6 @@ struct ReplicaBlock {
   double aabb_min[3];  ///< the box and the world planes (which follow) of the step's start pose
   double aabb_max[3];
   std::uint64_t planes = 0;
-};
-
-/// One block's or one contact's part of the fixed-order energy sums.
-struct BlockTermsEntry {
-  std::int64_t index = 0;
-  BlockEnergyTerms terms;
-};
-struct PairEnergyEntry {
-  double key = 0.0;  ///< a N + b: the (a, b) order
-  double elastic = 0.0;
-  double slip_work = 0.0;
 };
 
 /// Rebalance when the slowest process's pair work exceeds the mean by this factor (-)...
@@ -144,6 +133,62 @@ int World::pair_owner(const Contact& c) const {
   const bool da = blocks_[c.a].is_dynamic(), db = blocks_[c.b].is_dynamic();
   if (da != db) return owner_[da ? c.a : c.b];
   return owner_[((c.a + c.b) & 1) != 0 ? c.a : c.b];
+}
+
+bool World::counts_contact(const Contact& c) const {
+  return replica_complete_ || pair_owner(c) == settings_.distribution->rank();
+}
+
+void World::reduce_partials(std::span<ExactSum> sums, std::span<double> maxima,
+                            std::span<std::int64_t> counts) const {
+  if (replica_complete_) return;
+  PairDistribution& dist = *settings_.distribution;
+  // One integer-sum reduction for the accumulators' limbs and the counts (exact in any order),
+  // one minimum of the negated maxima (exact).
+  std::vector<std::int64_t> ints;
+  ints.reserve(sums.size() * ExactSum::kLimbs + counts.size());
+  for (const ExactSum& s : sums) {
+    const auto l = s.limbs();
+    ints.insert(ints.end(), l.begin(), l.end());
+  }
+  ints.insert(ints.end(), counts.begin(), counts.end());
+  const std::vector<std::int64_t> total = dist.sum(ints);
+  const std::span<const std::int64_t> all(total);
+  for (std::size_t k = 0; k < sums.size(); ++k)
+    sums[k] = ExactSum::from_limbs(all.subspan(k * ExactSum::kLimbs, ExactSum::kLimbs));
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    counts[k] = total[sums.size() * ExactSum::kLimbs + k];
+  std::int64_t bytes = static_cast<std::int64_t>(ints.size() * sizeof(std::int64_t));
+  if (!maxima.empty()) {
+    std::vector<double> negated(maxima.begin(), maxima.end());
+    for (double& x : negated) x = -x;
+    const std::vector<double> least = dist.min(negated);
+    for (std::size_t k = 0; k < maxima.size(); ++k) maxima[k] = -least[k];
+    bytes += static_cast<std::int64_t>(maxima.size() * sizeof(double));
+  }
+  dist_stats_.bytes_sent += bytes;
+  dist_stats_.bytes_received += bytes;
+}
+
+std::vector<int> World::gather_indices(const std::vector<int>& mine) const {
+  if (replica_complete_) return mine;
+  std::vector<char> bytes(mine.size() * sizeof(std::int32_t));
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    const auto v = static_cast<std::int32_t>(mine[k]);
+    std::memcpy(bytes.data() + k * sizeof v, &v, sizeof v);
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<char> all = settings_.distribution->all_gather(bytes, counts);
+  std::vector<int> out(all.size() / sizeof(std::int32_t));
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    std::int32_t v = 0;
+    std::memcpy(&v, all.data() + k * sizeof v, sizeof v);
+    out[k] = v;
+  }
+  std::sort(out.begin(), out.end());
+  dist_stats_.bytes_sent += static_cast<std::int64_t>(bytes.size());
+  dist_stats_.bytes_received += static_cast<std::int64_t>(all.size() - bytes.size());
+  return out;
 }
 
 void World::partition_blocks() {
@@ -562,62 +607,25 @@ void World::step_distributed(double dt, int threads) {
     integrate_block(blocks_[static_cast<std::size_t>(own_list[static_cast<std::size_t>(i)])], dt,
                     damping);
 
-  // 7. The energy budget: terms of the own blocks and pairs, summed in block and (a, b) order on
-  // process 0, which sends the budget back.
+  // 7. The energy budget: exact sums over the own blocks and pairs, reduced as integers (the
+  // accumulators' limbs), so every process adds the step of one process, bit for bit.
   energy_.prepare(n);
-  std::vector<char> terms;
-  put(terms, static_cast<std::uint64_t>(n_own));
+  EnergyStepSums step_sums;
   for (std::int64_t i : own_list) {
     const auto bi = static_cast<std::size_t>(i);
-    put(terms,
-        BlockTermsEntry{i, energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt)});
+    step_sums.add_block(energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt));
   }
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    if (!s.active) continue;
-    put(terms,
-        PairEnergyEntry{static_cast<double>(s.contact.a) * static_cast<double>(n) + s.contact.b,
-                        joint_elastic_energy(s.contact), s.slip_work});
+    if (s.active) step_sums.add_contact(s.contact, s.slip_work);
   }
   tw = Clock::now();
-  const std::vector<char> all_terms = dist.gather(terms, counts);
+  const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());
   waiting += seconds_since(tw);
-  std::vector<char> budget;
-  if (rank == 0) {
-    energy_terms_.assign(n, BlockEnergyTerms{});
-    std::vector<PairEnergyEntry> pairs;
-    std::size_t begin = 0;
-    for (std::size_t count_r : counts) {
-      const auto blocks_in = get<std::uint64_t>(all_terms, begin);
-      std::size_t at = begin + 8;
-      for (std::uint64_t q = 0; q < blocks_in; ++q, at += sizeof(BlockTermsEntry)) {
-        const auto e = get<BlockTermsEntry>(all_terms, at);
-        energy_terms_[static_cast<std::size_t>(e.index)] = e.terms;
-      }
-      for (; at < begin + count_r; at += sizeof(PairEnergyEntry))
-        pairs.push_back(get<PairEnergyEntry>(all_terms, at));
-      begin += count_r;
-    }
-    std::sort(pairs.begin(), pairs.end(),
-              [](const PairEnergyEntry& x, const PairEnergyEntry& y) { return x.key < y.key; });
-    double elastic = 0.0, slip_work = 0.0;
-    for (const auto& p : pairs) {
-      elastic += p.elastic;
-      slip_work += p.slip_work;
-    }
-    energy_.add_step(energy_terms_, elastic, slip_work);
-    put(budget, energy_.budget());
-  }
-  tw = Clock::now();
-  dist.broadcast(budget);
-  waiting += seconds_since(tw);
-  if (rank != 0) energy_.set_budget(get<EnergyBudget>(budget, 0));
-  dist_stats_.bytes_sent += static_cast<std::int64_t>(terms.size());
-  dist_stats_.bytes_received += static_cast<std::int64_t>(budget.size());
-  if (rank == 0) {
-    dist_stats_.bytes_received += static_cast<std::int64_t>(all_terms.size() - terms.size());
-    dist_stats_.bytes_sent += static_cast<std::int64_t>(budget.size() * (k_ranks - 1));
-  }
+  energy_.add_step(EnergyStepSums::from_limbs(reduced));
+  const auto reduction_bytes = static_cast<std::int64_t>(reduced.size() * sizeof(std::int64_t));
+  dist_stats_.bytes_sent += reduction_bytes;
+  dist_stats_.bytes_received += reduction_bytes;
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;

@@ -1,0 +1,173 @@
+// A loading stage over a world spread over K parts (threads standing in for processes, without
+// MPI): the convergence checks, the servo check and the motion monitor read the world through
+// exact reductions of each part's blocks and contacts, not through whole-world refreshes, and
+// give one world's answers bit for bit: every check's measures and monitor report, the stage's
+// result, the energy budget and the final state.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "blockdem/parallel/rcb.hpp"
+#include "blockdem/world/stage.hpp"
+#include "brick_pile.hpp"
+
+namespace blockdem::test {
+namespace {
+
+/// K threads meet in all_gather (the other collectives are built on it); the same harness as
+/// distributed_step_test.cpp's.
+struct Meeting {
+  explicit Meeting(int n) : size(n), parts(static_cast<std::size_t>(n)) {}
+  std::mutex mutex;
+  std::condition_variable cv;
+  int size;
+  int arrived = 0;
+  int round = 0;
+  std::vector<std::vector<char>> parts;
+  std::vector<char> all;
+  std::vector<std::size_t> counts;
+};
+
+class ThreadDistribution final : public PairDistribution {
+ public:
+  ThreadDistribution(std::shared_ptr<Meeting> m, int rank) : m_(std::move(m)), rank_(rank) {}
+  int rank() const override { return rank_; }
+  int size() const override { return m_->size; }
+  std::vector<int> partition(std::span<const Eigen::Vector3d> points,
+                             std::span<const double> weights) const override {
+    return recursive_coordinate_bisection(points, weights, m_->size);
+  }
+  std::vector<char> all_gather(const std::vector<char>& mine,
+                               std::vector<std::size_t>& counts) override {
+    std::unique_lock lock(m_->mutex);
+    m_->parts[static_cast<std::size_t>(rank_)] = mine;
+    const int round = m_->round;
+    if (++m_->arrived == m_->size) {
+      m_->all.clear();
+      m_->counts.clear();
+      for (const auto& p : m_->parts) {
+        m_->all.insert(m_->all.end(), p.begin(), p.end());
+        m_->counts.push_back(p.size());
+      }
+      m_->arrived = 0;
+      ++m_->round;
+      m_->cv.notify_all();
+    } else {
+      m_->cv.wait(lock, [&] { return m_->round != round; });
+    }
+    counts = m_->counts;
+    return m_->all;
+  }
+
+ private:
+  std::shared_ptr<Meeting> m_;
+  int rank_;
+};
+
+void put(std::vector<std::uint64_t>& out, double v) {
+  out.push_back(std::bit_cast<std::uint64_t>(v));
+}
+
+void put_report(std::vector<std::uint64_t>& out, const MotionReport& r) {
+  for (double v : {r.max_displacement, r.displacement_limit, r.max_speed, r.kinetic_energy,
+                   r.load_work, r.elastic_energy_start, r.time_step_ratio})
+    put(out, v);
+  out.push_back(static_cast<std::uint64_t>(r.growing_checks));
+  out.push_back(r.moving_blocks.size());
+  for (int b : r.moving_blocks) out.push_back(static_cast<std::uint64_t>(b));
+  out.push_back(r.mechanism ? 1 : 0);
+}
+
+struct Outcome {
+  std::vector<std::uint64_t> bits;  ///< every check, the stage result, budget and final state
+  std::int64_t checks = 0;
+  DistributionStats stats;
+};
+
+/// Runs one equilibrium stage (it does not converge: the tilted gravity makes the pile slide)
+/// with the runner's deferral: the world is made whole only where a caller reads it.
+Outcome run(World w, const Stage& stage) {
+  Outcome out;
+  std::optional<MotionMonitor> monitor;
+  // After every check: the monitor's report and the equilibrium measures, read without a
+  // refresh (equilibrium() is collective on a world that is not whole).
+  const AfterStepFn after = [&](const StageResume& at) {
+    if (at.steps_done % stage.check_interval != 0) return false;
+    ++out.checks;
+    put_report(out.bits, monitor->report());
+    const EquilibriumMeasures m = w.equilibrium();
+    for (double v :
+         {m.unbalanced_force_ratio, m.kinetic_energy, m.kinetic_energy_ratio, m.mean_contact_force})
+      put(out.bits, v);
+    out.bits.push_back(servos_settled(w) ? 1 : 0);
+    return false;
+  };
+  StageSync sync;
+  sync.after_step_synchronizes = true;
+  const StageResult r = run_stage(w, stage, {}, &monitor, after, nullptr, {}, &sync);
+  out.bits.push_back(static_cast<std::uint64_t>(r.steps));
+  out.bits.push_back(r.converged ? 1 : 0);
+  for (double v : {r.measures.unbalanced_force_ratio, r.measures.kinetic_energy_ratio, r.time})
+    put(out.bits, v);
+  put_report(out.bits, r.motion);
+  const EnergyBudget& e = w.energy_budget();
+  for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
+                   e.friction_dissipation, e.damping_dissipation, e.initial})
+    put(out.bits, v);
+  for (const Block& b : w.blocks()) {
+    for (int k = 0; k < 3; ++k) put(out.bits, b.position[k]);
+    for (int k = 0; k < 3; ++k) put(out.bits, b.velocity[k]);
+  }
+  out.stats = w.distribution_stats();
+  return out;
+}
+
+// Reference: the same stage on one world (the oracle), bit for bit, for 2 and 3 parts. The
+// parts must not have made the world whole at the checks: one refresh at most, at the stage's
+// end, against one per check (24) when the checks read the whole world.
+TEST(DistributedStage, ChecksFromReductionsBitIdenticalWithoutRefreshes) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: blocks slide and move
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  s.damping = 0.1;
+  const BrickPile pile;
+  Stage stage;
+  stage.name = "slide";
+  stage.check_interval = 5;
+  stage.min_steps = 10;
+  stage.max_steps = 120;
+  stage.mechanism.displacement_limit = 1e-4;  // small: blocks count as moving within the run
+  const Outcome oracle = run(pile.world(s, 20.0), stage);
+  ASSERT_EQ(oracle.checks, stage.max_steps / stage.check_interval - 1);  // the last one stops
+  for (int parts : {2, 3}) {
+    auto meeting = std::make_shared<Meeting>(parts);
+    std::vector<Outcome> outcomes(static_cast<std::size_t>(parts));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < parts; ++r) {
+      WorldSettings sr = s;
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      threads.emplace_back(
+          [&, r, sr] { outcomes[static_cast<std::size_t>(r)] = run(pile.world(sr, 20.0), stage); });
+    }
+    for (auto& t : threads) t.join();
+    for (int r = 0; r < parts; ++r) {
+      const Outcome& o = outcomes[static_cast<std::size_t>(r)];
+      EXPECT_EQ(o.checks, oracle.checks);
+      ASSERT_EQ(o.bits.size(), oracle.bits.size()) << parts << " parts, part " << r;
+      for (std::size_t q = 0; q < o.bits.size(); ++q)
+        ASSERT_EQ(o.bits[q], oracle.bits[q]) << parts << " parts, part " << r << ", word " << q;
+      EXPECT_EQ(o.stats.steps, stage.max_steps);
+      EXPECT_LE(o.stats.replica_refreshes, 1) << parts << " parts, part " << r;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace blockdem::test
