@@ -19,7 +19,7 @@ cmake --build build-sanitize -j "$jobs"
 # Left to the ordinary build (scripts/test.sh), which runs every test:
 # - the install test: it builds a user's project against the installed library, and a sanitized
 #   library needs a sanitized user;
-# - two long validation studies that add no code to what the sanitizers see: the unconstrained
+# - two long validation studies whose code runs here in shorter tests: the unconstrained
 #   T3-full beam (Voussoir3d, face_integrated with the continuously-yielding law: the same beam
 #   code as its T2-1 case, which runs here, and the same laws in face_integrated as the
 #   laboratory tests) and the Table 3 deflection ratios (four cases that Boon2015/VoussoirCase
