@@ -16,6 +16,8 @@ CXX=clang++ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLOCKDE
 cmake --build build-tsan -j "$jobs" --target blockdem_tests blockdem
 export OMP_TOOL_LIBRARIES="$llvm/libarcher.so"
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ignore_noninstrumented_modules=1"
+# Tests whose length serves only their timing or breadth run shorter (tests/support/sanitized_run.hpp).
+export BLOCKDEM_TEST_SANITIZED=1
 # The threaded tests: the step on 1, 2 and 3 threads, restarts with 2 threads, and the broad
 # phase's threaded pair search.
 build-tsan/blockdem_tests --gtest_filter='*Parallel*:*Thread*:Restart*:RestartSignals*:*UniformGrid*'

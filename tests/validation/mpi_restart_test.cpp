@@ -26,18 +26,13 @@
 
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/run/run_files.hpp"
+#include "support/mpi_launcher.hpp"
 #include "unit/run/restart_support.hpp"
 
 namespace blockdem::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-#ifdef BLOCKDEM_TEST_MPIEXEC
-constexpr const char* kMpiexec = BLOCKDEM_TEST_MPIEXEC;
-#else
-constexpr const char* kMpiexec = nullptr;
-#endif
 
 // The restart scenario (three blocks with slip history on a base; settle 400 steps, tilt 600,
 // then a steps stage of kLongSteps), with rows of time_history.csv and VTK frames inside stages.
@@ -56,9 +51,7 @@ int run(int ranks, const fs::path& scenario, const fs::path& out, const std::str
   if (ranks == 0) {
     if (!env_name.empty()) c << env_name << "=" << env_value << " ";
   } else {
-    c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 ";
-    if (!env_name.empty()) c << "-x " << env_name << "=" << env_value << " ";
-    c << "-np " << ranks << " ";
+    c << mpirun(ranks, env_name.empty() ? "" : "-x " + env_name + "=" + env_value + " ");
   }
   c << BLOCKDEM_CLI_PATH << " run '" << scenario.string() << "' --out '" << out.string()
     << "' --quiet --no-figures --threads 1 " << args << " > /dev/null 2>&1";
@@ -181,8 +174,7 @@ TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
   write_file_atomically(out / "checkpoint.bdck", garbage);
   const fs::path log = out.string() + ".log";
   dirs_.push_back(log);
-  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 3 " +
-                          BLOCKDEM_CLI_PATH + " run " + scenario_.string() + " --out " +
+  const std::string cmd = mpirun(3) + BLOCKDEM_CLI_PATH + " run " + scenario_.string() + " --out " +
                           out.string() + " --quiet --resume 2> " + log.string();
   const int status = std::system(cmd.c_str());
   EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2);
@@ -221,12 +213,10 @@ void signal_from_outside(bool to_launcher, long long steps, int expected_code, b
   // Unquoted: the paths have no spaces, and the command goes inside sh -c '...'.
   const std::string args =
       " run " + scenario.string() + " --out " + out.string() + " --quiet --no-figures --threads 1";
-  const std::string mpirun = std::string(kMpiexec) +
-                             " --oversubscribe --allow-run-as-root --mca odls_base_sigkill_timeout "
-                             "3 -x OMP_NUM_THREADS=1 ";
+  const std::string timeout = "--mca odls_base_sigkill_timeout 3 ";
   const std::string cmd = to_launcher ? "sh -c 'echo $$ > " + pid_file.string() + "; exec " +
-                                            mpirun + "-np 2 " + BLOCKDEM_CLI_PATH + args + "'"
-                                      : mpirun + "-np 1 " + BLOCKDEM_CLI_PATH + args +
+                                            mpirun(2, timeout) + BLOCKDEM_CLI_PATH + args + "'"
+                                      : mpirun(1, timeout) + BLOCKDEM_CLI_PATH + args +
                                             " : -np 1 sh -c 'echo $$ > " + pid_file.string() +
                                             "; exec " + BLOCKDEM_CLI_PATH + args + "'";
   FILE* launcher = ::popen((cmd + " > /dev/null 2>&1; echo $?").c_str(), "r");

@@ -16,31 +16,18 @@
 #include <vector>
 
 #include "brick_pile.hpp"
+#include "support/mpi_launcher.hpp"
 
 namespace blockdem::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-#ifdef BLOCKDEM_TEST_MPIEXEC
-constexpr const char* kMpiexec = BLOCKDEM_TEST_MPIEXEC;
-#else
-constexpr const char* kMpiexec = nullptr;
-#endif
-
 std::string read_file(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
-}
-
-/// The launcher for K processes: oversubscribed (2 cores), allowed as root (CI), one OpenMP
-/// thread per process.
-std::string mpirun(int ranks) {
-  std::ostringstream c;
-  c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 -np " << ranks << " ";
-  return c.str();
 }
 
 int exit_code(const std::string& cmd) {
@@ -69,7 +56,7 @@ std::vector<nlohmann::json> expect_same_outputs(const fs::path& dir, const std::
   std::vector<nlohmann::json> summaries;
   for (int ranks : {0, 1, 2, 3}) {
     const fs::path out = dir / ("out" + std::to_string(ranks));
-    const std::string launcher = ranks == 0 ? "" : mpirun(ranks) + env;
+    const std::string launcher = ranks == 0 ? "" : mpirun(ranks, env);
     const std::string cmd = launcher + BLOCKDEM_CLI_PATH + " run " + args + " --out " +
                             out.string() + " --quiet --no-figures --threads 1";
     EXPECT_EQ(exit_code(cmd), code) << cmd;
@@ -198,9 +185,9 @@ TEST_F(MpiRun, ScenarioFailingOnOneRankStopsAll) {
   const fs::path out = dir_ / "out";
   const fs::path log = dir_ / "log.txt";
   const std::string tail = " --out " + out.string() + " --quiet";
-  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 1 " +
-                          BLOCKDEM_CLI_PATH + " run " + good.string() + tail + " : -np 1 " +
-                          BLOCKDEM_CLI_PATH + " run " + bad.string() + tail + " 2> " + log.string();
+  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + good.string() + tail +
+                          " : -np 1 " + BLOCKDEM_CLI_PATH + " run " + bad.string() + tail + " 2> " +
+                          log.string();
   EXPECT_EQ(exit_code(cmd), 2) << cmd;
   const std::string err = read_file(log);
   EXPECT_NE(err.find(bad.string()), std::string::npos) << err;
@@ -215,8 +202,7 @@ TEST_F(MpiRun, DeadRankStopsTheRunWithoutSummary) {
       "long.toml", BrickPile{}.toml("face_integrated", 20.0, Eigen::Vector3d(0, 0, -9.81), 200000));
   const fs::path out = dir_ / "out";
   const std::string tail = " --out " + out.string() + " --quiet --no-figures --threads 1";
-  const std::string cmd = std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -np 1 " +
-                          BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
+  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
                           " : -np 1 timeout -s KILL 3 " + BLOCKDEM_CLI_PATH + " run " +
                           scenario.string() + tail + " > /dev/null 2>&1";
   EXPECT_NE(exit_code(cmd), 0) << cmd;

@@ -2,7 +2,8 @@
 // fixed-seed generator (lines deleted, duplicated, swapped or cut; numbers replaced by extreme
 // values; strings and keys replaced), each run for at most a few steps. Every run must end by
 // itself with exit code 0, 2 or 3 (no signal, no crash, no other code), and a run that exits 2
-// (an input error) must write nothing.
+// (an input error) must write nothing. Under a sanitizer (BLOCKDEM_TEST_SANITIZED=1), where each
+// run costs a sanitized program's start, the first 500 of the same sequence.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/sanitized_run.hpp"
 
 namespace blockdem {
 namespace {
@@ -176,7 +178,7 @@ class Mutator {
   std::mt19937 rng_;
 };
 
-TEST(MutationFuzz, TwoThousandMutatedScenariosEndWithADefinedExitCode) {
+TEST(MutationFuzz, MutatedScenariosEndWithADefinedExitCode) {
   const fs::path dir =
       fs::temp_directory_path() / ("blockdem_mutation_fuzz_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -191,8 +193,8 @@ TEST(MutationFuzz, TwoThousandMutatedScenariosEndWithADefinedExitCode) {
   }
   Mutator mutator(20261125);
   std::map<int, int> codes;
-  constexpr int kScenarios = 2000;
-  for (int n = 0; n < kScenarios; ++n) {
+  const int scenarios = test::sanitized_run() ? 500 : 2000;
+  for (int n = 0; n < scenarios; ++n) {
     const std::string text = mutator.mutate(n % 4 == 3 ? kBeam : kStack);
     const fs::path file = dir / "case.toml";
     const fs::path out = dir / ("out" + std::to_string(n));
@@ -216,9 +218,10 @@ TEST(MutationFuzz, TwoThousandMutatedScenariosEndWithADefinedExitCode) {
   std::ostringstream summary;
   for (const auto& [code, count] : codes) summary << " exit " << code << ": " << count << ";";
   std::printf("mutation fuzz:%s\n", summary.str().c_str());
-  // Both halves of the promise are exercised: some mutants run, most are input errors.
-  EXPECT_GT(codes[0] + codes[3], 100);
-  EXPECT_GT(codes[2], 100);
+  // Both halves of the promise are exercised: some mutants run (more than 5 %), most are input
+  // errors.
+  EXPECT_GT(codes[0] + codes[3], scenarios / 20);
+  EXPECT_GT(codes[2], scenarios / 20);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 
 #include "restart_support.hpp"
 #include "support/cli_runner.hpp"
+#include "support/sanitized_run.hpp"
 
 extern char** environ;
 
@@ -30,6 +31,16 @@ int count_lines(const fs::path& file) {
   int n = 0;
   for (std::string line; std::getline(in, line);) ++n;
   return n;
+}
+
+// The long last stage must still be running when the signal comes, 100 ms after the second
+// stage's row. The whole scenario with a last stage of 50,000 steps takes 0.47 s of CPU in an
+// optimised build (5,000 steps: 0.07 s; 100,000: 8.1 s, the later steps dearer: their sliding
+// face contacts at full combined slip took 62 % of the CPU). A sanitizer makes a step slower
+// (AddressSanitizer: 226 s for the runs with 100,000 steps, against 16 s of CPU optimised): 5,000
+// steps there outlast the 100 ms many times. The stop falls between two steps either way.
+long long last_stage_steps() {
+  return sanitized_run() ? 5000 : 50000;
 }
 
 /// Starts `blockdem run` in the background, sends `sig` 100 ms into its last stage (after the
@@ -53,7 +64,8 @@ int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
   auto waited = [&] { return std::chrono::steady_clock::now() - start > std::chrono::seconds(60); };
   while (count_lines(out / "history.csv") < 3 && !waited())
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  // Into the last stage (its 100,000 steps take most of a second): a stop between two steps.
+  // Into the last stage (last_stage_steps() outlast the 100 ms): a stop between two
+  // steps.
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ::kill(pid, sig);
   int status = 0;
@@ -68,25 +80,20 @@ int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// The long last stage must still be running when the signal comes: 100,000 steps of four
-// blocks take most of a second of CPU; the signal follows the second stage's row within
-// milliseconds.
-constexpr long long kLastStageSteps = 100000;
-
 void expect_interrupted_record(const fs::path& out) {
   const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
   EXPECT_EQ(summary.at("status"), "interrupted");
   EXPECT_EQ(summary.at("stages").back().at("status"), "interrupted");
   const long long steps = summary.at("stages").back().at("steps").get<long long>();
   EXPECT_GT(steps, 0) << "stopped inside the stage";
-  EXPECT_LT(steps, kLastStageSteps);
+  EXPECT_LT(steps, last_stage_steps());
   EXPECT_GE(summary.at("files").size(), 3u) << "the files written so far are recorded";
   EXPECT_TRUE(fs::exists(out / "checkpoint.bdck"));
 }
 
 // Reference: the same scenario run without a stop. Tolerance: none (byte-identical outputs).
 TEST(RestartSignals, SigintStopsWith130AndTheResumedRunIsBitIdentical) {
-  const fs::path scenario = write_restart_scenario("signal", 0, kLastStageSteps);
+  const fs::path scenario = write_restart_scenario("signal", 0, last_stage_steps());
   const fs::path reference = fresh_dir("signal_reference");
   const CommandOutput full = run_cli("run '" + scenario.string() + "' --out '" +
                                      reference.string() + "' --quiet --no-figures --threads 1");
@@ -102,7 +109,7 @@ TEST(RestartSignals, SigintStopsWith130AndTheResumedRunIsBitIdentical) {
 }
 
 TEST(RestartSignals, SigtermStopsWith143AndAnInterruptedRecord) {
-  const fs::path scenario = write_restart_scenario("signal_term", 0, kLastStageSteps);
+  const fs::path scenario = write_restart_scenario("signal_term", 0, last_stage_steps());
   const fs::path out = fresh_dir("signal_term");
   ASSERT_EQ(run_and_signal(scenario, out, SIGTERM), 143);
   expect_interrupted_record(out);

@@ -1,0 +1,25 @@
+// The `mpirun` command line of the tests that start `blockdem run` on several processes. The
+// launcher is BLOCKDEM_TEST_MPIEXEC, given by the build when it has MPI; without it kMpiexec is
+// null and those tests skip.
+#pragma once
+
+#include <string>
+
+namespace blockdem::test {
+
+#ifdef BLOCKDEM_TEST_MPIEXEC
+inline constexpr const char* kMpiexec = BLOCKDEM_TEST_MPIEXEC;
+#else
+inline constexpr const char* kMpiexec = nullptr;
+#endif
+
+/// The launcher for `ranks` processes, up to the program: oversubscribed (the CI machine has 2
+/// cores), allowed as root (CI), one OpenMP thread per process, then `options` (launcher options
+/// such as "-x NAME=VALUE ", each ending with a space). Also the first part of an MPMD line
+/// (`... -np 1 PROGRAM : -np 1 OTHER`): the options hold for every part.
+inline std::string mpirun(int ranks, const std::string& options = "") {
+  return std::string(kMpiexec) + " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 " +
+         options + "-np " + std::to_string(ranks) + " ";
+}
+
+}  // namespace blockdem::test
