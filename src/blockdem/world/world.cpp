@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/world/contact_twist.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -270,7 +271,8 @@ void World::step() {
   double elastic = 0.0, slip_work = 0.0;
   for (const auto& s : slots_) {
     if (!s.active) continue;
-    elastic += joint_elastic_energy(s.contact);
+    elastic += joint_elastic_energy(s.contact) +
+               twist_elastic_energy(s.contact.twist.moment, s.twist_stiffness);
     slip_work += s.slip_work;
   }
   energy_.after_integration(blocks_, settings_.gravity, damping, dt, elastic, slip_work);

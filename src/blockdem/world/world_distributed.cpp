@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/world/contact_twist.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -577,7 +578,9 @@ void World::step_distributed(double dt, int threads) {
     if (!s.active) continue;
     put(terms,
         PairEnergyEntry{static_cast<double>(s.contact.a) * static_cast<double>(n) + s.contact.b,
-                        joint_elastic_energy(s.contact), s.slip_work});
+                        joint_elastic_energy(s.contact) +
+                            twist_elastic_energy(s.contact.twist.moment, s.twist_stiffness),
+                        s.slip_work});
   }
   tw = Clock::now();
   const std::vector<char> all_terms = dist.gather(terms, counts);
