@@ -190,21 +190,29 @@ double radial_stress_moment(const Node& a, const Node& b, const Node& c, const N
 
 ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cells,
                                                const Eigen::Vector3d& centre) {
+  // Over a triangle with vertices u_i (from the centre) and closures g_i, with the barycentric
+  // integrals ∫ λ_i λ_j λ_k dA = A (1 + δ_ij + δ_jk + δ_ik + 2 δ_ij δ_jk) / 60 (and
+  // ∫ λ_i λ_j dA = A (1 + δ_ij) / 12), U = Σ u_i, T = Σ |u_i|², G = Σ g_i:
+  //   ∫ r² dA = A (|U|² + T) / 12,   ∫ g r² dA = A (G (|U|² + T) + 2 (Σ g_i u_i) · U
+  //   + 2 Σ g_i |u_i|²) / 60.
   ClosurePolarMoments m;
   for (const ClosureCell& cell : cells) {
     const auto& v = cell.vertices;
     const auto& g = cell.closures;
+    if (v.size() < 3) continue;
+    const Eigen::Vector3d u0 = v[0] - centre;
+    const double t0 = u0.squaredNorm();
     for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-      const double area = 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
-      double r2 = 0.0, gr2 = 0.0;
-      for (const auto& w : kRule) {
-        const Node y = mix({v[0], g[0]}, {v[k], g[k]}, {v[k + 1], g[k + 1]}, w.l0, w.l1, w.l2);
-        const double rr = (y.x - centre).squaredNorm();
-        r2 += w.weight * rr;
-        gr2 += w.weight * y.g * rr;
-      }
-      m.polar_moment += r2 * area;
-      m.closure_polar_moment += gr2 * area;
+      const Eigen::Vector3d u1 = v[k] - centre, u2 = v[k + 1] - centre;
+      const double area = 0.5 * (u1 - u0).cross(u2 - u0).norm();
+      const double t1 = u1.squaredNorm(), t2 = u2.squaredNorm();
+      const Eigen::Vector3d sum = u0 + u1 + u2;
+      const double quadratic = sum.squaredNorm() + t0 + t1 + t2;
+      const double gsum = g[0] + g[k] + g[k + 1];
+      const Eigen::Vector3d gu = g[0] * u0 + g[k] * u1 + g[k + 1] * u2;
+      const double gt = g[0] * t0 + g[k] * t1 + g[k + 1] * t2;
+      m.polar_moment += area * quadratic / 12.0;
+      m.closure_polar_moment += area * (gsum * quadratic + 2.0 * gu.dot(sum) + 2.0 * gt) / 60.0;
     }
   }
   return m;

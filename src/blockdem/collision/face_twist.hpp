@@ -31,8 +31,8 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
                                     const Eigen::Vector3d& centre);
 
 /// ∫ r² dA and ∫ g r² dA over the cells, r = |y - centre| and g the closure (m^4 and m^5), by
-/// the 7-point degree-5 rule on each fan triangle of each cell: exact (the integrands are
-/// polynomials of degree 2 and 3), and cheap (no stress evaluation, no square root).
+/// the closed forms of polynomials of degree 2 and 3 over each fan triangle of each cell (from
+/// the vertices: no quadrature, no stress evaluation, no square root).
 struct ClosurePolarMoments {
   double polar_moment = 0.0;          ///< ∫ r² dA (m^4)
   double closure_polar_moment = 0.0;  ///< ∫ g r² dA (m^5)

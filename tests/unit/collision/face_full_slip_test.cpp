@@ -1,6 +1,7 @@
 // Full slip of a square contact about an instantaneous centre (face_full_slip) against closed
-// forms and an independent fine-grid oracle, and the state's instantaneous centre (slip_centre)
-// and the slip test (exceeds_full_slip, certified_inside) of contact/shear_twist.hpp.
+// forms and an independent fine-grid oracle, the closure's polar moments
+// (face_closure_polar_moments), and the state's instantaneous centre (slip_centre) and the slip
+// test (exceeds_full_slip, certified_inside) of contact/shear_twist.hpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -185,6 +186,20 @@ TEST(FaceFullSlip, FarCentresOnBothSidesOfTheRuleSwitch) {
     const double curvature = kStress * std::pow(kSide, 4) / (12.0 * distance);
     EXPECT_NEAR(std::abs(s.moment), curvature, 0.01 * curvature) << distance;
   }
+}
+
+// The closed forms of ∫ r² dA and ∫ g r² dA (face_closure_polar_moments) on the square about
+// its corner, with the closure g = g0 + slope x: ∫ r² dA = 2 a⁴ / 3 and
+// ∫ g r² dA = g0 2 a⁴ / 3 + slope (a⁵ / 4 + a⁵ / 6) (∫ x³ + ∫ x y² over the square); round-off,
+// 1e-12 relative.
+TEST(ClosurePolarMoments, SquareAboutACorner) {
+  const double slope = 2 * kClosure / kSide;
+  const FaceContactGeometry fc = square_cells(kClosure, slope);
+  const ClosurePolarMoments m = face_closure_polar_moments(fc.cells, Eigen::Vector3d::Zero());
+  const double polar = 2 * std::pow(kSide, 4) / 3;
+  const double closure_polar = kClosure * polar + slope * 5 * std::pow(kSide, 5) / 12;
+  EXPECT_NEAR(m.polar_moment, polar, 1e-12 * polar);
+  EXPECT_NEAR(m.closure_polar_moment, closure_polar, 1e-12 * closure_polar);
 }
 
 // The state's instantaneous centre: the affine field u0 + θ n × (y - x_p) with F = -k_s A u0,
