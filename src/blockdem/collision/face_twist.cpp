@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <variant>
 
 #include "blockdem/geometry/polygon_moments.hpp"
@@ -56,6 +57,7 @@ double integrate_split(const Node& a, const Node& b, const Node& c, F&& f) {
 }
 
 // Closed forms of full slip over a cell whose normal stress is linear (see face_twist.hpp).
+constexpr double kSliver = 1e-6;
 struct SlipSums {
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  // V = ∫ σ (y - p) / |y - p| dA (N/m^0)
   double radial = 0.0;                                  // W = ∫ σ |y - p| dA (N m)
@@ -81,11 +83,13 @@ double inverse_radius_integral(double sa, double sb, double ra, double rb, doubl
 //   ∫ ρ d dA      = (h/4) [ν h R1 + t (ρ_b³ - ρ_a³)/3],
 //   ∫ d dᵀ / ρ dA = (h/3) [ν νᵀ h² L + (ν tᵀ + t νᵀ) h (ρ_b - ρ_a) + t tᵀ (s ρ - h² L)/2].
 // Then V = s0 ∫ d/ρ + (∫ d dᵀ/ρ) q and W = s0 ∫ ρ + q · ∫ ρ d.
-SlipSums linear_slip_sums(std::span<const Eigen::Vector3d> v, std::span<const double> stress,
-                          const Eigen::Vector3d& normal, const Eigen::Vector3d& p) {
+// Empty for a cell too thin to carry a gradient (the rule then integrates it).
+std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
+                                         std::span<const double> stress,
+                                         const Eigen::Vector3d& normal, const Eigen::Vector3d& p) {
   SlipSums out;
   const std::size_t m = v.size();
-  if (m < 3) return out;
+  if (m < 3) return std::nullopt;
   // The stress gradient q from the cell's largest fan triangle (σ is linear on the cell).
   std::size_t best = 1;
   double best_area = -1.0;
@@ -96,12 +100,27 @@ SlipSums linear_slip_sums(std::span<const Eigen::Vector3d> v, std::span<const do
       best = k;
     }
   }
-  if (!(best_area > 0.0)) return out;
+  if (!(best_area > 0.0)) return std::nullopt;
   const Eigen::Vector3d e1 = v[best] - v[0], e2 = v[best + 1] - v[0];
   const Eigen::Vector3d nn = e1.cross(e2);
+  // The gradient only from a triangle that is not a sliver (twice its area at least 1e-6 of the
+  // cell's diameter squared), and only if every vertex agrees with it (to 1e-9 of the largest
+  // stress): a sliver cell's closures, at nearly coincident vertices, need not be those of one
+  // plane, and a wrong gradient carried to a distant centre would ruin the sums.
+  double diameter2 = 0.0, largest = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    largest = std::max(largest, std::abs(stress[i]));
+    for (std::size_t j = i + 1; j < m; ++j)
+      diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
+  }
+  if (!(nn.norm() >= kSliver * diameter2)) return std::nullopt;
   const Eigen::Vector3d q =
       ((stress[best] - stress[0]) * e2.cross(nn) + (stress[best + 1] - stress[0]) * nn.cross(e1)) /
       nn.squaredNorm();
+  for (std::size_t i = 1; i < m; ++i) {
+    if (!(std::abs(stress[0] + q.dot(v[i] - v[0]) - stress[i]) <= 1e-9 * largest))
+      return std::nullopt;
+  }
   const double s0 = stress[0] + q.dot(p - v[0]);
   Eigen::Vector3d d_over_r = Eigen::Vector3d::Zero(), r_d = Eigen::Vector3d::Zero();
   Eigen::Vector3d ddq = Eigen::Vector3d::Zero();  // (∫ d dᵀ / ρ dA) q
@@ -230,8 +249,10 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
     m.radial_moment += pm.radial_moment;
     if (linear_cell_stress(cell, law, stress)) {
       const std::span<const double> s(stress.data(), stress.size());
-      m.radial_normal_moment += linear_slip_sums(vertices, s, cell_normal(vertices), centre).radial;
-      continue;
+      if (const auto sums = linear_slip_sums(vertices, s, cell_normal(vertices), centre)) {
+        m.radial_normal_moment += sums->radial;
+        continue;
+      }
     }
     for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
       m.radial_normal_moment +=
@@ -277,15 +298,19 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
     for (const auto& x : v) size = std::max(size, (x - v[0]).norm());
     if ((p - v[0]).norm() > kFarCentre * size) {
       by_rule.template operator()<1>(cell);
-    } else if (linear_cell_stress(cell, law, stress)) {
+      continue;
+    }
+    const std::optional<SlipSums> sums =
+        linear_cell_stress(cell, law, stress)
+            ? linear_slip_sums(std::span<const Eigen::Vector3d>(v.data(), v.size()),
+                               std::span<const double>(stress.data(), stress.size()), normal, p)
+            : std::nullopt;
+    if (sums) {
       // Traction -σ s n × d / |d| (d = y - p): F = -s n × V, power W, and the moment about x_p
       // -s ∫ σ (y - x_p) · d / |d| dA = -s (W + (p - x_p) · V).
-      const SlipSums sums =
-          linear_slip_sums(std::span<const Eigen::Vector3d>(v.data(), v.size()),
-                           std::span<const double>(stress.data(), stress.size()), normal, p);
-      s.force -= centre.sense * normal.cross(sums.direction);
-      s.moment -= centre.sense * (sums.radial + (p - force_point).dot(sums.direction));
-      s.power += sums.radial;
+      s.force -= centre.sense * normal.cross(sums->direction);
+      s.moment -= centre.sense * (sums->radial + (p - force_point).dot(sums->direction));
+      s.power += sums->radial;
     } else {
       by_rule.template operator()<4>(cell);
     }
