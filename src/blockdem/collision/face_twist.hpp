@@ -48,7 +48,11 @@ ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cell
 ///   when its chord in g between the cell's least and largest closures is within 1e-6 of the
 ///   largest stress, the bound b² (σ(g_max) + a) Δg² / 8 of a convex function above its chord):
 ///   V and W in closed form over the signed fan of triangles (p, v_i, v_i+1), one logarithm and
-///   three square roots per edge (linear_slip_sums in the source), exact to round-off;
+///   three square roots per edge (linear_slip_sums in the source), exact to round-off; the
+///   stress gradient comes from the cell's largest fan triangle, so only on a cell that is not a
+///   sliver (twice that triangle's area at least 1e-6 of the diameter squared) and whose every
+///   vertex agrees with it (1e-9 of the largest stress): a sliver's closures, at nearly
+///   coincident vertices, need not be those of one plane;
 /// - otherwise by the rule of face_twist_moments (7 points on each of 16 sub-triangles of every
 ///   fan triangle; the slip direction is smooth except at p, so about 1e-4 relative under uniform
 ///   closure, 2e-3 with p inside the cell);
