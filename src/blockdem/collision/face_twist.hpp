@@ -21,7 +21,9 @@ struct FaceTwistMoments {
 };
 
 /// Moments about `centre` (a point of the contact plane, m) over the cells of linear closure.
-/// Area, J and ∫ r dA are exact (polygon_moments); ∫ σ_n r dA by the 7-point degree-5 rule of
+/// Area, J and ∫ r dA are exact (polygon_moments). ∫ σ_n r dA: on a cell where σ_n is linear
+/// (the linear law; the exponential law within 1e-6 of the cell's largest stress by its chord,
+/// face_full_slip) in closed form, exact to round-off; otherwise by the 7-point degree-5 rule of
 /// Dunavant (1985, Int. J. Numer. Meth. Eng. 21, Table I, n = 7) on each fan triangle split into
 /// 16 similar triangles: r is smooth on each piece except at the centre, where it is continuous,
 /// so the rule converges like h³ there (about 1e-4 relative on a square under uniform closure).
@@ -29,8 +31,8 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
                                     const Eigen::Vector3d& centre);
 
 /// ∫ r² dA and ∫ g r² dA over the cells, r = |y - centre| and g the closure (m^4 and m^5), by
-/// the 7-point degree-5 rule on each fan triangle of each cell: exact (the integrands are
-/// polynomials of degree 2 and 3), and cheap (no stress evaluation, no square root).
+/// the closed forms of polynomials of degree 2 and 3 over each fan triangle of each cell (from
+/// the vertices: no quadrature, no stress evaluation, no square root).
 struct ClosurePolarMoments {
   double polar_moment = 0.0;          ///< ∫ r² dA (m^4)
   double closure_polar_moment = 0.0;  ///< ∫ g r² dA (m^5)
@@ -39,9 +41,23 @@ ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cell
                                                const Eigen::Vector3d& centre);
 
 /// Full slip of B about the instantaneous centre `centre` (SlipCentre) over the cells, per unit
-/// friction coefficient (FullSlip: force, moment about `force_point`, power), by the same rule
-/// as face_twist_moments (7 points on each of 16 sub-triangles of every fan triangle; the slip
-/// direction is smooth except at the centre, so about 1e-4 relative under uniform closure).
+/// friction coefficient (FullSlip: force, moment about `force_point`, power). With d = y - p and
+/// the two integrals V = ∫ σ_n d / |d| dA and W = ∫ σ_n |d| dA, the force is -s n × V, the
+/// power W and the moment about x_p -s (W + (p - x_p) · V). Per cell:
+/// - σ_n linear over the cell (the linear law always: the closure is linear; the exponential law
+///   when its chord in g between the cell's least and largest closures is within 1e-6 of the
+///   largest stress, the bound b² (σ(g_max) + a) Δg² / 8 of a convex function above its chord):
+///   V and W in closed form over the signed fan of triangles (p, v_i, v_i+1), one logarithm and
+///   three square roots per edge (linear_slip_sums in the source), exact to round-off; the
+///   stress gradient comes from the cell's largest fan triangle, so only on a cell that is not a
+///   sliver (twice that triangle's area at least 1e-6 of the diameter squared) and whose every
+///   vertex agrees with it (1e-9 of the largest stress): a sliver's closures, at nearly
+///   coincident vertices, need not be those of one plane;
+/// - otherwise by the rule of face_twist_moments (7 points on each of 16 sub-triangles of every
+///   fan triangle; the slip direction is smooth except at p, so about 1e-4 relative under uniform
+///   closure, 2e-3 with p inside the cell);
+/// - a centre beyond 1e3 cell diameters: the 7-point rule on the fan triangles alone (the
+///   direction is smooth over the cell; the closed forms' terms would cancel from D² a σ_n).
 FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law,
                         const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
                         const SlipCentre& centre);

@@ -68,6 +68,21 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
 /// ((ω_A + ω_B)/2 · n) dt. A rigid rotation of both blocks then carries the force with them.
 void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle);
 
+/// The energy stored in a contact's torsional spring, M² / (2 k_s J) (J): `moment` M (N m),
+/// `stiffness` k_s J of the step (N m/rad); zero without a spring. The energy ledger's elastic
+/// term adds it to the normal and shear springs' (joint_elastic_energy).
+inline double twist_elastic_energy(double moment, double stiffness) {
+  return stiffness > 0.0 ? 0.5 * moment * moment / stiffness : 0.0;
+}
+
+/// The work the twisting moment dissipates when a step's trial moment `trial` (N m) is capped to
+/// `moment`: the moment times the slip part of the turn, |M| (|M_trial| - |M|) / (k_s J) (J), as
+/// the shear law's plastic work is the capped force times the slip. Zero when nothing was capped.
+inline double twist_slip_work(double trial, double moment, double stiffness) {
+  if (!(stiffness > 0.0) || !(std::abs(trial) > std::abs(moment))) return 0.0;
+  return std::abs(moment) * (std::abs(trial) - std::abs(moment)) / stiffness;
+}
+
 /// One step of a contact's torsional spring (update_twist) with the shear law's terms at σ_n
 /// (twist_law_terms), the area terms `geometry` and B's rotation relative to A about n, `spin`
 /// (rad). Returns k_s J, the spring (N m/rad), for the rotational stiffness of the time step.

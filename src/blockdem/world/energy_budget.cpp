@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/world/contact_twist.hpp"
 
 namespace blockdem {
 
@@ -39,8 +40,9 @@ void EnergyStepSums::add_block(const BlockEnergyTerms& t) {
   }
 }
 
-void EnergyStepSums::add_contact(const Contact& contact, double slip) {
+void EnergyStepSums::add_contact(const Contact& contact, double twist_stiffness, double slip) {
   elastic.add(joint_elastic_energy(contact));
+  elastic.add(twist_elastic_energy(contact.twist.moment, twist_stiffness));
   slip_work.add(slip);
 }
 

@@ -61,7 +61,9 @@ struct EnergyStepSums {
   ExactSum boundary;                         ///< over the other blocks
   ExactSum elastic, slip_work;               ///< over active contacts
   void add_block(const BlockEnergyTerms& terms);
-  void add_contact(const Contact& contact, double slip_work);
+  /// A contact's springs (normal, shear and, with `twist_stiffness` k_s J > 0, the twist spring)
+  /// and the work its slip dissipated in the step (J).
+  void add_contact(const Contact& contact, double twist_stiffness, double slip_work);
   static constexpr std::size_t kLimbs = 7 * ExactSum::kLimbs;
   /// Every sum's limbs (ExactSum::limbs), for an integer-sum reduction over processes.
   std::vector<std::int64_t> limbs() const;

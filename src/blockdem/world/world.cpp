@@ -270,7 +270,7 @@ void World::step() {
   // 7. Energy budget at the level whose forces this step used (exact sums).
   EnergyStepSums contact_sums;
   for (const auto& s : slots_) {
-    if (s.active) contact_sums.add_contact(s.contact, s.slip_work);
+    if (s.active) contact_sums.add_contact(s.contact, s.twist_stiffness, s.slip_work);
   }
   energy_.after_integration(blocks_, settings_.gravity, damping, dt, std::move(contact_sums));
   time_ += dt;

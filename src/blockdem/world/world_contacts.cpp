@@ -161,12 +161,16 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   // Twist (the contact's state before this step's shear update: bond and plastic slip): B's spin
   // relative to A about n turns the torsional spring.
   const bool twist = settings_.twist_enabled() && advance_shear;
-  double spin = 0.0;  // dθ of this step (rad)
+  double spin = 0.0;        // dθ of this step (rad)
+  double twist_work = 0.0;  // slip work of the twisting moment in this step (J)
   const auto advance_twist = [&](const TwistGeometry& tg, auto&& better_bound,
                                  auto&& exact_radial) {
     spin = ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
+    const double before = ct.twist.moment;
     slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
                                                  tg, spin, better_bound, exact_radial);
+    twist_work = twist_slip_work(before - slot.twist_stiffness * spin, ct.twist.moment,
+                                 slot.twist_stiffness);
   };
   // A face contact's cells and the area terms of its twist, for the shear-twist interaction.
   const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
@@ -257,10 +261,10 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
-  slot.slip_work = sr.plastic_work;
+  slot.slip_work = sr.plastic_work + twist_work;
   // Force and moment together against Coulomb's law at every point of a face contact.
   if (face_twist) {
-    const double stored = ct.shear.force.squaredNorm();
+    const double stored = ct.shear.force.squaredNorm(), twisted = ct.twist.moment;
     const ShearTwistResult st = interact_shear_twist(
         ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area,
         *face_twist, xf, n, inc.displacement, spin,
@@ -275,6 +279,8 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
       // The shear spring's energy released by the return (the ledger's elastic term).
       if (sr.stiffness > 0.0)
         slot.slip_work += 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
+      slot.slip_work += twist_elastic_energy(twisted, slot.twist_stiffness) -
+                        twist_elastic_energy(ct.twist.moment, slot.twist_stiffness);
     }
   }
   ct.shear_stiffness = sr.stiffness;

@@ -617,7 +617,7 @@ void World::step_distributed(double dt, int threads) {
   }
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    if (s.active) step_sums.add_contact(s.contact, s.slip_work);
+    if (s.active) step_sums.add_contact(s.contact, s.twist_stiffness, s.slip_work);
   }
   tw = Clock::now();
   const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());
