@@ -36,8 +36,7 @@ struct Contact {
   int a = -1;    ///< first block (the normal points from a to b)
   int b = -1;    ///< second block
   int law = -1;  ///< index into World::joint_laws()
-  // The flags sit together beside the indices (no padding between doubles: the pair store holds
-  // a Contact for every candidate pair).
+  // The flags sit together beside the indices (no padding between doubles).
   bool has_history = false;  ///< false on the step the contact forms
   bool integrated = false;   ///< the force came from face integration (else point contact)
   bool sliding = false;      ///< the shear law yielded this step
@@ -57,23 +56,18 @@ struct Contact {
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
   double shear_stiffness = 0.0;  ///< k_s A of the last shear update, for its energy (N/m)
 
-  /// Warm start of the narrow phase between steps. Kept for candidate pairs that do not touch too.
-  Boon2012Cache narrow_cache;
-
   /// Total force on b (N); the force on a is its negative.
   Eigen::Vector3d force_on_b() const { return normal_force * geometry.normal + shear.force; }
 };
 
-/// Back to a fresh contact (no history, no forces), keeping the pair, its narrow-phase warm start
-/// and its bond state: a bond that broke stays broken, and an intact one stays intact, while the
-/// pair remains a candidate.
+/// Back to a fresh contact (no history, no forces), keeping the pair and its bond state: a bond
+/// that broke stays broken, and an intact one stays intact, while the pair remains a candidate.
 inline void forget_history(Contact& c) {
   if (!c.has_history) return;
   Contact fresh;
   fresh.a = c.a;
   fresh.b = c.b;
   fresh.law = c.law;
-  fresh.narrow_cache = c.narrow_cache;
   fresh.shear.bond = c.shear.bond;
   c = fresh;
 }

@@ -123,7 +123,7 @@ std::vector<const Contact*> World::contacts() const {
   std::vector<const Contact*> out;
   out.reserve(active_count_);
   for (const auto& s : slots_) {
-    if (s.active) out.push_back(&s.contact);
+    if (s.active) out.push_back(&contact_of(s));
   }
   return out;
 }
@@ -224,7 +224,7 @@ void World::check_divergence() {
   }
   if (why.str().empty() && overlap_violation_ >= 0) {
     // The first too-deep contact in (a, b) order, found by the load scatter.
-    const Contact& c = slots_[static_cast<std::size_t>(overlap_violation_)].contact;
+    const Contact& c = contact_of(slots_[static_cast<std::size_t>(overlap_violation_)]);
     why << "blocks '" << blocks_[c.a].name << "' and '" << blocks_[c.b].name << "' overlap by "
         << c.geometry.overlap << " m, more than " << settings_.max_overlap_fraction
         << " of the smaller block's radius";
@@ -270,7 +270,7 @@ void World::step() {
   // 7. Energy budget at the level whose forces this step used (exact sums).
   EnergyStepSums contact_sums;
   for (const auto& s : slots_) {
-    if (s.active) contact_sums.add_contact(s.contact, s.twist_stiffness, s.slip_work);
+    if (s.active) contact_sums.add_contact(contact_of(s), s.twist_stiffness, s.slip_work);
   }
   energy_.after_integration(blocks_, settings_.gravity, damping, dt, std::move(contact_sums));
   time_ += dt;
@@ -287,8 +287,9 @@ EquilibriumMeasures World::equilibrium() const {
   enum { kContactForce, kElastic, kKinetic, kUnbalanced };
   std::array<ExactSum, 4> sums;
   for (const auto& s : slots_) {
-    if (!s.active || !counts_contact(s.contact)) continue;
-    const Contact& c = s.contact;
+    if (!s.active) continue;
+    const Contact& c = contact_of(s);
+    if (!counts_contact(c)) continue;
     sums[kContactForce].add(c.force_on_b().norm());
     sums[kElastic].add(0.5 * c.normal_force * c.geometry.overlap);
   }
@@ -341,7 +342,18 @@ void World::save_checkpoint() {
   checkpoint_.contacts.clear();
   checkpoint_.contacts.reserve(active_count_);
   for (const auto& s : slots_) {
-    const Contact& c = s.contact;
+    if (s.contact < 0) {
+      // No contact state: only the bond of the pair.
+      if (s.bond == BondState::unbonded) continue;
+      ContactHistory h;
+      h.a = s.a;
+      h.b = s.b;
+      h.law = s.group_law;
+      h.shear.bond = s.bond;
+      checkpoint_.contacts.push_back(h);
+      continue;
+    }
+    const Contact& c = contact_of(s);
     if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
     checkpoint_.contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist,
                                     c.previous_normal, c.force_point, c.geometry.overlap,
@@ -372,21 +384,30 @@ void World::restore_checkpoint() {
   // the restored pose (the narrow-phase warm starts of the other pairs are dropped).
   slots_.clear();
   slots_.reserve(checkpoint_.contacts.size());
+  contacts_.clear();
   for (const ContactHistory& h : checkpoint_.contacts) {
     PairSlot s;
-    s.contact.a = h.a;
-    s.contact.b = h.b;
+    s.a = h.a;
+    s.b = h.b;
     s.group_law = law_for(h.a, h.b);
-    s.contact.law = h.has_history ? h.law : s.group_law;
-    s.contact.shear = h.shear;
-    s.contact.twist = h.twist;
-    s.contact.previous_normal = h.previous_normal;
-    s.contact.has_history = h.has_history;
-    s.contact.force_point = h.point;
-    s.contact.geometry.point = h.point;
-    s.contact.geometry.overlap = h.closure;
-    s.contact.compressed_area = h.area;
-    slots_.push_back(std::move(s));
+    s.bond = h.shear.bond;
+    if (h.has_history) {
+      Contact c;
+      c.a = h.a;
+      c.b = h.b;
+      c.law = h.law;
+      c.shear = h.shear;
+      c.twist = h.twist;
+      c.previous_normal = h.previous_normal;
+      c.has_history = true;
+      c.force_point = h.point;
+      c.geometry.point = h.point;
+      c.geometry.overlap = h.closure;
+      c.compressed_area = h.area;
+      s.contact = static_cast<std::int32_t>(contacts_.size());
+      contacts_.push_back(c);
+    }
+    slots_.push_back(s);
   }
   slots_rules_version_ = rules_version_;
   evaluate_pairs(0.0, false, thread_count());

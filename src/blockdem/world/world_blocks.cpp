@@ -54,15 +54,20 @@ void World::remove_blocks(const std::vector<int>& indices) {
   // renumbering keeps the order of the blocks, so the slots stay sorted by (a, b).
   std::size_t kept_slots = 0;
   for (auto& slot : slots_) {
-    Contact& c = slot.contact;
-    if (new_index[c.a] < 0 || new_index[c.b] < 0) continue;
-    c.a = new_index[c.a];
-    c.b = new_index[c.b];
-    slots_[kept_slots++] = std::move(slot);
+    if (new_index[slot.a] < 0 || new_index[slot.b] < 0) continue;
+    slot.a = new_index[slot.a];
+    slot.b = new_index[slot.b];
+    if (slot.contact >= 0) {
+      Contact& c = contact_of(slot);
+      c.a = slot.a;
+      c.b = slot.b;
+    }
+    slots_[kept_slots++] = slot;
   }
   slots_.resize(kept_slots);
+  compact_contacts();
   pairs_.clear();
-  for (const auto& slot : slots_) pairs_.emplace_back(slot.contact.a, slot.contact.b);
+  for (const auto& slot : slots_) pairs_.emplace_back(slot.a, slot.b);
   active_count_ = 0;
   for (const auto& slot : slots_) active_count_ += slot.active ? 1 : 0;
   overlap_violation_ = -1;

@@ -11,8 +11,7 @@
 
 namespace blockdem {
 
-bool World::evaluate_open_bond(PairSlot& slot, double dt, bool advance_shear) const {
-  Contact& ct = slot.contact;
+bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
   if (ct.shear.bond != BondState::intact) return false;
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];

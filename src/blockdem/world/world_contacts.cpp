@@ -1,13 +1,15 @@
 // The contact passes of a step over dense, sorted arrays: candidate pairs from the broad phase,
-// a sorted merge that keeps each pair's history, the per-pair work in parallel (each pair writes
-// only its own slot), and the loads scattered onto blocks in (a, b) order, so that results are
-// bit-identical for any number of threads. Force assembly: normal force, then shear.
+// a sorted merge that keeps each pair's slot, the per-pair work in parallel (each pair writes
+// only its own slot and state), a sorted merge that keeps the contact states of the touching
+// pairs, and the loads scattered onto blocks in (a, b) order, so that results are bit-identical
+// for any number of threads. Force assembly: normal force, then shear.
 #include <algorithm>
 #include <cmath>
 #include <exception>
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "blockdem/collision/face_twist.hpp"
 #include "blockdem/contact/normal_integral.hpp"
@@ -44,7 +46,7 @@ void World::keep_open_bonds() {
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
-    if (s.active && !s.contact.geometry.touching) open.emplace_back(s.contact.a, s.contact.b);
+    if (s.active && !contact_of(s).geometry.touching) open.emplace_back(s.a, s.b);
   }
   if (open.empty()) return;
   std::vector<std::pair<int, int>> all;
@@ -57,14 +59,14 @@ void World::merge_pairs() {
   // The common case: the same pairs as last step.
   bool same = pairs_.size() == slots_.size();
   for (std::size_t k = 0; same && k < pairs_.size(); ++k) {
-    same = slots_[k].contact.a == pairs_[k].first && slots_[k].contact.b == pairs_[k].second;
+    same = slots_[k].a == pairs_[k].first && slots_[k].b == pairs_[k].second;
   }
   if (!same) {
     // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
     // place (forward); then open the slots of new pairs, moving kept ones back (backward).
     std::size_t kept = 0, p = 0;
     for (std::size_t k = 0; k < slots_.size(); ++k) {
-      const Contact& c = slots_[k].contact;
+      const PairSlot& c = slots_[k];
       while (p < pairs_.size() && less_pair(pairs_[p].first, pairs_[p].second, c.a, c.b)) ++p;
       if (p < pairs_.size() && pairs_[p].first == c.a && pairs_[p].second == c.b) {
         if (kept != k) slots_[kept] = std::move(slots_[k]);
@@ -78,53 +80,219 @@ void World::merge_pairs() {
     std::size_t old = kept;  // slots [0, kept) hold a subset of pairs_, in order
     for (std::size_t w = pairs_.size(); w-- > 0;) {
       const auto [a, b] = pairs_[w];
-      if (old > 0 && slots_[old - 1].contact.a == a && slots_[old - 1].contact.b == b) {
+      if (old > 0 && slots_[old - 1].a == a && slots_[old - 1].b == b) {
         --old;
         if (old != w) slots_[w] = std::move(slots_[old]);
       } else {
         // A new candidate pair: the joint law is looked up once, when the pair appears.
+        // Its contact state (none yet) stays where it was: settle_contacts drops it.
         PairSlot fresh;
-        fresh.contact.a = a;
-        fresh.contact.b = b;
+        fresh.a = a;
+        fresh.b = b;
         fresh.group_law = law_for(a, b);
-        fresh.contact.law = fresh.group_law;
         // Bonds (rock bridges) join only blocks that were candidates at the start: a pair that
         // becomes one later has never been bonded and gets the residual strength.
-        if (step_count_ > 0) fresh.contact.shear.bond = BondState::unbonded;
+        if (step_count_ > 0) fresh.bond = BondState::unbonded;
         slots_[w] = std::move(fresh);
       }
     }
     slots_.resize(pairs_.size());
   }
   if (slots_rules_version_ != rules_version_) {
-    for (auto& s : slots_) s.group_law = law_for(s.contact.a, s.contact.b);
+    for (auto& s : slots_) s.group_law = law_for(s.a, s.b);
     slots_rules_version_ = rules_version_;
   }
 }
 
-void World::evaluate_pairs(double dt, bool advance_shear, int threads) {
-  const std::int64_t n = static_cast<std::int64_t>(slots_.size());
+// The cache's layout, field for field: a field added to Boon2012Cache, InscribedBall or
+// SliceWarmStart must be added to NarrowWarmStart and the two functions below.
+static_assert(sizeof(Boon2012Cache) == 184 && sizeof(InscribedBall) == 64 &&
+                  sizeof(SliceWarmStart) == 72,
+              "the narrow-phase cache changed: update World::NarrowWarmStart");
+
+World::NarrowWarmStart World::pack_warm_start(const Boon2012Cache& cache) {
+  constexpr int kMax = std::numeric_limits<std::int16_t>::max();
+  const auto fits = [](int i) { return i >= -1 && i <= kMax; };
+  bool ok = fits(cache.planes_a) && fits(cache.planes_b) && cache.ball.num_active >= 0 &&
+            cache.ball.num_active <= 4 && cache.slice.count <= cache.slice.edge_planes.size();
+  for (int i : cache.ball.active) ok = ok && fits(i);
+  for (int i : cache.slice.edge_planes) ok = ok && fits(i);
+  NarrowWarmStart w;
+  if (!ok) return w;
+  w.radius = cache.ball.radius;
+  w.center = cache.ball.center;
+  w.last_point = cache.last_point;
+  for (std::size_t k = 0; k < 4; ++k) w.active[k] = static_cast<std::int16_t>(cache.ball.active[k]);
+  for (std::size_t k = 0; k < w.edge_planes.size(); ++k)
+    w.edge_planes[k] = static_cast<std::int16_t>(cache.slice.edge_planes[k]);
+  w.planes_a = static_cast<std::int16_t>(cache.planes_a);
+  w.planes_b = static_cast<std::int16_t>(cache.planes_b);
+  w.num_active = static_cast<std::uint8_t>(cache.ball.num_active);
+  w.slice_count = static_cast<std::uint8_t>(cache.slice.count);
+  w.flags = static_cast<std::uint8_t>((cache.has_ball ? NarrowWarmStart::kHasBall : 0) |
+                                      (cache.ball.bounded ? NarrowWarmStart::kBounded : 0) |
+                                      (cache.has_point ? NarrowWarmStart::kHasPoint : 0));
+  return w;
+}
+
+Boon2012Cache World::unpack_warm_start(const NarrowWarmStart& w) {
+  Boon2012Cache c;
+  c.planes_a = w.planes_a;
+  c.planes_b = w.planes_b;
+  c.ball.radius = w.radius;
+  c.ball.center = w.center;
+  c.ball.bounded = (w.flags & NarrowWarmStart::kBounded) != 0;
+  for (std::size_t k = 0; k < 4; ++k) c.ball.active[k] = w.active[k];
+  c.ball.num_active = w.num_active;
+  c.has_ball = (w.flags & NarrowWarmStart::kHasBall) != 0;
+  c.last_point = w.last_point;
+  c.has_point = (w.flags & NarrowWarmStart::kHasPoint) != 0;
+  for (std::size_t k = 0; k < w.edge_planes.size(); ++k) c.slice.edge_planes[k] = w.edge_planes[k];
+  c.slice.count = w.slice_count;
+  return c;
+}
+
+Contact World::fresh_contact(const PairSlot& slot) const {
+  Contact c;
+  c.a = slot.a;
+  c.b = slot.b;
+  c.law = slot.group_law;
+  c.shear.bond = slot.bond;
+  return c;
+}
+
+std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int threads,
+                                         const std::vector<char>* only) {
+  const std::size_t n = slots_.size();
+  // Runs of slots, each one thread's work at a time and each with its own list of new contact
+  // states (in slot order); the run length changes where the states wait, not the results.
+  const std::size_t parts = static_cast<std::size_t>(std::max(threads, 1)) * 16;
+  pending_run_ = std::clamp<std::size_t>(n / parts + 1, 64, 4096);
+  const std::size_t runs = (n + pending_run_ - 1) / pending_run_;
+  pending_.clear();
+  pending_.resize(runs);
   // An exception inside the parallel loop is kept (the one of the first pair in order) and
-  // thrown after it, as a serial loop would.
-  std::int64_t failed = n;
+  // returned after it, as a serial loop would.
+  std::size_t failed = n;
   std::exception_ptr error;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
-  for (std::int64_t i = 0; i < n; ++i) {
-    try {
-      evaluate_pair(slots_[static_cast<std::size_t>(i)], dt, advance_shear);
-    } catch (...) {
+  const std::int64_t run_count = static_cast<std::int64_t>(runs);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && runs > 1)
+  for (std::int64_t r = 0; r < run_count; ++r) {
+    const std::size_t begin = static_cast<std::size_t>(r) * pending_run_;
+    const std::size_t end = std::min(n, begin + pending_run_);
+    std::vector<PendingContact> formed;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (only != nullptr && (*only)[i] == 0) continue;
+      PairSlot& slot = slots_[i];
+      try {
+        if (slot.contact >= 0) {
+          Contact& ct = contact_of(slot);
+          evaluate_pair(slot, ct, dt, advance_shear);
+          slot.pending = false;
+          if (!slot.active) slot.bond = ct.shear.bond;  // the state goes at settle_contacts
+        } else {
+          Contact ct = fresh_contact(slot);
+          evaluate_pair(slot, ct, dt, advance_shear);
+          slot.pending = slot.active;
+          if (slot.active) {
+            formed.push_back({i, ct});
+          } else {
+            slot.bond = ct.shear.bond;
+          }
+        }
+      } catch (...) {
+        slot.active = false;  // no state to read: the step fails
+        slot.pending = false;
 #pragma omp critical(blockdem_pair_error)
-      if (i < failed) {
-        failed = i;
-        error = std::current_exception();
+        if (i < failed) {
+          failed = i;
+          error = std::current_exception();
+        }
       }
     }
+    // Exactly the size needed: at the first step every contact waits here.
+    pending_[static_cast<std::size_t>(r)].assign(formed.begin(), formed.end());
   }
+  return error;
+}
+
+void World::evaluate_pairs(double dt, bool advance_shear, int threads) {
+  const std::exception_ptr error = evaluate_slots(dt, advance_shear, threads);
+  settle_contacts();
   if (error) std::rethrow_exception(error);
 }
 
-void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
-  Contact& ct = slot.contact;
+void World::settle_contacts() {
+  // Forward: the kept states of active slots move down over those of inactive or gone slots
+  // (both in slot order, so a state never moves up).
+  std::size_t kept = 0, formed = 0;
+  for (PairSlot& s : slots_) {
+    if (s.contact >= 0 && s.active && !s.pending) {
+      if (static_cast<std::size_t>(s.contact) != kept)
+        contacts_[kept] = std::move(contacts_[static_cast<std::size_t>(s.contact)]);
+      s.contact = static_cast<std::int32_t>(kept++);
+    } else {
+      s.contact = -1;
+    }
+    if (s.pending) ++formed;
+  }
+  const std::size_t total = kept + formed;
+  if (total > contacts_.capacity()) contacts_.reserve(total + total / 8);
+  if (kept == 0) {
+    // Every state is new (the first step): appended run by run, each run's list freed once
+    // taken, so that the store and the lists are never both whole in memory.
+    contacts_.clear();
+    for (std::vector<PendingContact>& list : pending_) {
+      for (const PendingContact& p : list) {
+        PairSlot& s = slots_[p.slot];
+        s.pending = false;
+        s.contact = static_cast<std::int32_t>(contacts_.size());
+        contacts_.push_back(p.contact);
+      }
+      std::vector<PendingContact>().swap(list);
+    }
+    pending_.clear();
+    if (contacts_.size() != total)
+      throw std::logic_error("contact merge: a new contact state is missing");
+    return;
+  }
+  // Backward: the new states take their places between the kept ones, each run's list freed
+  // once taken (only the store's new tail is touched).
+  contacts_.resize(total);
+  std::size_t w = total;
+  for (std::size_t k = slots_.size(); k-- > 0;) {
+    PairSlot& s = slots_[k];
+    if (s.pending) {
+      std::vector<PendingContact>& list = pending_[k / pending_run_];
+      if (list.empty() || list.back().slot != k)
+        throw std::logic_error("contact merge: a new contact state is missing");
+      contacts_[--w] = list.back().contact;
+      list.pop_back();
+      if (list.empty()) std::vector<PendingContact>().swap(list);
+      s.pending = false;
+      s.contact = static_cast<std::int32_t>(w);
+    } else if (s.contact >= 0) {
+      if (static_cast<std::size_t>(s.contact) != --w)
+        contacts_[w] = contacts_[static_cast<std::size_t>(s.contact)];
+      s.contact = static_cast<std::int32_t>(w);
+    }
+  }
+  pending_.clear();
+  if (contacts_.capacity() > 2 * total + 1024) contacts_.shrink_to_fit();
+}
+
+void World::compact_contacts() {
+  std::size_t kept = 0;
+  for (PairSlot& s : slots_) {
+    if (s.contact < 0) continue;
+    if (static_cast<std::size_t>(s.contact) != kept)
+      contacts_[kept] = contacts_[static_cast<std::size_t>(s.contact)];
+    s.contact = static_cast<std::int32_t>(kept++);
+  }
+  contacts_.resize(kept);
+}
+
+void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
   slot.active = false;
   slot.broke = false;
   slot.slip_work = 0.0;
@@ -139,10 +307,12 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];
   const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-  const ContactGeometry g = boon2012_contact(a.world_planes, b.world_planes, extent,
-                                             settings_.boon2012, &ct.narrow_cache);
+  Boon2012Cache cache = unpack_warm_start(slot.narrow_cache);
+  const ContactGeometry g =
+      boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
+  slot.narrow_cache = pack_warm_start(cache);
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
-    if (!evaluate_open_bond(slot, dt, advance_shear)) forget_history(ct);
+    if (!evaluate_open_bond(slot, ct, dt, advance_shear)) forget_history(ct);
     return;
   }
   // The joint law of the faces in contact (a joint set's), else the group rules'.
@@ -195,7 +365,7 @@ void World::evaluate_pair(PairSlot& slot, double dt, bool advance_shear) const {
       if (!(force > 0.0)) {
         // Touching, but no closure anywhere to integrate: no force this step, unless a bond
         // holds the faces together.
-        if (!evaluate_open_bond(slot, dt, advance_shear)) forget_history(ct);
+        if (!evaluate_open_bond(slot, ct, dt, advance_shear)) forget_history(ct);
         return;
       }
       ct.integrated = true;
@@ -302,7 +472,7 @@ void World::scatter_loads() {
     if (s.broke) ++broken_bonds_;  // a bond that broke in tension leaves its slot inactive
     if (!s.active) continue;
     ++active_count_;
-    const Contact& ct = s.contact;
+    const Contact& ct = contact_of(s);
     Block& a = blocks_[ct.a];
     Block& b = blocks_[ct.b];
     const Eigen::Vector3d& xf = ct.force_point;

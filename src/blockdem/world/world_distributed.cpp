@@ -113,6 +113,31 @@ void set_ghost(Block& b, const GhostState& g) {
   for (int k = 0; k < 4; ++k) b.orientation.coeffs()[k] = g.orientation[k];
 }
 
+/// A pair slot on the wire: its bytes, then its contact's when a force acts (`contact`, non-null
+/// exactly then). Slot and Contact hold fixed-size data only (no pointers, no heap storage), and
+/// every process runs the same program.
+template <class Slot>
+void put_slot(std::vector<char>& out, const Slot& s, const Contact* contact) {
+  static_assert(std::is_trivially_destructible_v<Slot>, "a pair slot must be plain data");
+  static_assert(std::is_trivially_destructible_v<Contact>, "a contact must be plain data");
+  put_bytes(out, &s, sizeof(Slot));
+  if (s.active) put_bytes(out, contact, sizeof(Contact));
+}
+
+/// Reads put_slot's record at `at` (advanced past it), not beyond `end`; false when malformed.
+template <class Slot>
+bool get_slot(const std::vector<char>& in, std::size_t& at, std::size_t end, Slot& s,
+              Contact& contact) {
+  if (at + sizeof(Slot) > end) return false;
+  std::memcpy(static_cast<void*>(&s), in.data() + at, sizeof(Slot));
+  at += sizeof(Slot);
+  if (!s.active) return true;
+  if (at + sizeof(Contact) > end) return false;
+  std::memcpy(static_cast<void*>(&contact), in.data() + at, sizeof(Contact));
+  at += sizeof(Contact);
+  return true;
+}
+
 bool boxes_overlap(const Eigen::Vector3d& min_a, const Eigen::Vector3d& max_a,
                    const Eigen::Vector3d& min_b, const Eigen::Vector3d& max_b) {
   return (min_a.array() <= max_b.array()).all() && (min_b.array() <= max_a.array()).all();
@@ -126,17 +151,17 @@ void World::require_replica(const char* what) const {
                            ": the distributed world is not whole here; call synchronize() first");
 }
 
-int World::pair_owner(const Contact& c) const {
+int World::pair_owner(int a, int b) const {
   // One owner per pair, by a rule on the blocks' global indices: the owner of the block that
   // can move when only one can; otherwise of a when a + b is odd, of b when even (so that pairs
   // across a subdomain boundary split about evenly between the two sides).
-  const bool da = blocks_[c.a].is_dynamic(), db = blocks_[c.b].is_dynamic();
-  if (da != db) return owner_[da ? c.a : c.b];
-  return owner_[((c.a + c.b) & 1) != 0 ? c.a : c.b];
+  const bool da = blocks_[a].is_dynamic(), db = blocks_[b].is_dynamic();
+  if (da != db) return owner_[da ? a : b];
+  return owner_[((a + b) & 1) != 0 ? a : b];
 }
 
 bool World::counts_contact(const Contact& c) const {
-  return replica_complete_ || pair_owner(c) == settings_.distribution->rank();
+  return replica_complete_ || pair_owner(c.a, c.b) == settings_.distribution->rank();
 }
 
 void World::reduce_partials(std::span<ExactSum> sums, std::span<double> maxima,
@@ -198,8 +223,8 @@ void World::partition_blocks() {
   std::vector<double> weights(blocks_.size(), 1.0);
   for (std::size_t i = 0; i < blocks_.size(); ++i) points[i] = blocks_[i].position;
   for (const auto& s : slots_) {
-    weights[static_cast<std::size_t>(s.contact.a)] += 1.0;
-    weights[static_cast<std::size_t>(s.contact.b)] += 1.0;
+    weights[static_cast<std::size_t>(s.a)] += 1.0;
+    weights[static_cast<std::size_t>(s.b)] += 1.0;
   }
   owner_ = settings_.distribution->partition(points, weights);
   if (owner_.size() != blocks_.size())
@@ -213,9 +238,7 @@ void World::partition_blocks() {
 
 void World::synchronize() {
   if (!settings_.distribution || replica_complete_) return;
-  // A slot travels as raw bytes: Contact and PairSlot hold fixed-size data only (no pointers,
-  // no heap storage), and every process runs the same program.
-  static_assert(std::is_trivially_destructible_v<PairSlot>, "PairSlot must be plain data");
+  // A slot travels as raw bytes (put_slot).
   static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
   PairDistribution& dist = *settings_.distribution;
   const int rank = dist.rank();
@@ -227,7 +250,7 @@ void World::synchronize() {
   std::vector<char> out;
   std::uint64_t own_count = 0, slot_count = 0;
   for (std::size_t i = 0; i < n; ++i) own_count += own_[i];
-  for (const auto& s : slots_) slot_count += pair_owner(s.contact) == rank ? 1 : 0;
+  for (const auto& s : slots_) slot_count += pair_owner(s) == rank ? 1 : 0;
   put(out, own_count);
   put(out, slot_count);
   for (std::size_t i = 0; i < n; ++i) {
@@ -255,8 +278,8 @@ void World::synchronize() {
     }
   }
   for (const auto& s : slots_) {
-    if (pair_owner(s.contact) != rank) continue;
-    put_bytes(out, &s, sizeof(PairSlot));
+    if (pair_owner(s) != rank) continue;
+    put_slot(out, s, s.active ? &contact_of(s) : nullptr);
   }
   std::vector<std::size_t> counts;
   const std::vector<char> all = dist.all_gather(out, counts);
@@ -265,6 +288,7 @@ void World::synchronize() {
   stiffness_.resize(n, 0.0);
   rotational_stiffness_.resize(n, 0.0);
   std::vector<PairSlot> slots;
+  std::vector<Contact> states;  // the received slots' contact states, by slot.contact
   std::size_t begin = 0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
     const auto blocks_in = get<std::uint64_t>(all, begin);
@@ -303,27 +327,41 @@ void World::synchronize() {
         at += rb.planes * 32;
       }
     }
-    if (at + slots_in * sizeof(PairSlot) != begin + counts[r])
-      throw std::logic_error("replica refresh: a process sent a malformed part");
-    for (std::uint64_t k = 0; k < slots_in; ++k, at += sizeof(PairSlot)) {
-      slots.emplace_back();
-      std::memcpy(static_cast<void*>(&slots.back()), all.data() + at, sizeof(PairSlot));
+    for (std::uint64_t k = 0; k < slots_in; ++k) {
+      PairSlot s;
+      Contact c;
+      if (!get_slot(all, at, begin + counts[r], s, c))
+        throw std::logic_error("replica refresh: a process sent a malformed part");
+      s.contact = -1;
+      if (s.active) {
+        s.contact = static_cast<std::int32_t>(states.size());
+        states.push_back(c);
+      }
+      slots.push_back(s);
     }
+    if (at != begin + counts[r])
+      throw std::logic_error("replica refresh: a process sent a malformed part");
     begin += counts[r];
   }
   std::sort(slots.begin(), slots.end(), [](const PairSlot& x, const PairSlot& y) {
-    return x.contact.a < y.contact.a || (x.contact.a == y.contact.a && x.contact.b < y.contact.b);
+    return x.a < y.a || (x.a == y.a && x.b < y.b);
   });
   slots_ = std::move(slots);
+  contacts_.clear();
+  contacts_.reserve(states.size());
+  for (PairSlot& s : slots_) {
+    if (s.contact < 0) continue;
+    contacts_.push_back(states[static_cast<std::size_t>(s.contact)]);
+    s.contact = static_cast<std::int32_t>(contacts_.size() - 1);
+  }
   // The candidate list as one process leaves it after a step: the pairs of the slots, in order
   // (this process found only its own blocks' pairs; a checkpoint saves the list).
   pairs_.resize(slots_.size());
-  for (std::size_t k = 0; k < slots_.size(); ++k)
-    pairs_[k] = {slots_[k].contact.a, slots_[k].contact.b};
+  for (std::size_t k = 0; k < slots_.size(); ++k) pairs_[k] = {slots_[k].a, slots_[k].b};
   overlap_violation_ = -1;
   if (std::isfinite(overlap_key_)) {
     for (std::size_t k = 0; k < slots_.size(); ++k) {
-      const Contact& c = slots_[k].contact;
+      const PairSlot& c = slots_[k];
       if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == overlap_key_) {
         overlap_violation_ = static_cast<std::int64_t>(k);
         break;
@@ -400,7 +438,7 @@ void World::exchange_ghosts() {
     }
   }
   for (const auto& s : slots_) {
-    const int a = s.contact.a, b = s.contact.b;
+    const int a = s.a, b = s.b;
     if (own_[a] != 0 && owner_[b] != rank) sends.emplace_back(a, owner_[b]);
     if (own_[b] != 0 && owner_[a] != rank) sends.emplace_back(b, owner_[a]);
   }
@@ -480,32 +518,22 @@ void World::step_distributed(double dt, int threads) {
   std::vector<int> slot_owner(slots_.size());
   std::vector<std::int64_t> mine;
   std::vector<char> ghost(n, 0);
+  std::vector<char> is_mine(slots_.size(), 0);
   for (std::size_t k = 0; k < slots_.size(); ++k) {
-    const Contact& c = slots_[k].contact;
+    const PairSlot& c = slots_[k];
     slot_owner[k] = pair_owner(c);
     if (slot_owner[k] != rank) continue;
     mine.push_back(static_cast<std::int64_t>(k));
+    is_mine[k] = 1;
     if (own_[c.a] == 0) ghost[c.a] = 1;
     if (own_[c.b] == 0) ghost[c.b] = 1;
   }
   for (char g : ghost) dist_stats_.ghost_blocks += g;
   const auto t0 = std::chrono::steady_clock::now();
   const std::int64_t count = static_cast<std::int64_t>(mine.size());
-  std::int64_t failed = count;
-  std::exception_ptr error;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && count > 64)
-  for (std::int64_t i = 0; i < count; ++i) {
-    try {
-      evaluate_pair(slots_[static_cast<std::size_t>(mine[static_cast<std::size_t>(i)])], dt, true);
-    } catch (...) {
-#pragma omp critical(blockdem_pair_error)
-      if (i < failed) {
-        failed = i;
-        error = std::current_exception();
-      }
-    }
-  }
+  const std::exception_ptr error = evaluate_slots(dt, true, threads, &is_mine);
   const auto t1 = std::chrono::steady_clock::now();
+  settle_contacts();
 
   // Every process's figures (pair time and count, failure): all decide alike on failures and
   // on rebalancing.
@@ -536,35 +564,48 @@ void World::step_distributed(double dt, int threads) {
   std::vector<std::vector<char>> to(k_ranks);
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    for (int block : {s.contact.a, s.contact.b}) {
+    for (int block : {s.a, s.b}) {
       const int r = owner_[static_cast<std::size_t>(block)];
       if (r == rank) continue;
-      put_bytes(to[static_cast<std::size_t>(r)], &s, sizeof(PairSlot));
+      put_slot(to[static_cast<std::size_t>(r)], s, s.active ? &contact_of(s) : nullptr);
     }
   }
   tw = Clock::now();
   const std::vector<std::vector<char>> from = dist.exchange(to);
   waiting += seconds_since(tw);
+  // The received slots replace this process's; their contact states wait in pending_, in slot
+  // order, for a second settle_contacts.
+  pending_.assign((slots_.size() + pending_run_ - 1) / pending_run_, {});
   for (std::size_t r = 0; r < k_ranks; ++r) {
-    if (from[r].size() % sizeof(PairSlot) != 0)
-      throw std::logic_error("pair exchange: a process sent a malformed part");
-    for (std::size_t at = 0; at < from[r].size(); at += sizeof(PairSlot)) {
+    std::size_t at = 0;
+    while (at < from[r].size()) {
       PairSlot received;
-      std::memcpy(static_cast<void*>(&received), from[r].data() + at, sizeof(PairSlot));
-      const int ab[2] = {received.contact.a, received.contact.b};
+      Contact state;
+      if (!get_slot(from[r], at, from[r].size(), received, state))
+        throw std::logic_error("pair exchange: a process sent a malformed part");
+      const int ab[2] = {received.a, received.b};
       const auto it =
           std::lower_bound(slots_.begin(), slots_.end(), std::pair<int, int>(ab[0], ab[1]),
                            [](const PairSlot& s, const std::pair<int, int>& key) {
-                             return s.contact.a < key.first ||
-                                    (s.contact.a == key.first && s.contact.b < key.second);
+                             return s.a < key.first || (s.a == key.first && s.b < key.second);
                            });
-      if (it == slots_.end() || it->contact.a != ab[0] || it->contact.b != ab[1])
+      if (it == slots_.end() || it->a != ab[0] || it->b != ab[1])
         throw std::logic_error("pair exchange: a process sent a pair this one does not have");
+      received.contact = it->contact;  // this process's old state, dropped by the settle
+      received.pending = received.active;
       *it = received;
+      if (received.active) {
+        const auto k = static_cast<std::size_t>(it - slots_.begin());
+        pending_[k / pending_run_].push_back({k, state});
+      }
     }
     dist_stats_.bytes_sent += static_cast<std::int64_t>(to[r].size());
     dist_stats_.bytes_received += static_cast<std::int64_t>(from[r].size());
   }
+  for (auto& list : pending_)
+    std::sort(list.begin(), list.end(),
+              [](const PendingContact& x, const PendingContact& y) { return x.slot < y.slot; });
+  settle_contacts();
   dist_stats_.bytes_sent += static_cast<std::int64_t>(head.size());
   dist_stats_.bytes_received += static_cast<std::int64_t>(heads.size() - head.size());
 
@@ -579,12 +620,12 @@ void World::step_distributed(double dt, int threads) {
     broke += s.broke ? 1 : 0;
     if (!s.active) continue;
     ++active;
-    const Block& a = blocks_[s.contact.a];
-    const Block& b = blocks_[s.contact.b];
+    const Block& a = blocks_[s.a];
+    const Block& b = blocks_[s.b];
     const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
     if (std::isinf(overlap_key) &&
-        s.contact.geometry.overlap > settings_.max_overlap_fraction * size)
-      overlap_key = static_cast<double>(s.contact.a) * static_cast<double>(n) + s.contact.b;
+        contact_of(s).geometry.overlap > settings_.max_overlap_fraction * size)
+      overlap_key = static_cast<double>(s.a) * static_cast<double>(n) + s.b;
   }
   double dt_min = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
@@ -617,7 +658,7 @@ void World::step_distributed(double dt, int threads) {
   }
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    if (s.active) step_sums.add_contact(s.contact, s.twist_stiffness, s.slip_work);
+    if (s.active) step_sums.add_contact(contact_of(s), s.twist_stiffness, s.slip_work);
   }
   tw = Clock::now();
   const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());

@@ -90,7 +90,9 @@ Boon2012Cache read_cache(StateReader& r) {
   return c;
 }
 
-void write_contact(StateWriter& w, const Contact& c) {
+// A slot's contact and warm start, as one record (the layout of a pair before its state was kept
+// apart): a slot without a contact state writes the fresh contact it would start from.
+void write_contact(StateWriter& w, const Contact& c, const Boon2012Cache& cache) {
   w.pod(static_cast<std::int32_t>(c.a));
   w.pod(static_cast<std::int32_t>(c.b));
   w.pod(static_cast<std::int32_t>(c.law));
@@ -115,10 +117,10 @@ void write_contact(StateWriter& w, const Contact& c) {
   w.pod(static_cast<std::uint8_t>(c.sliding));
   w.pod(c.twist.moment);
   w.pod(c.shear_stiffness);
-  write_cache(w, c.narrow_cache);
+  write_cache(w, cache);
 }
 
-Contact read_contact(StateReader& r) {
+Contact read_contact(StateReader& r, Boon2012Cache& cache) {
   Contact c;
   c.a = r.pod<std::int32_t>();
   c.b = r.pod<std::int32_t>();
@@ -144,7 +146,7 @@ Contact read_contact(StateReader& r) {
   c.sliding = r.pod<std::uint8_t>() != 0;
   r.pod(c.twist.moment);
   r.pod(c.shear_stiffness);
-  c.narrow_cache = read_cache(r);
+  cache = read_cache(r);
   return c;
 }
 
@@ -205,7 +207,8 @@ void World::save_state(StateWriter& w) const {
   }
   w.size(slots_.size());
   for (const PairSlot& s : slots_) {
-    write_contact(w, s.contact);
+    write_contact(w, s.contact >= 0 ? contact_of(s) : fresh_contact(s),
+                  unpack_warm_start(s.narrow_cache));
     w.pod(static_cast<std::int32_t>(s.group_law));
     w.pod(static_cast<std::uint8_t>(s.broke));
     w.pod(s.slip_work);
@@ -337,12 +340,17 @@ void World::load_state(StateReader& r) {
   }
   slots_.clear();
   slots_.resize(r.size());
+  contacts_.clear();
   active_count_ = 0;
   for (PairSlot& s : slots_) {
-    s.contact = read_contact(r);
-    check_pair(s.contact.a, s.contact.b);
-    if (s.contact.law < -1 || s.contact.law >= law_count)
-      throw StateError("saved contact is corrupt");
+    Boon2012Cache cache;
+    const Contact c = read_contact(r, cache);
+    s.narrow_cache = pack_warm_start(cache);
+    check_pair(c.a, c.b);
+    if (c.law < -1 || c.law >= law_count) throw StateError("saved contact is corrupt");
+    s.a = c.a;
+    s.b = c.b;
+    s.bond = c.shear.bond;
     s.group_law = r.pod<std::int32_t>();
     if (s.group_law < -1 || s.group_law >= law_count) throw StateError("saved contact is corrupt");
     s.broke = r.pod<std::uint8_t>() != 0;
@@ -351,6 +359,10 @@ void World::load_state(StateReader& r) {
     r.pod(s.twist_stiffness);
     s.active = r.pod<std::uint8_t>() != 0;
     active_count_ += s.active ? 1 : 0;
+    if (s.active || c.has_history) {
+      s.contact = static_cast<std::int32_t>(contacts_.size());
+      contacts_.push_back(c);
+    }
   }
   checkpoint_.valid = r.pod<std::uint8_t>() != 0;
   r.pod(checkpoint_.time);
