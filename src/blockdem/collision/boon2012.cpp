@@ -146,42 +146,6 @@ bool face_contact_start(const PlaneColumns& c, std::size_t planes_a, const Inscr
   return true;
 }
 
-// The last contact point moved, along the normal of a face contact, onto the middle of the
-// overlap between the two most opposed planes (one of each block, n_a·n_b < -0.99) that are
-// tight in the overlap LP: the blocks' approach moves that middle from step to step while the
-// centre in the plane of the faces stays. False (no start) if the LP has no such pair.
-bool shifted_start(const PlaneColumns& c, std::size_t planes_a, const InscribedBall& ball,
-                   const Eigen::Vector3d& last, Eigen::Vector3d& start) {
-  double most_opposed = -0.99;
-  int best_i = -1, best_j = -1;
-  for (int k = 0; k < ball.num_active; ++k) {
-    for (int l = 0; l < ball.num_active; ++l) {
-      const int i = ball.active[k], j = ball.active[l];
-      if (i < 0 || j < 0 || static_cast<std::size_t>(i) >= planes_a ||
-          static_cast<std::size_t>(j) < planes_a || static_cast<std::size_t>(j) >= c.size()) {
-        continue;
-      }
-      const double cos = c.nx()[i] * c.nx()[j] + c.ny()[i] * c.ny()[j] + c.nz()[i] * c.nz()[j];
-      if (cos < most_opposed) {
-        most_opposed = cos;
-        best_i = i;
-        best_j = j;
-      }
-    }
-  }
-  if (best_i < 0) return false;
-  const Eigen::Vector3d ni(c.nx()[best_i], c.ny()[best_i], c.nz()[best_i]);
-  const Eigen::Vector3d nj(c.nx()[best_j], c.ny()[best_j], c.nz()[best_j]);
-  const Eigen::Vector3d u = (ni - nj).normalized();
-  // Slacks s - t n·u of the two planes equal at t = (s_i - s_j) / (n_i·u - n_j·u).
-  const double si = c.d()[best_i] - ni.dot(last);
-  const double sj = c.d()[best_j] - nj.dot(last);
-  const double t = (si - sj) / (ni.dot(u) - nj.dot(u));
-  if (!std::isfinite(t)) return false;
-  start = last + t * u;
-  return true;
-}
-
 }  // namespace
 
 Eigen::Vector3d potential_gradient(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
@@ -247,20 +211,13 @@ ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
   out.touching = true;
 
   // 2. Contact point: analytic centre of all planes, from the previous step's point when it is
-  //    still strictly inside (in a face contact moved onto the middle of the overlap first),
-  //    otherwise from the ball's centre or, when that is far from central, from a central point of
-  //    a face contact's overlap.
+  //    still strictly inside, otherwise from the ball's centre or, when that is far from
+  //    central, from a central point of a face contact's overlap.
   const PlaneColumns columns(planes_a, planes_b);
   SliceWarmStart local_edges;
   SliceWarmStart& edges = cache != nullptr ? cache->slice : local_edges;
   AnalyticCentreResult centre;
-  if (cache != nullptr && cache->has_point) {
-    Eigen::Vector3d start = cache->last_point;
-    if (shifted_start(columns, planes_a.size(), ball, cache->last_point, start)) {
-      centre = analytic_centre(columns, start);
-    }
-    if (!centre.start_inside) centre = analytic_centre(columns, cache->last_point);
-  }
+  if (cache != nullptr && cache->has_point) centre = analytic_centre(columns, cache->last_point);
   if (!centre.start_inside) {
     // One Newton evaluation at x* tells whether it is already near the centre (λ < 1/4, the
     // quadratic phase: continue from there); if not, a face contact starts from its slice.

@@ -30,8 +30,7 @@ struct Boon2012Cache {
   InscribedBall ball;
   bool has_ball = false;
   /// The contact point x_c of the last call that found a contact, where the analytic centre
-  /// starts if it is still strictly inside A∩B (m); in a face contact, first moved along the
-  /// normal onto the middle of the overlap between the faces.
+  /// starts if it is still strictly inside A∩B (m).
   Eigen::Vector3d last_point = Eigen::Vector3d::Zero();
   bool has_point = false;
   SliceWarmStart slice;  ///< the planes of the last slice polygon's edges

@@ -112,9 +112,8 @@ void expect_same_geometry(const ContactGeometry& g, const ContactGeometry& ref, 
   EXPECT_NEAR(g.area, ref.area, 1e-8 * ref.area) << where;
 }
 
-// Warm starts (LP from the last solution, analytic centre from the last point, in a face contact
-// moved onto the middle of the overlap, slice from the last edges) change nothing beyond the
-// tolerance of the analytic centre.
+// Warm starts (LP from the last solution, analytic centre from the last point, slice from the
+// last edges) change nothing beyond the tolerance of the analytic centre.
 TEST(Boon2012, CachedCallsMatchColdCallsAlongTrajectories) {
   Rng rng(7);
   int touching = 0;
