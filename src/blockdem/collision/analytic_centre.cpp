@@ -17,6 +17,7 @@ namespace {
 struct Derivatives {
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   double h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0;
+  double inverse_slack_sum = 0;  // Σ 1/s_j (1/m), for the round-off floor of the decrement
 
   bool evaluate(const PlaneColumns& planes, const Eigen::Vector3d& x) {
     // Two planes at a time (SSE2 packets), even and odd planes summed separately.
@@ -29,12 +30,14 @@ struct Derivatives {
     Pair gx = Pair::Zero(), gy = Pair::Zero(), gz = Pair::Zero();
     Pair hxx = Pair::Zero(), hxy = Pair::Zero(), hxz = Pair::Zero();
     Pair hyy = Pair::Zero(), hyz = Pair::Zero(), hzz = Pair::Zero();
+    Pair inv_sum = Pair::Zero();
     Pair min_slack = Pair::Constant(std::numeric_limits<double>::infinity());
     std::size_t j = 0;
     auto accumulate = [&](const Pair& px, const Pair& py, const Pair& pz, const Pair& pd) {
       const Pair slack = pd - (px * x.x() + py * x.y() + pz * x.z());
       min_slack = min_slack.min(slack);
       const Pair inv = slack.inverse();
+      inv_sum += inv;
       const Pair wx = px * inv, wy = py * inv, wz = pz * inv;
       gx += wx;
       gy += wy;
@@ -50,8 +53,10 @@ struct Derivatives {
       accumulate(Pair::Map(nx + j), Pair::Map(ny + j), Pair::Map(nz + j), Pair::Map(d + j));
     }
     if (j < m) {
-      // The last plane of an odd count, paired with a plane that adds nothing (n = 0, d = 1).
-      accumulate(Pair(nx[j], 0.0), Pair(ny[j], 0.0), Pair(nz[j], 0.0), Pair(d[j], 1.0));
+      // The last plane of an odd count, paired with a plane that adds nothing (n = 0, d = +∞:
+      // its inverse slack is 0).
+      accumulate(Pair(nx[j], 0.0), Pair(ny[j], 0.0), Pair(nz[j], 0.0),
+                 Pair(d[j], std::numeric_limits<double>::infinity()));
     }
     g = Eigen::Vector3d(gx.sum(), gy.sum(), gz.sum());
     h00 = hxx.sum();
@@ -60,6 +65,7 @@ struct Derivatives {
     h11 = hyy.sum();
     h12 = hyz.sum();
     h22 = hzz.sum();
+    inverse_slack_sum = inv_sum.sum();
     return min_slack.minCoeff() > 0.0;
   }
 
@@ -97,6 +103,18 @@ AnalyticCentreResult analytic_centre(const PlaneColumns& planes, const Eigen::Ve
   bool trial = false;
   Eigen::Vector3d trial_from = x, trial_step = Eigen::Vector3d::Zero();
   double damped_length = 0.0;
+  // Round-off floor of the decrement. A slack s_j = d_j - n_j·x is computed with an error below
+  // e = 4 ε (max_j |d_j| + |x|) (three products and three sums, |n_j| = 1, and x itself moves in
+  // steps of its last bit), which changes the gradient by δg = Σ n_j δs_j / s_j² and the
+  // decrement by at most Σ_j e / s_j, since n_jᵀ H⁻¹ n_j / s_j² <= 1 (H ⪰ n_j n_jᵀ / s_j²).
+  // Below that floor the measured decrement is noise: in the thin overlap of faces that touch
+  // to a nanometre, 1 m from the origin, it is ~1e-6 and the 1e-6 test alone is never met.
+  double largest_offset = 0.0;
+  for (std::size_t j = 0; j < planes.size(); ++j) {
+    largest_offset = std::max(largest_offset, std::abs(planes.d()[j]));
+  }
+  constexpr double kSlackError = 4.0 * std::numeric_limits<double>::epsilon();
+  int steps_at_floor = 0;  // consecutive full steps taken from λ at or below the floor
   for (int it = 0; it < max_iterations; ++it) {
     out.iterations = it + 1;
     const bool inside = d.evaluate(planes, x);
@@ -127,9 +145,14 @@ AnalyticCentreResult analytic_centre(const PlaneColumns& planes, const Eigen::Ve
       // Quadratic phase: after a full step the decrement is at most (λ/(1-λ))² (B&V eq. 9.50
       // for self-concordant functions), so below 1e-12 as soon as λ/(1-λ) < 1e-6: the
       // round-off floor of the gradient (slacks of a 10 µm overlap of 46 mm blocks carry
-      // relative errors ~1e-12), where one more evaluation could not improve the point.
+      // relative errors ~1e-12), where one more evaluation could not improve the point. Or
+      // after a second full step from λ at or below its round-off floor: the first left at most
+      // (λ/(1-λ))² of the decrement that is not noise (the directions along the thin overlap,
+      // measured in the Hessian norm), the second removes that too.
+      const double floor = kSlackError * (largest_offset + x.norm()) * d.inverse_slack_sum;
+      steps_at_floor = lambda <= floor ? steps_at_floor + 1 : 0;
       x += step;
-      if (lambda < 1e-6 * (1.0 - lambda)) {
+      if (lambda < 1e-6 * (1.0 - lambda) || steps_at_floor == 2) {
         out.converged = true;
         break;
       }

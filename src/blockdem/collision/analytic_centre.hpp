@@ -27,7 +27,10 @@ struct AnalyticCentreResult {
 /// inside every plane (else the result is `start`, not converged, `start_inside` false).
 /// Converged when the decrement at the returned point is at round-off level: a last full step
 /// was taken from a point with λ < 1e-10 (measured), or from λ < 1e-6, after which it is at most
-/// (λ/(1-λ))² < 1e-12 (λ is dimensionless: the test is scale-free).
+/// (λ/(1-λ))² < 1e-12 (λ is dimensionless: the test is scale-free), or after two consecutive
+/// full steps from λ at or below its round-off floor Σ_j 4 ε (max_k |d_k| + |x|) / s_j (the
+/// largest change of λ that the rounding of the slacks s_j can cause: nanometre-thin overlaps
+/// far from the origin never reach 1e-6).
 AnalyticCentreResult analytic_centre(std::span<const Halfspace> planes,
                                      const Eigen::Vector3d& start, int max_iterations = 60);
 

@@ -1,5 +1,6 @@
 // Tests of the analytic centre (Boon et al. 2012 contact point): closed forms (box centre, simplex
-// centroid), starts near walls, the stationarity of the barrier, and a start outside.
+// centroid), starts near walls, the stationarity of the barrier, nanometre-thin overlaps whose
+// decrement is limited by round-off, and a start outside.
 #include "blockdem/collision/analytic_centre.hpp"
 
 #include <algorithm>
@@ -116,6 +117,44 @@ TEST(AnalyticCentre, WedgeOverlapIsStationary) {
     const AnalyticCentreResult res = analytic_centre(both, start);
     ASSERT_TRUE(res.converged);
     EXPECT_LT(newton_decrement(both, res.point), 1e-9) << trial;
+    EXPECT_GT(min_slack_of(both, res.point), 0.0);
+  }
+}
+
+// Side faces of neighbouring 46 mm bricks a metre from the origin that overlap by a nanometre
+// or less: the overlap is a box 46 mm x 46 mm x closure, whose analytic centre is its centre.
+// The slacks across it carry round-off errors of ~1e-16 m, so the decrement cannot fall below
+// ~1e-6 there; Newton's method must stop at its round-off floor (a handful of iterations) with
+// the centre found in the plane of the faces to 1e-9 of the half size and across them to a
+// hundredth of the closure.
+TEST(AnalyticCentre, NanometreOverlapFarFromOriginStopsAtRoundOff) {
+  Rng rng(6);
+  for (int trial = 0; trial < 200; ++trial) {
+    // Faces normal to x or y, as in a brick pile (a rotated overlap this thin makes the world
+    // frame Hessian singular to round-off: not a case this test covers).
+    const Eigen::Matrix3d frame =
+        trial % 2 == 0 ? Eigen::Matrix3d::Identity()
+                       : Eigen::Matrix3d(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+    const Eigen::Vector3d centre(uniform(rng, 0.5, 1.5), uniform(rng, 0.5, 1.5),
+                                 uniform(rng, 0.0, 0.5));
+    const double closure = std::pow(10.0, uniform(rng, -10, -9));
+    const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.023);
+    const Planes a = test_shapes::box(half, frame, centre);
+    const Planes b =
+        test_shapes::box(half, frame, centre + frame * Eigen::Vector3d(0.046 - closure, 0, 0));
+    const Planes both = test_shapes::concat(a, b);
+    // The overlap's centre, and a start by one of its side walls (as the LP's centre may be).
+    const Eigen::Vector3d middle = centre + frame * Eigen::Vector3d(0.023 - closure / 2, 0, 0);
+    const Eigen::Vector3d start =
+        middle + frame * Eigen::Vector3d(uniform(rng, -0.2, 0.2) * closure, 0.02, -0.015);
+    ASSERT_GT(min_slack_of(both, start), 0.0);
+    const AnalyticCentreResult res = analytic_centre(both, start);
+    ASSERT_TRUE(res.converged) << trial << ": " << res.iterations << " iterations";
+    EXPECT_LE(res.iterations, 25) << trial;
+    const Eigen::Vector3d local = frame.transpose() * (res.point - middle);
+    EXPECT_LT(std::abs(local.x()), 1e-2 * closure) << trial;
+    EXPECT_LT(std::abs(local.y()), 1e-9 * 0.023) << trial;
+    EXPECT_LT(std::abs(local.z()), 1e-9 * 0.023) << trial;
     EXPECT_GT(min_slack_of(both, res.point), 0.0);
   }
 }
