@@ -6,69 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <bit>
-#include <condition_variable>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <thread>
 #include <vector>
 
-#include "blockdem/parallel/rcb.hpp"
 #include "blockdem/world/stage.hpp"
 #include "brick_pile.hpp"
+#include "support/thread_distribution.hpp"
 
 namespace blockdem::test {
 namespace {
-
-/// K threads meet in all_gather (the other collectives are built on it); the same harness as
-/// distributed_step_test.cpp's.
-struct Meeting {
-  explicit Meeting(int n) : size(n), parts(static_cast<std::size_t>(n)) {}
-  std::mutex mutex;
-  std::condition_variable cv;
-  int size;
-  int arrived = 0;
-  int round = 0;
-  std::vector<std::vector<char>> parts;
-  std::vector<char> all;
-  std::vector<std::size_t> counts;
-};
-
-class ThreadDistribution final : public PairDistribution {
- public:
-  ThreadDistribution(std::shared_ptr<Meeting> m, int rank) : m_(std::move(m)), rank_(rank) {}
-  int rank() const override { return rank_; }
-  int size() const override { return m_->size; }
-  std::vector<int> partition(std::span<const Eigen::Vector3d> points,
-                             std::span<const double> weights) const override {
-    return recursive_coordinate_bisection(points, weights, m_->size);
-  }
-  std::vector<char> all_gather(const std::vector<char>& mine,
-                               std::vector<std::size_t>& counts) override {
-    std::unique_lock lock(m_->mutex);
-    m_->parts[static_cast<std::size_t>(rank_)] = mine;
-    const int round = m_->round;
-    if (++m_->arrived == m_->size) {
-      m_->all.clear();
-      m_->counts.clear();
-      for (const auto& p : m_->parts) {
-        m_->all.insert(m_->all.end(), p.begin(), p.end());
-        m_->counts.push_back(p.size());
-      }
-      m_->arrived = 0;
-      ++m_->round;
-      m_->cv.notify_all();
-    } else {
-      m_->cv.wait(lock, [&] { return m_->round != round; });
-    }
-    counts = m_->counts;
-    return m_->all;
-  }
-
- private:
-  std::shared_ptr<Meeting> m_;
-  int rank_;
-};
 
 void put(std::vector<std::uint64_t>& out, double v) {
   out.push_back(std::bit_cast<std::uint64_t>(v));

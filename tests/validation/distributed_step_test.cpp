@@ -6,69 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <condition_variable>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
-#include "blockdem/parallel/rcb.hpp"
 #include "brick_pile.hpp"
+#include "support/thread_distribution.hpp"
 
 namespace blockdem::test {
 namespace {
-
-/// The meeting point of K threads: all_gather returns when every thread has given its part.
-struct Meeting {
-  explicit Meeting(int n) : size(n), parts(static_cast<std::size_t>(n)) {}
-  std::mutex mutex;
-  std::condition_variable cv;
-  int size;
-  int arrived = 0;
-  int round = 0;
-  std::vector<std::vector<char>> parts;
-  std::vector<char> all;
-  std::vector<std::size_t> counts;
-};
-
-class ThreadDistribution final : public PairDistribution {
- public:
-  ThreadDistribution(std::shared_ptr<Meeting> m, int rank) : m_(std::move(m)), rank_(rank) {}
-  int rank() const override { return rank_; }
-  int size() const override { return m_->size; }
-  std::vector<int> partition(std::span<const Eigen::Vector3d> points,
-                             std::span<const double> weights) const override {
-    return recursive_coordinate_bisection(points, weights, m_->size);
-  }
-  std::int64_t repartition_interval() const override { return 25; }
-  std::vector<char> all_gather(const std::vector<char>& mine,
-                               std::vector<std::size_t>& counts) override {
-    std::unique_lock lock(m_->mutex);
-    m_->parts[static_cast<std::size_t>(rank_)] = mine;
-    const int round = m_->round;
-    if (++m_->arrived == m_->size) {
-      m_->all.clear();
-      m_->counts.clear();
-      for (const auto& p : m_->parts) {
-        m_->all.insert(m_->all.end(), p.begin(), p.end());
-        m_->counts.push_back(p.size());
-      }
-      m_->arrived = 0;
-      ++m_->round;
-      m_->cv.notify_all();
-    } else {
-      m_->cv.wait(lock, [&] { return m_->round != round; });
-    }
-    counts = m_->counts;
-    return m_->all;
-  }
-
- private:
-  std::shared_ptr<Meeting> m_;
-  int rank_;
-};
 
 /// Every block's state and loads after each step, as raw bytes.
 using Record = std::vector<std::vector<char>>;
@@ -152,7 +100,7 @@ TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
     std::vector<std::thread> threads;
     for (int r = 0; r < parts; ++r) {
       WorldSettings sr = s;
-      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r, 25);
       threads.emplace_back([&, r, sr] {
         const auto k = static_cast<std::size_t>(r);
         records[k] = run(pile.world(sr, 20.0), steps, &early[k], &late[k]);
@@ -199,7 +147,7 @@ TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
     std::vector<std::thread> threads;
     for (int r = 0; r < parts; ++r) {
       WorldSettings sr = s;
-      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r, 25);
       threads.emplace_back([&, r, sr] {
         const auto k = static_cast<std::size_t>(r);
         records[k] = run(pile.world(sr, 20.0), steps, nullptr, &late[k], every, &stats[k]);
