@@ -36,6 +36,7 @@ struct RunOptions {
   double checkpoint_seconds = 0.0;
   std::string restart;
   bool resume = false;
+  std::string shared_out;  ///< the run's output folder when `out` is a process's scratch folder
 };
 
 // The signal that asked the run to stop (SIGINT, SIGTERM), or 0. A second signal ends the
@@ -111,6 +112,7 @@ int run(const RunOptions& opt) {
   }
   RunOptions mine = opt;
   if (mpi.rank() != 0) {
+    mine.shared_out = opt.out;  // where this process writes its VTK pieces
     mine.quiet = true;
     mine.figures = false;
     mine.out = (std::filesystem::temp_directory_path() /
@@ -229,6 +231,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
       return RunPoll{flags[0] != 0, flags[1] != 0};
     };
     control.write_checkpoint_files = mpi.rank() == 0;
+    control.shared_out = opt.shared_out;
     sc.settings.distribution = mpi.distribution();
     r = run_scenario(sc, opt.out, cb, control);
   } catch (const CheckpointError& e) {

@@ -1,11 +1,12 @@
 // Stopping, restarting and failing under `mpirun -np K blockdem run`: a stop signal that reaches
 // one process stops every process after the same step (the processes agree after every step),
 // with the checkpoint and summary.json of a one-process run stopped there; that checkpoint, the
-// same bytes for any K, continues under 1, 2 or 3 processes to the outputs of the run that was
-// never stopped; a process killed outright leaves the last whole checkpoint and no summary.json.
-// The oracle is always the one-process run. Signals and kills come from the test hook
-// BLOCKDEM_TEST_KILL_RANK=R:STEP[:SIGNAL] (process R sends itself SIGNAL after step STEP), so
-// that every run stops at a known step. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
+// same bytes for any K but for the VTK pieces it carries, continues under 1, 2 or 3 processes to
+// the outputs of the run that was never stopped; a process killed outright leaves the last whole
+// checkpoint and no summary.json. The oracle is always the one-process run. Signals and kills
+// come from the test hook BLOCKDEM_TEST_KILL_RANK=R:STEP[:SIGNAL] (process R sends itself SIGNAL
+// after step STEP), so that every run stops at a known step. Skipped when the build has no MPI
+// (BLOCKDEM_MPI=OFF).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,6 +26,8 @@
 #include <vector>
 
 #include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/checkpoint_file.hpp"
+#include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "support/mpi_launcher.hpp"
 #include "unit/run/restart_support.hpp"
@@ -59,15 +62,45 @@ int run(int ranks, const fs::path& scenario, const fs::path& out, const std::str
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-/// Every output file of a run folder (checkpoints left out) -> its FNV-1a 64; summary.json
-/// without what describes the machine (wall time, threads, ranks and the per-process figures).
+/// Every output file of a run folder (checkpoints and VTK frames left out) -> its FNV-1a 64;
+/// summary.json without what describes the machine (wall time, threads, ranks and the
+/// per-process figures) and without its record of the VTK files. The VTK frames of K > 1
+/// processes are pieces: expect_same_frames compares them.
 std::map<std::string, std::string> outputs(const fs::path& dir) {
   auto d = folder_digest(dir);
-  std::erase_if(d, [](const auto& kv) { return kv.first.find("checkpoint.bdck") == 0; });
+  std::erase_if(d, [](const auto& kv) {
+    return kv.first.find("checkpoint.bdck") == 0 || kv.first.find("vtk/") == 0;
+  });
   auto j = nlohmann::json::parse(read_file_bytes(dir / "summary.json"));
   for (const char* key : {"wall_time_s", "threads", "ranks", "distribution"}) j.erase(key);
+  nlohmann::json files = nlohmann::json::array();  // the record of the VTK files left out too
+  for (const auto& f : j.at("files"))
+    if (f.at("path").get<std::string>().rfind("vtk/", 0) != 0) files.push_back(f);
+  j["files"] = files;
   d["summary.json"] = j.dump(2);
   return d;
+}
+
+/// The VTK frames of `dir`, read with VTK (compare_vtk_frames.py), equal those of `reference`
+/// (one process) to 0, whatever number of processes wrote each frame.
+void expect_same_frames(const fs::path& reference, const fs::path& dir) {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string cmd = python +
+                          " '" BLOCKDEM_SOURCE_DIR "/tests/validation/compare_vtk_frames.py' '" +
+                          reference.string() + "' '" + dir.string() + "' 0 > /dev/null";
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+}
+
+/// A checkpoint without its VTK part: the run point with the files under vtk/ and the writers'
+/// state (time_history.csv's and the VTK frame lists, whose names are .pvtu indices on K > 1
+/// processes) left out. Those are checked through the resumed runs' outputs instead.
+std::string checkpoint_without_vtk(const fs::path& file, const fs::path& scenario) {
+  const std::uint64_t hash = fnv1a64("max_steps=0", fnv1a64(read_file_bytes(scenario)));
+  RunPoint p = decode_run_point(read_checkpoint_file(file, hash));
+  std::erase_if(p.files, [](const auto& f) { return f.first.find("vtk/") == 0; });
+  p.outputs.clear();
+  return encode_run_point(p);
 }
 
 class MpiRestart : public ::testing::Test {
@@ -94,14 +127,15 @@ class MpiRestart : public ::testing::Test {
 // SIGTERM (2 processes) or SIGINT (3 processes) reaching process 1 alone after step 1300: every
 // process stops after that step and exits with 143 or 130 (mpirun passes the first non-zero
 // code on); process 0 writes summary.json "interrupted" with 300 steps of the last stage and a
-// checkpoint byte-identical to that of one process stopped after step 1300. Reference: the
-// one-process run stopped by the same hook. Tolerance: none (bytes).
+// checkpoint byte-identical to that of one process stopped after step 1300 but for its VTK part
+// (checkpoint_without_vtk). Reference: the one-process run stopped by the same hook. Tolerance:
+// none (bytes).
 TEST_F(MpiRestart, SignalToOneRankStopsEveryRankAfterTheSameStep) {
   const fs::path single = dir("single");
   ASSERT_EQ(run(0, scenario_, single, "", "BLOCKDEM_TEST_KILL_RANK",
                 "0:" + std::to_string(kStopStep) + ":TERM"),
             143);
-  const std::string checkpoint = read_file_bytes(single / "checkpoint.bdck");
+  const std::string checkpoint = checkpoint_without_vtk(single / "checkpoint.bdck", scenario_);
   for (const auto& [ranks, signal, code] :
        {std::tuple{2, "TERM", 143}, std::tuple{3, "INT", 130}}) {
     SCOPED_TRACE(std::to_string(ranks) + " ranks, SIG" + signal);
@@ -114,15 +148,16 @@ TEST_F(MpiRestart, SignalToOneRankStopsEveryRankAfterTheSameStep) {
     EXPECT_EQ(summary.at("ranks").get<int>(), ranks);
     EXPECT_EQ(summary.at("steps").get<int>(), kStopStep);
     EXPECT_EQ(summary.at("stages").back().at("steps").get<int>(), kStopStep - 1000);
-    EXPECT_TRUE(read_file_bytes(out / "checkpoint.bdck") == checkpoint)
-        << "the checkpoint does not depend on the number of processes";
+    EXPECT_TRUE(checkpoint_without_vtk(out / "checkpoint.bdck", scenario_) == checkpoint)
+        << "the checkpoint does not depend on the number of processes (but for its VTK pieces)";
   }
 }
 
 // The checkpoint of a 2-process run stopped after step 1300, continued with --resume under 1, 2
 // and 3 processes, and that of a 3-process run continued under 2: every output file and
-// summary.json byte-identical to the one-process run never stopped (summary.json but for wall
-// time, threads, ranks and the per-process figures). Tolerance: none.
+// summary.json byte-identical (the VTK frames, pieces of 2 or 3 processes and whole frames after
+// a one-process resume, equal through VTK's reader) to the one-process run never stopped
+// (summary.json but for wall time, threads, ranks and the per-process figures). Tolerance: none.
 TEST_F(MpiRestart, CheckpointOfKRanksResumesOnOneTwoThreeRanksBitIdentically) {
   for (int ranks_before : {2, 3}) {
     const fs::path stopped = dir("before" + std::to_string(ranks_before));
@@ -138,6 +173,7 @@ TEST_F(MpiRestart, CheckpointOfKRanksResumesOnOneTwoThreeRanksBitIdentically) {
       const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
       EXPECT_EQ(summary.at("ranks").get<int>(), ranks_after == 0 ? 1 : ranks_after);
       EXPECT_EQ(outputs(out), outputs(reference_));
+      expect_same_frames(reference_, out);
     }
   }
 }
@@ -145,7 +181,8 @@ TEST_F(MpiRestart, CheckpointOfKRanksResumesOnOneTwoThreeRanksBitIdentically) {
 // Process 1 of 2 killed (SIGKILL) after step 1250 of a run with checkpoints every 500 steps, in
 // a folder that held a finished run: the launcher stops process 0 and exits non-zero; there is
 // no summary.json (nothing claims a finished run); checkpoint.bdck is the whole checkpoint of
-// step 1000, byte-identical to the one a single process killed there leaves, and a resume from
+// step 1000, byte-identical to the one a single process killed there leaves but for its VTK part
+// (checkpoint_without_vtk), and a resume from
 // it on 2 processes ends with the outputs of the run never stopped. Tolerance: none.
 TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
   const std::string every = "--checkpoint-every 500";
@@ -159,10 +196,11 @@ TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
   EXPECT_NE(run(2, scenario_, out, every, "BLOCKDEM_TEST_KILL_RANK", kill), 0);
   EXPECT_FALSE(fs::exists(out / "summary.json"));
   ASSERT_TRUE(fs::exists(out / "checkpoint.bdck"));
-  EXPECT_TRUE(read_file_bytes(out / "checkpoint.bdck") ==
-              read_file_bytes(single / "checkpoint.bdck"));
+  EXPECT_TRUE(checkpoint_without_vtk(out / "checkpoint.bdck", scenario_) ==
+              checkpoint_without_vtk(single / "checkpoint.bdck", scenario_));
   ASSERT_EQ(run(2, scenario_, out, "--resume"), 0);
   EXPECT_EQ(outputs(out), outputs(reference_));
+  expect_same_frames(reference_, out);
 }
 
 // Bad input: a checkpoint that is not one, given to --resume on 3 processes. Process 0 alone
@@ -245,6 +283,7 @@ void signal_from_outside(bool to_launcher, long long steps, int expected_code, b
   if (resume) {
     ASSERT_EQ(run(0, scenario, out, "--resume"), 0);
     EXPECT_EQ(outputs(out), outputs(reference));
+    expect_same_frames(reference, out);
   }
   for (const auto& d : {reference, out, pid_file}) fs::remove_all(d);
   fs::remove(scenario);

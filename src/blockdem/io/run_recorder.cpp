@@ -4,6 +4,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "blockdem/numerics/units.hpp"
 
@@ -11,8 +14,9 @@ namespace blockdem {
 
 namespace {}  // namespace
 
-RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables, bool append)
-    : dir_(dir), vtk_(vtk) {
+RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables, bool append,
+                         std::filesystem::path pieces)
+    : dir_(dir), pieces_(pieces.empty() ? dir / "vtk" : std::move(pieces)), vtk_(vtk) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec)
@@ -182,13 +186,53 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
 void RunRecorder::write_frame(const World& world, int level) {
   if (!vtk_ || world.step_count() == last_frame_step_) return;
   last_frame_step_ = world.step_count();
+  const auto& distribution = world.settings().distribution;
+  const int processes = distribution ? distribution->size() : 1;
   char name[64];
-  std::snprintf(name, sizeof name, "blocks_%06d.vtu", frames_);
-  write_vtu_blocks(dir_ / "vtk" / name, world, level);
-  blocks_pvd_->add(world.level_time(), name);
-  std::snprintf(name, sizeof name, "contacts_%06d.vtu", frames_);
-  write_vtu_contacts(dir_ / "vtk" / name, world);
-  contacts_pvd_->add(world.level_time(), name);
+  if (processes <= 1) {
+    std::snprintf(name, sizeof name, "blocks_%06d.vtu", frames_);
+    write_vtu_blocks(dir_ / "vtk" / name, world, level);
+    blocks_pvd_->add(world.level_time(), name);
+    std::snprintf(name, sizeof name, "contacts_%06d.vtu", frames_);
+    write_vtu_contacts(dir_ / "vtk" / name, world);
+    contacts_pvd_->add(world.level_time(), name);
+    ++frames_;
+    return;
+  }
+  // Each process its piece, of the blocks and pairs it owns.
+  const int rank = distribution->rank();
+  std::error_code ec;
+  std::filesystem::create_directories(pieces_, ec);  // as process 0 made it (a shared folder)
+  std::snprintf(name, sizeof name, "blocks_%06d_p%d.vtu", frames_, rank);
+  const auto blocks = write_vtu_block_piece(pieces_ / name, world, level, rank);
+  std::snprintf(name, sizeof name, "contacts_%06d_p%d.vtu", frames_, rank);
+  const auto contacts = write_vtu_contact_piece(pieces_ / name, world, rank);
+  // One integer sum over the processes: every piece is in place (renamed) before process 0
+  // writes the index that names it, and every block is in exactly one piece.
+  const std::vector<std::int64_t> total =
+      distribution->sum({static_cast<std::int64_t>(blocks), static_cast<std::int64_t>(contacts)});
+  if (total[0] != static_cast<std::int64_t>(world.blocks().size()))
+    throw std::logic_error("VTK pieces hold " + std::to_string(total[0]) + " of " +
+                           std::to_string(world.blocks().size()) + " blocks");
+  for (const char* kind : {"blocks", "contacts"}) {
+    std::vector<std::string> pieces;
+    for (int k = 0; k < processes; ++k) {
+      std::snprintf(name, sizeof name, "%s_%06d_p%d.vtu", kind, frames_, k);
+      pieces.emplace_back(name);
+    }
+    std::snprintf(name, sizeof name, "%s_%06d.pvtu", kind, frames_);
+    const bool is_blocks = kind[0] == 'b';
+    PvdCollection& pvd = is_blocks ? *blocks_pvd_ : *contacts_pvd_;
+    if (rank == 0) {
+      if (is_blocks)
+        write_pvtu_blocks(dir_ / "vtk" / name, world, pieces);
+      else
+        write_pvtu_contacts(dir_ / "vtk" / name, world, pieces);
+      pvd.add(world.level_time(), name);
+    } else {
+      pvd.remember(world.level_time(), name);  // the same list, written by process 0
+    }
+  }
   ++frames_;
 }
 

@@ -11,6 +11,7 @@
 
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/world/pair_owner.hpp"
 
 namespace blockdem {
 namespace {
@@ -56,49 +57,73 @@ void write_arrays(std::ostream& out, const std::vector<Array>& arrays, std::uint
   }
 }
 
+// A grid's contents: counts, point data, cell data, points and cells (connectivity, offsets,
+// types and, for polyhedra, faces and faceoffsets).
+struct Grid {
+  std::size_t points = 0, cells = 0;
+  std::vector<Array> point_data, cell_data;
+  Array coordinates;
+  std::vector<Array> topology;
+};
+
 // Writes the grid: its model time as the field TimeValue (the name ParaView reads a frame's time
-// from when a .vtu is opened alone), point data, cell data, points, cells (connectivity, offsets,
-// types and, for polyhedra, faces and faceoffsets), then the appended bytes. Built in memory and
-// written atomically: a reader never sees half a file.
-void write_grid(const std::filesystem::path& path, double time, std::size_t points,
-                std::size_t cells, const std::vector<Array>& point_data,
-                const std::vector<Array>& cell_data, const Array& coordinates,
-                const std::vector<Array>& topology) {
+// from when a .vtu is opened alone), point data, cell data, points, cells, then the appended
+// bytes. Built in memory and written atomically: a reader never sees half a file.
+void write_grid(const std::filesystem::path& path, double time, const Grid& g) {
   std::ostringstream out(std::ios::binary);
   const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
       << order << "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n"
       << "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
       << "format=\"ascii\">" << std::setprecision(17) << time << "</DataArray>\n"
-      << "    </FieldData>\n    <Piece NumberOfPoints=\"" << points << "\" NumberOfCells=\""
-      << cells << "\">\n";
+      << "    </FieldData>\n    <Piece NumberOfPoints=\"" << g.points << "\" NumberOfCells=\""
+      << g.cells << "\">\n";
   std::uint64_t offset = 0;
   out << "      <PointData>\n";
-  write_arrays(out, point_data, offset);
+  write_arrays(out, g.point_data, offset);
   out << "      </PointData>\n      <CellData>\n";
-  write_arrays(out, cell_data, offset);
+  write_arrays(out, g.cell_data, offset);
   out << "      </CellData>\n      <Points>\n";
-  write_arrays(out, {coordinates}, offset);
+  write_arrays(out, {g.coordinates}, offset);
   out << "      </Points>\n      <Cells>\n";
-  write_arrays(out, topology, offset);
+  write_arrays(out, g.topology, offset);
   out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n"
       << "   _";
-  for (const auto* group : {&point_data, &cell_data}) {
-    for (const Array& a : *group) {
-      const std::uint64_t n = a.bytes.size();
-      out.write(reinterpret_cast<const char*>(&n), sizeof n);
-      out.write(a.bytes.data(), static_cast<std::streamsize>(a.bytes.size()));
-    }
-  }
-  const std::uint64_t nc = coordinates.bytes.size();
-  out.write(reinterpret_cast<const char*>(&nc), sizeof nc);
-  out.write(coordinates.bytes.data(), static_cast<std::streamsize>(coordinates.bytes.size()));
-  for (const Array& a : topology) {
+  auto bytes = [&out](const Array& a) {
     const std::uint64_t n = a.bytes.size();
     out.write(reinterpret_cast<const char*>(&n), sizeof n);
     out.write(a.bytes.data(), static_cast<std::streamsize>(a.bytes.size()));
-  }
+  };
+  for (const Array& a : g.point_data) bytes(a);
+  for (const Array& a : g.cell_data) bytes(a);
+  bytes(g.coordinates);
+  for (const Array& a : g.topology) bytes(a);
   out << "\n  </AppendedData>\n</VTKFile>\n";
+  write_file_atomically(path, out.str());
+}
+
+// The parallel index of a distributed frame (VTK User's Guide, ch. 19, "Parallel XML file
+// formats"): the arrays' names, types and components, and the pieces' files (relative to the
+// index's folder). The model time is in each piece's TimeValue.
+void write_parallel_index(const std::filesystem::path& path, const Grid& g,
+                          const std::vector<std::string>& pieces) {
+  std::ostringstream out;
+  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+  auto declare = [&out](const char* tag, const std::vector<Array>& arrays) {
+    out << "    <" << tag << ">\n";
+    for (const Array& a : arrays)
+      out << "      <PDataArray type=\"" << a.type << "\" Name=\"" << a.name
+          << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
+    out << "    </" << tag << ">\n";
+  };
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+      << "byte_order=\"" << order << "\" header_type=\"UInt64\">\n"
+      << "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  declare("PPointData", g.point_data);
+  declare("PCellData", g.cell_data);
+  declare("PPoints", {g.coordinates});
+  for (const std::string& piece : pieces) out << "    <Piece Source=\"" << piece << "\"/>\n";
+  out << "  </PUnstructuredGrid>\n</VTKFile>\n";
   write_file_atomically(path, out.str());
 }
 
@@ -114,14 +139,18 @@ ContactStatus contact_status(const Contact& c) {
   return ContactStatus::closed;
 }
 
-void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage) {
+namespace {
+
+// Blocks `which` (indices, in increasing order) as polyhedron cells at the world's level state.
+Grid block_grid(const World& world, int stage, const std::vector<int>& which) {
   std::vector<Eigen::Vector3d> coordinates, displacement, velocity, rotation, spin;
   std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
   std::vector<std::uint8_t> types;
   std::vector<std::int32_t> ids, stages;
   std::vector<std::string> names, groups;
   const Eigen::Vector3d& origin = world.settings().origin;  // points out in user coordinates
-  for (const auto& b : world.blocks()) {
+  for (int index : which) {
+    const Block& b = world.blocks()[static_cast<std::size_t>(index)];
     const World::LevelState s = world.level_state(b.index);
     const auto base = static_cast<std::int64_t>(coordinates.size());
     for (std::size_t v = 0; v < b.shape.vertices().size(); ++v) {
@@ -148,19 +177,26 @@ void write_vtu_blocks(const std::filesystem::path& path, const World& world, int
     rotation.push_back(angle * turn.axis());
     spin.push_back(s.angular_velocity);
   }
-  write_grid(path, world.level_time(), coordinates.size(), world.blocks().size(), {},
-             {array("block_id", "Int32", 1, ids), strings("name", names), strings("group", groups),
-              array("stage", "Int32", 1, stages), vectors("displacement", displacement),
-              vectors("velocity", velocity), vectors("rotation", rotation),
-              vectors("angular_velocity", spin)},
-             vectors("Points", coordinates),
-             {array("connectivity", "Int64", 1, connectivity),
-              array("offsets", "Int64", 1, offsets), array("types", "UInt8", 1, types),
-              array("faces", "Int64", 1, faces), array("faceoffsets", "Int64", 1, face_offsets)});
+  Grid g;
+  g.points = coordinates.size();
+  g.cells = which.size();
+  g.cell_data = {array("block_id", "Int32", 1, ids),
+                 strings("name", names),
+                 strings("group", groups),
+                 array("stage", "Int32", 1, stages),
+                 vectors("displacement", displacement),
+                 vectors("velocity", velocity),
+                 vectors("rotation", rotation),
+                 vectors("angular_velocity", spin)};
+  g.coordinates = vectors("Points", coordinates);
+  g.topology = {array("connectivity", "Int64", 1, connectivity),
+                array("offsets", "Int64", 1, offsets), array("types", "UInt8", 1, types),
+                array("faces", "Int64", 1, faces), array("faceoffsets", "Int64", 1, face_offsets)};
+  return g;
 }
 
-void write_vtu_contacts(const std::filesystem::path& path, const World& world) {
-  const auto contacts = world.contacts();
+// Contacts as vertices at their force points.
+Grid contact_grid(const World& world, const std::vector<const Contact*>& contacts) {
   std::vector<Eigen::Vector3d> points, normal, shear;
   std::vector<std::int32_t> a, b, status;
   std::vector<double> force, stress, closure, area;
@@ -182,15 +218,68 @@ void write_vtu_contacts(const std::filesystem::path& path, const World& world) {
     area.push_back(c->geometry.area);
     status.push_back(static_cast<std::int32_t>(contact_status(*c)));
   }
-  write_grid(
-      path, world.level_time(), points.size(), points.size(),
-      {array("block_a", "Int32", 1, a), array("block_b", "Int32", 1, b), vectors("normal", normal),
-       array("normal_force", "Float64", 1, force), vectors("shear_force", shear),
-       array("normal_stress", "Float64", 1, stress), array("closure", "Float64", 1, closure),
-       array("area", "Float64", 1, area), array("status", "Int32", 1, status)},
-      {}, vectors("Points", points),
-      {array("connectivity", "Int64", 1, connectivity), array("offsets", "Int64", 1, offsets),
-       array("types", "UInt8", 1, types)});
+  Grid g;
+  g.points = points.size();
+  g.cells = points.size();
+  g.point_data = {array("block_a", "Int32", 1, a),
+                  array("block_b", "Int32", 1, b),
+                  vectors("normal", normal),
+                  array("normal_force", "Float64", 1, force),
+                  vectors("shear_force", shear),
+                  array("normal_stress", "Float64", 1, stress),
+                  array("closure", "Float64", 1, closure),
+                  array("area", "Float64", 1, area),
+                  array("status", "Int32", 1, status)};
+  g.coordinates = vectors("Points", points);
+  g.topology = {array("connectivity", "Int64", 1, connectivity),
+                array("offsets", "Int64", 1, offsets), array("types", "UInt8", 1, types)};
+  return g;
+}
+
+}  // namespace
+
+void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage) {
+  std::vector<int> all(world.blocks().size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  write_grid(path, world.level_time(), block_grid(world, stage, all));
+}
+
+void write_vtu_contacts(const std::filesystem::path& path, const World& world) {
+  write_grid(path, world.level_time(), contact_grid(world, world.contacts()));
+}
+
+std::size_t write_vtu_block_piece(const std::filesystem::path& path, const World& world, int stage,
+                                  int process) {
+  const std::vector<int>& owners = world.block_owners();
+  std::vector<int> mine;
+  for (std::size_t i = 0; i < world.blocks().size(); ++i) {
+    if ((owners.empty() ? 0 : owners[i]) == process) mine.push_back(static_cast<int>(i));
+  }
+  write_grid(path, world.level_time(), block_grid(world, stage, mine));
+  return mine.size();
+}
+
+std::size_t write_vtu_contact_piece(const std::filesystem::path& path, const World& world,
+                                    int process) {
+  const std::vector<int>& owners = world.block_owners();
+  std::vector<const Contact*> mine;
+  for (const Contact* c : world.contacts()) {
+    const bool a_moves = world.blocks()[static_cast<std::size_t>(c->a)].is_dynamic();
+    const bool b_moves = world.blocks()[static_cast<std::size_t>(c->b)].is_dynamic();
+    if (pair_owner_process(owners, c->a, a_moves, c->b, b_moves) == process) mine.push_back(c);
+  }
+  write_grid(path, world.level_time(), contact_grid(world, mine));
+  return mine.size();
+}
+
+void write_pvtu_blocks(const std::filesystem::path& path, const World& world,
+                       const std::vector<std::string>& pieces) {
+  write_parallel_index(path, block_grid(world, 0, {}), pieces);
+}
+
+void write_pvtu_contacts(const std::filesystem::path& path, const World& world,
+                         const std::vector<std::string>& pieces) {
+  write_parallel_index(path, contact_grid(world, {}), pieces);
 }
 
 void PvdCollection::add(double time, const std::string& file) {

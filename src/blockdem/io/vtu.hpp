@@ -27,6 +27,27 @@ void write_vtu_blocks(const std::filesystem::path& path, const World& world, int
 /// and status (ContactStatus), and the field TimeValue (World::level_time, s).
 void write_vtu_contacts(const std::filesystem::path& path, const World& world);
 
+/// A frame of a run spread over processes (WorldSettings::distribution) is written in pieces,
+/// one per process, and a parallel index (.pvtu) that names them: ParaView and VTK's
+/// vtkXMLPUnstructuredGridReader open the index as one data set. The pieces have the fields of
+/// the whole frames above.
+/// The piece of process `process`: the blocks it owns (World::block_owners; every block is
+/// process 0's before the first partition), in increasing index. Needs only those blocks' states
+/// (the world need not be whole). Returns the cell count.
+std::size_t write_vtu_block_piece(const std::filesystem::path& path, const World& world, int stage,
+                                  int process);
+/// The piece of process `process` of the contacts: those of the pairs it owns
+/// (world/pair_owner.hpp), in (a, b) order. Reads World::contacts(): the world must be whole.
+/// Returns the contact count.
+std::size_t write_vtu_contact_piece(const std::filesystem::path& path, const World& world,
+                                    int process);
+/// The .pvtu index of a block frame or a contact frame: the arrays the pieces carry and the
+/// pieces' files (`pieces`: relative to the index's folder).
+void write_pvtu_blocks(const std::filesystem::path& path, const World& world,
+                       const std::vector<std::string>& pieces);
+void write_pvtu_contacts(const std::filesystem::path& path, const World& world,
+                         const std::vector<std::string>& pieces);
+
 /// A .pvd collection: one DataSet per frame with its model time. Rewritten whole after each
 /// add(), so the file on disk always lists every frame written so far.
 class PvdCollection {
@@ -35,6 +56,9 @@ class PvdCollection {
   /// `file`: the frame's path relative to the .pvd's folder. Throws std::runtime_error when the
   /// file cannot be written.
   void add(double time, const std::string& file);
+  /// Lists a frame without writing the file (a process that does not write the outputs keeps
+  /// the same list).
+  void remember(double time, const std::string& file) { frames_.emplace_back(time, file); }
   /// The frames listed so far (model time, file), e.g. to continue the collection after a restart.
   const std::vector<std::pair<double, std::string>>& frames() const { return frames_; }
   /// Continues a collection that already lists `frames` (the file is not rewritten until add()).

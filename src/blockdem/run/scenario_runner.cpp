@@ -115,7 +115,11 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
       write_file_atomically(out / rel, content);
     }
   }
-  RunRecorder recorder(out, sc.output.vtk, !beam, resume.has_value());
+  RunRecorder recorder(out, sc.output.vtk, !beam, resume.has_value(),
+                       (control.shared_out.empty() ? out : control.shared_out) / "vtk");
+  // Every process writes its VTK pieces into the shared folder: not before process 0 has
+  // cleared it of an earlier run and put back a restarted run's files (one collective).
+  if (ranks > 1 && sc.output.vtk) distribution->sum({0});
   std::unique_ptr<VoussoirRecorder> beam_recorder;
   VoussoirReference reference;
   if (beam) beam_recorder = std::make_unique<VoussoirRecorder>(out, world);

@@ -72,6 +72,10 @@ struct RunControl {
   /// False on the processes of an MPI run that do not write the outputs: they take every
   /// checkpoint decision but write no checkpoint file.
   bool write_checkpoint_files = true;
+  /// The output folder every process of an MPI run shares, when `out` is this process's own
+  /// (the processes that do not write the outputs): each process writes its VTK pieces into
+  /// its vtk/ (docs/outputs.md). Empty: `out`.
+  std::filesystem::path shared_out;
 };
 
 /// Builds the world, runs every stage, and writes history.csv, blocks.csv, contacts.csv (and

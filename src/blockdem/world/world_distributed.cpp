@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/world/pair_owner.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -152,12 +153,8 @@ void World::require_replica(const char* what) const {
 }
 
 int World::pair_owner(int a, int b) const {
-  // One owner per pair, by a rule on the blocks' global indices: the owner of the block that
-  // can move when only one can; otherwise of a when a + b is odd, of b when even (so that pairs
-  // across a subdomain boundary split about evenly between the two sides).
-  const bool da = blocks_[a].is_dynamic(), db = blocks_[b].is_dynamic();
-  if (da != db) return owner_[da ? a : b];
-  return owner_[((a + b) & 1) != 0 ? a : b];
+  // One owner per pair, by a rule on the blocks' global indices (world/pair_owner.hpp).
+  return pair_owner_process(owner_, a, blocks_[a].is_dynamic(), b, blocks_[b].is_dynamic());
 }
 
 bool World::counts_contact(const Contact& c) const {
