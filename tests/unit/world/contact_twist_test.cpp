@@ -32,6 +32,23 @@ FaceContactGeometry square_cells(double g0, double slope) {
   return fc;
 }
 
+/// F_n and the centre of pressure x_p of the cells, as the world's step forms them.
+struct NormalResultant {
+  double force = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+NormalResultant normal_resultant(const FaceContactGeometry& fc, const NormalLaw& law) {
+  double force = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const auto& cell : fc.cells) {
+    const PolygonStressResultant r =
+        integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
+    force += r.force;
+    if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
+  }
+  return {force, moment / force};
+}
+
 // J about the centroid: a⁴/6, to round-off (1e-12).
 TEST(ContactTwist, PolarMomentOfTwoCellsIsTheSquares) {
   const FaceContactGeometry fc = square_cells(1e-5, 0.0);
@@ -67,17 +84,9 @@ TEST(ContactTwist, BoundsStayBelowTheExactRadialMoment) {
   for (const NormalLaw& law : laws) {
     for (const double slope : {0.0, 2e-4, 1e-3}) {
       const FaceContactGeometry fc = square_cells(slope == 0.0 ? 1e-5 : 0.0, slope);
-      // F_n and the centre of pressure x_p, as the world's step forms them.
-      double force = 0.0;
-      Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-      for (const auto& cell : fc.cells) {
-        const PolygonStressResultant r =
-            integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
-        force += r.force;
-        if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
-      }
+      const NormalResultant n = normal_resultant(fc, law);
       const TwistGeometry g =
-          face_twist_geometry(fc.cells, Eigen::Vector3d::UnitZ(), force, moment / force);
+          face_twist_geometry(fc.cells, Eigen::Vector3d::UnitZ(), n.force, n.centre);
       const double exact = face_radial_normal_moment(fc.cells, law, g.centre);
       const double bound = face_radial_normal_bound(fc.cells, law, g);
       EXPECT_LE(g.radial_normal_moment, exact * (1 + 1e-3)) << slope;
@@ -97,15 +106,9 @@ TEST(ContactTwist, BoundAboutThePressureCentreStaysBelowTheExact) {
   for (const NormalLaw& law : laws) {
     for (const double slope : {0.0, 2e-4, 1e-3}) {
       const FaceContactGeometry fc = square_cells(slope == 0.0 ? 1e-5 : 0.0, slope);
-      double force = 0.0;
-      Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-      for (const auto& cell : fc.cells) {
-        const PolygonStressResultant r =
-            integrate_normal_stress_over_polygon(law, cell.vertices, cell.closures);
-        force += r.force;
-        if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
-      }
-      const Eigen::Vector3d xp = moment / force;
+      const NormalResultant n = normal_resultant(fc, law);
+      const double force = n.force;
+      const Eigen::Vector3d xp = n.centre;
       const TwistGeometry g = face_twist_geometry(fc.cells, Eigen::Vector3d::UnitZ(), force, xp);
       const double d = (g.centre - xp).norm();
       const double exact = face_radial_normal_moment(fc.cells, law, xp);
