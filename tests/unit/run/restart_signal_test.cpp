@@ -9,7 +9,6 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -26,26 +25,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int count_lines(const fs::path& file) {
-  std::ifstream in(file);
-  int n = 0;
-  for (std::string line; std::getline(in, line);) ++n;
-  return n;
-}
-
-// The long last stage must still be running when the signal comes, 100 ms after the second
-// stage's row. The whole scenario with a last stage of 50,000 steps takes 0.47 s of CPU in an
-// optimised build (5,000 steps: 0.07 s; 100,000: 8.1 s, the later steps dearer: their sliding
-// face contacts at full combined slip took 62 % of the CPU). A sanitizer makes a step slower
-// (AddressSanitizer: 226 s for the runs with 100,000 steps, against 16 s of CPU optimised): 5,000
-// steps there outlast the 100 ms many times. The stop falls between two steps either way.
+// The long last stage must still be running when the signal comes. The whole scenario with a
+// last stage of 50,000 steps takes 0.47 s of CPU in an optimised build (5,000 steps: 0.07 s;
+// 100,000: 8.1 s, the later steps dearer: their sliding face contacts at full combined slip took
+// 62 % of the CPU). A sanitizer makes a step slower (AddressSanitizer: 226 s for the runs with
+// 100,000 steps, against 16 s of CPU optimised). The stop falls between two steps either way.
 long long last_stage_steps() {
   return sanitized_run() ? 5000 : 50000;
 }
 
-/// Starts `blockdem run` in the background, sends `sig` 100 ms into its last stage (after the
-/// two first stages' rows are in history.csv), and returns the exit status (-1: no normal
-/// exit).
+/// Starts `blockdem run` in the background, sends `sig` once the last stage has run 1,500 of its
+/// steps (VTK frame 3: frames 0-2 are the start and the first two stages' ends, 1,000 steps in
+/// all; `vtk_interval` is 2,500 steps), and returns the exit status (-1: no normal exit). A
+/// file the run writes inside the stage, not a delay, tells that the stage has begun: under
+/// heavy load a fixed delay once ended before its first step.
 int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
   std::vector<std::string> args = {BLOCKDEM_CLI_PATH, "run",        scenario.string(),
                                    "--out",           out.string(), "--quiet",
@@ -62,11 +55,9 @@ int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
   if (spawned != 0) return -2;
   const auto start = std::chrono::steady_clock::now();
   auto waited = [&] { return std::chrono::steady_clock::now() - start > std::chrono::seconds(60); };
-  while (count_lines(out / "history.csv") < 3 && !waited())
+  const fs::path inside_last_stage = out / "vtk" / "blocks_000003.vtu";
+  while (!fs::exists(inside_last_stage) && !waited())
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  // Into the last stage (last_stage_steps() outlast the 100 ms): a stop between two
-  // steps.
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ::kill(pid, sig);
   int status = 0;
   while (::waitpid(pid, &status, WNOHANG) == 0) {
