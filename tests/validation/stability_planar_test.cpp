@@ -40,7 +40,7 @@ TEST_P(PlanarSliding, FactorOfSafetyIsTanPhiOverTanPsi) {
   EXPECT_GE(fos["first_failed"].get<double>(), expected * 0.995);
   EXPECT_LE(fos["first_failed"].get<double>() - fos["last_stable"].get<double>(), 0.01 + 1e-12);
   // One CSV row per trial, and the mechanism written.
-  const auto out = std::filesystem::temp_directory_path() / ("blockdem_" + name);
+  const auto out = test::run_folder(name);
   std::ifstream csv(out / "strength_reduction.csv");
   int rows = -1;
   for (std::string line; std::getline(csv, line);) ++rows;

@@ -40,11 +40,16 @@ inline std::string incline_scenario(double psi_deg, double phi_deg, double b, do
   return s.str();
 }
 
+/// The temporary folder of run_text's run `name` (one per process: suites run side by side).
+inline std::filesystem::path run_folder(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("blockdem_" + std::to_string(::getpid()) + "_" + name);
+}
+
 /// Runs scenario text into a fresh temporary folder, kept for inspection until the next run.
 inline RunResult run_text(const std::string& text, const std::string& name) {
   const Scenario sc = parse_scenario(text, name + ".toml");
-  const auto out = std::filesystem::temp_directory_path() /
-                   ("blockdem_" + std::to_string(::getpid()) + "_" + name);
+  const auto out = run_folder(name);
   std::filesystem::remove_all(out);
   return run_scenario(sc, out);
 }
