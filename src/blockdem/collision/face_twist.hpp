@@ -62,4 +62,10 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
                         const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
                         const SlipCentre& centre);
 
+/// Full slip by the rule alone (7 points on each of 16 sub-triangles of every fan triangle of
+/// every cell): the reference face_full_slip falls back on, kept as its check.
+FullSlip face_full_slip_by_rule(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                                const SlipCentre& centre);
+
 }  // namespace blockdem
