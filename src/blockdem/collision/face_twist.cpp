@@ -86,7 +86,7 @@ double inverse_radius_integral(double sa, double sb, double ra, double rb, doubl
 // Then V = s0 ∫ d/ρ + (∫ d dᵀ/ρ) q and W = s0 ∫ ρ + q · ∫ ρ d.
 // Empty for a cell too thin to carry a gradient (the rule then integrates it).
 std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
-                                         std::span<const double> stress,
+                                         std::span<const double> stress, double stress_per_closure,
                                          const Eigen::Vector3d& normal, const Eigen::Vector3d& p) {
   SlipSums out;
   const std::size_t m = v.size();
@@ -105,12 +105,13 @@ std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
   const Eigen::Vector3d e1 = v[best] - v[0], e2 = v[best + 1] - v[0];
   const Eigen::Vector3d nn = e1.cross(e2);
   // The gradient only from a triangle that is not a sliver (twice its area at least 1e-6 of the
-  // cell's diameter squared), and only if every vertex agrees with it (to 1e-9 of the largest
-  // stress): a sliver cell's closures, at nearly coincident vertices, need not be those of one
-  // plane, and a wrong gradient carried to a distant centre would ruin the sums.
-  double diameter2 = 0.0, largest = 0.0;
+  // cell's diameter squared), and only if every vertex agrees with it: a sliver cell's closures,
+  // at nearly coincident vertices, need not be those of one plane, and a wrong gradient carried
+  // to a distant centre would ruin the sums.
+  double diameter2 = 0.0, largest = 0.0, reach = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     largest = std::max(largest, std::abs(stress[i]));
+    reach = std::max(reach, v[i].cwiseAbs().maxCoeff());
     for (std::size_t j = i + 1; j < m; ++j)
       diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
   }
@@ -118,8 +119,18 @@ std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
   const Eigen::Vector3d q =
       ((stress[best] - stress[0]) * e2.cross(nn) + (stress[best + 1] - stress[0]) * nn.cross(e1)) /
       nn.squaredNorm();
+  // Agreement to 1e-9 of the largest stress, or to the round-off of the closures: each is a
+  // difference of plane offsets at the vertex's coordinates (face_contact), so it carries an
+  // absolute error of some ulps of the coordinates' magnitude X, whatever its own size; the
+  // stress δσ = σ' 16 ε X (σ' the stand-in's stress per closure). The gradient from the triangle
+  // then errs by up to 2 δσ D / |e1 × e2| (D the cell's diameter), which the prediction at a
+  // vertex up to D away multiplies by D; with the errors of the two stresses compared, 4 δσ
+  // (1 + D² / |e1 × e2|). Cells accepted this way integrate a plane within that of their
+  // closures, as those of a cell that passes at 1e-9 do.
+  const double round_off = 16.0 * std::numeric_limits<double>::epsilon() * reach *
+                           std::abs(stress_per_closure) * 4.0 * (1.0 + diameter2 / nn.norm());
   for (std::size_t i = 1; i < m; ++i) {
-    if (!(std::abs(stress[0] + q.dot(v[i] - v[0]) - stress[i]) <= 1e-9 * largest))
+    if (!(std::abs(stress[0] + q.dot(v[i] - v[0]) - stress[i]) <= 1e-9 * largest + round_off))
       return std::nullopt;
   }
   const double s0 = stress[0] + q.dot(p - v[0]);
@@ -384,12 +395,13 @@ constexpr double kLinearStressTolerance = 1e-6;
 // exponential law by its chord in g between the cell's least and largest closures, whose error
 // is at most σ''(g_max) Δg² / 8 = b² (σ(g_max) + a) Δg² / 8 (a convex function above its chord).
 // False otherwise (the quadrature then integrates the cell).
-bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law,
-                        SmallVector<double, 8>& out) {
+bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law, SmallVector<double, 8>& out,
+                        double& stress_per_closure) {
   const auto& g = cell.closures;
   out.clear();
   if (const auto* linear = std::get_if<LinearNormal>(&law)) {
     for (const double gi : g) out.push_back(linear->stiffness * std::max(gi, 0.0));
+    stress_per_closure = linear->stiffness;
     return true;
   }
   const auto& e = std::get<ExponentialNormal>(law);
@@ -402,6 +414,7 @@ bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law,
   }
   const double slope = spread > 0.0 ? (s1 - s0) / spread : 0.0;
   for (const double gi : g) out.push_back(s0 + slope * (std::max(gi, 0.0) - g0));
+  stress_per_closure = e.b * (s1 + e.a);  // the law's largest slope on the cell
   return true;
 }
 
@@ -413,11 +426,28 @@ Eigen::Vector3d cell_normal(std::span<const Eigen::Vector3d> v) {
   return norm > 0.0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
 }
 
-// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its 16 similar sub-triangles.
+// Whether the cell is a sliver (linear_slip_sums: its largest fan triangle's twice area below
+// kSliver of its diameter squared). Its area is then below kSliver D² / 2, so the rule on its
+// fan triangles alone (7 points, no split) errs by a fraction of the cell's own sums, themselves
+// below kSliver D² σ_max (times |y - p| for W): under 1e-6 of those of a contact of that
+// diameter, within the closed forms' tolerance; 16 sub-triangles would buy nothing but cost.
+bool sliver_cell(std::span<const Eigen::Vector3d> v) {
+  double twice_area = 0.0, diameter2 = 0.0;
+  for (std::size_t k = 1; k + 1 < v.size(); ++k)
+    twice_area = std::max(twice_area, (v[k] - v[0]).cross(v[k + 1] - v[0]).norm());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = i + 1; j < v.size(); ++j)
+      diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
+  }
+  return !(twice_area >= kSliver * diameter2);
+}
+
+// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its kSplit² similar sub-triangles.
+template <int kSplit>
 double radial_stress_moment(const Node& a, const Node& b, const Node& c, const NormalLaw& law,
                             const Eigen::Vector3d& centre) {
   double sum = 0.0;
-  const double area = integrate_split(a, b, c, [&](const Node& y, double weight) {
+  const double area = integrate_split<kSplit>(a, b, c, [&](const Node& y, double weight) {
     sum += weight * normal_stress(law, y.g) * (y.x - centre).norm();
   });
   return sum * area;
@@ -494,9 +524,9 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
     m.compressed_area += pm.area;
     m.polar_moment += pm.polar_moment;
     m.radial_moment += pm.radial_moment;
-    if (linear_cell_stress(cell, law, stress)) {
+    if (double slope = 0.0; linear_cell_stress(cell, law, stress, slope)) {
       const std::span<const double> s(stress.data(), stress.size());
-      if (const auto sums = linear_slip_sums(vertices, s, cell_normal(vertices), centre)) {
+      if (const auto sums = linear_slip_sums(vertices, s, slope, cell_normal(vertices), centre)) {
         m.radial_normal_moment += sums->radial;
         continue;
       }
@@ -508,10 +538,12 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
         continue;
       }
     }
+    const bool sliver = sliver_cell(vertices);
     for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
-      m.radial_normal_moment +=
-          radial_stress_moment({vertices[0], cell.closures[0]}, {vertices[k], cell.closures[k]},
-                               {vertices[k + 1], cell.closures[k + 1]}, law, centre);
+      const Node a{vertices[0], cell.closures[0]}, b{vertices[k], cell.closures[k]},
+          c{vertices[k + 1], cell.closures[k + 1]};
+      m.radial_normal_moment += sliver ? radial_stress_moment<1>(a, b, c, law, centre)
+                                       : radial_stress_moment<4>(a, b, c, law, centre);
     }
   }
   return m;
@@ -532,10 +564,11 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
       continue;
     }
     const std::span<const Eigen::Vector3d> vertices(v.data(), v.size());
+    double slope = 0.0;
     std::optional<SlipSums> sums =
-        linear_cell_stress(cell, law, stress)
+        linear_cell_stress(cell, law, stress, slope)
             ? linear_slip_sums(vertices, std::span<const double>(stress.data(), stress.size()),
-                               normal, p)
+                               slope, normal, p)
             : std::nullopt;
     if (const auto* e = std::get_if<ExponentialNormal>(&law); !sums && e) {
       sums = exponential_slip_sums(
@@ -548,6 +581,8 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
       s.force -= centre.sense * normal.cross(sums->direction);
       s.moment -= centre.sense * (sums->radial + (p - force_point).dot(sums->direction));
       s.power += sums->radial;
+    } else if (sliver_cell(vertices)) {
+      add_slip_by_rule<1>(s, cell, law, normal, force_point, centre);
     } else {
       add_slip_by_rule<4>(s, cell, law, normal, force_point, centre);
     }

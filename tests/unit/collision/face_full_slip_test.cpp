@@ -267,6 +267,43 @@ TEST(FaceFullSlip, ASliverCellAddsNothing) {
       1e-9 * scale * kSide);
 }
 
+// A cell barely closed (0.05 m by 0.01 m at x = 0.45 m, its closure rising from 1e-9 m to
+// 2e-9 m along it) whose closures carry the round-off of a difference of plane offsets there,
+// (X + g) - X, one of them one ulp of X = 5.6e-17 m off: the vertices then disagree with one
+// plane by 3e-8 of the largest closure, beyond the former 1e-9, though only by round-off. The
+// closed forms apply (linear_slip_sums' tolerance counts the round-off of the coordinates): full
+// slip about a centre inside the cell equals that of the same cell at the origin with exact
+// closures to 1e-6 of F_n and F_n L (the rule, with the centre inside, errs by some 1e-3; the
+// round-off itself moves the sums by about 1e-7).
+TEST(FaceFullSlip, ClosuresPlanarToRoundOffTakeTheClosedForms) {
+  const LinearNormal law{kStiffness};
+  const double x0 = 0.45, length = 0.05, width = 0.01;
+  const auto cell_at = [&](double origin, bool rounded) {
+    ClosureCell cell;
+    for (const auto& [x, y] : {std::pair{0.0, 0.0}, {length, 0.0}, {length, width}, {0.0, width}}) {
+      const double g = 1e-9 + 2e-8 * x + 3e-9 * y;
+      cell.vertices.push_back(Eigen::Vector3d(origin + x, y, 0.0));
+      cell.closures.push_back(rounded ? (origin + g) - origin : g);
+    }
+    if (rounded) cell.closures[2] = std::nextafter(origin + cell.closures[2], 1.0) - origin;
+    return std::vector<ClosureCell>{cell};
+  };
+  const std::vector<ClosureCell> far = cell_at(x0, true), exact = cell_at(0.0, false);
+  const auto& g = far[0].closures;
+  ASSERT_GT(std::abs(g[0] - g[1] + g[2] - g[3]), 1e-9 * g[2]);  // zero for a plane
+  const Eigen::Vector3d p(0.3 * length, 0.4 * width, 0.0), shift(x0, 0.0, 0.0);
+  const double normal_force = kStiffness * 1.5e-9 * length * width;
+  for (const double sense : {1.0, -1.0}) {
+    const FullSlip a = face_full_slip(far, law, kNormal, shift, centre_at(p + shift, sense));
+    const FullSlip b =
+        face_full_slip(exact, law, kNormal, Eigen::Vector3d::Zero(), centre_at(p, sense));
+    EXPECT_NEAR(a.force.x(), b.force.x(), 1e-6 * normal_force);
+    EXPECT_NEAR(a.force.y(), b.force.y(), 1e-6 * normal_force);
+    EXPECT_NEAR(a.moment, b.moment, 1e-6 * normal_force * length);
+    EXPECT_NEAR(a.power, b.power, 1e-6 * normal_force * length);
+  }
+}
+
 // The closed forms of ∫ r² dA and ∫ g r² dA (face_closure_polar_moments) on the square about
 // its corner, with the closure g = g0 + slope x: ∫ r² dA = 2 a⁴ / 3 and
 // ∫ g r² dA = g0 2 a⁴ / 3 + slope (a⁵ / 4 + a⁵ / 6) (∫ x³ + ∫ x y² over the square); round-off,
