@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <variant>
 
@@ -85,7 +86,7 @@ double inverse_radius_integral(double sa, double sb, double ra, double rb, doubl
 // Then V = s0 ∫ d/ρ + (∫ d dᵀ/ρ) q and W = s0 ∫ ρ + q · ∫ ρ d.
 // Empty for a cell too thin to carry a gradient (the rule then integrates it).
 std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
-                                         std::span<const double> stress,
+                                         std::span<const double> stress, double stress_per_closure,
                                          const Eigen::Vector3d& normal, const Eigen::Vector3d& p) {
   SlipSums out;
   const std::size_t m = v.size();
@@ -104,12 +105,13 @@ std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
   const Eigen::Vector3d e1 = v[best] - v[0], e2 = v[best + 1] - v[0];
   const Eigen::Vector3d nn = e1.cross(e2);
   // The gradient only from a triangle that is not a sliver (twice its area at least 1e-6 of the
-  // cell's diameter squared), and only if every vertex agrees with it (to 1e-9 of the largest
-  // stress): a sliver cell's closures, at nearly coincident vertices, need not be those of one
-  // plane, and a wrong gradient carried to a distant centre would ruin the sums.
-  double diameter2 = 0.0, largest = 0.0;
+  // cell's diameter squared), and only if every vertex agrees with it: a sliver cell's closures,
+  // at nearly coincident vertices, need not be those of one plane, and a wrong gradient carried
+  // to a distant centre would ruin the sums.
+  double diameter2 = 0.0, largest = 0.0, reach = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     largest = std::max(largest, std::abs(stress[i]));
+    reach = std::max(reach, v[i].cwiseAbs().maxCoeff());
     for (std::size_t j = i + 1; j < m; ++j)
       diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
   }
@@ -117,8 +119,18 @@ std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
   const Eigen::Vector3d q =
       ((stress[best] - stress[0]) * e2.cross(nn) + (stress[best + 1] - stress[0]) * nn.cross(e1)) /
       nn.squaredNorm();
+  // Agreement to 1e-9 of the largest stress, or to the round-off of the closures: each is a
+  // difference of plane offsets at the vertex's coordinates (face_contact), so it carries an
+  // absolute error of some ulps of the coordinates' magnitude X, whatever its own size; the
+  // stress δσ = σ' 16 ε X (σ' the stand-in's stress per closure). The gradient from the triangle
+  // then errs by up to 2 δσ D / |e1 × e2| (D the cell's diameter), which the prediction at a
+  // vertex up to D away multiplies by D; with the errors of the two stresses compared, 4 δσ
+  // (1 + D² / |e1 × e2|). Cells accepted this way integrate a plane within that of their
+  // closures, as those of a cell that passes at 1e-9 do.
+  const double round_off = 16.0 * std::numeric_limits<double>::epsilon() * reach *
+                           std::abs(stress_per_closure) * 4.0 * (1.0 + diameter2 / nn.norm());
   for (std::size_t i = 1; i < m; ++i) {
-    if (!(std::abs(stress[0] + q.dot(v[i] - v[0]) - stress[i]) <= 1e-9 * largest))
+    if (!(std::abs(stress[0] + q.dot(v[i] - v[0]) - stress[i]) <= 1e-9 * largest + round_off))
       return std::nullopt;
   }
   const double s0 = stress[0] + q.dot(p - v[0]);
@@ -153,6 +165,223 @@ std::optional<SlipSums> linear_slip_sums(std::span<const Eigen::Vector3d> v,
   return out;
 }
 
+// The exponential law's radial moments along a ray (exponential_slip_sums): for j = 0, 1, 2,
+// φ_j(x) = ∫_0^1 exp(-x (1 - t)) t^j dt and ψ_j(x) = φ_j(x) - 1 / (j + 1). For |x| < 1/2 the
+// series ψ_j = Σ_{k>=1} (-x)^k j! / (j + k + 1)! (12 terms: the first omitted is below 1e-14 of
+// ψ_j); otherwise φ_0 = -expm1(-x) / x and, by parts, φ_j = (1 - j φ_{j-1}) / x (each step
+// multiplies the round-off by at most j / |x| <= 4).
+struct RayMoments {
+  std::array<double, 3> phi, psi;
+};
+constexpr int kSeriesTerms = 12;
+constexpr std::array<std::array<double, kSeriesTerms + 1>, 3> series_coefficients() {
+  std::array<std::array<double, kSeriesTerms + 1>, 3> c{};
+  for (int j = 0; j < 3; ++j) {
+    double ck = j == 2 ? 2.0 : 1.0;  // j!
+    for (int i = 1; i <= j + 1; ++i) ck /= i;
+    for (int k = 1; k <= kSeriesTerms; ++k) {
+      ck /= (j + k + 1);
+      c[j][k] = ck;  // j! / (j + k + 1)!
+    }
+  }
+  return c;
+}
+constexpr auto kSeries = series_coefficients();
+
+// From j = `first` on (the series; the recurrence needs them all).
+RayMoments ray_moments(double x, int first) {
+  RayMoments r{};
+  if (std::abs(x) < 0.5) {
+    for (int j = first; j < 3; ++j) {
+      double sum = 0.0;
+      for (int k = kSeriesTerms; k >= 1; --k) sum = (sum + kSeries[j][k]) * -x;
+      r.psi[j] = sum;
+      r.phi[j] = 1.0 / (j + 1) + sum;
+    }
+    return r;
+  }
+  r.phi[0] = -std::expm1(-x) / x;
+  r.phi[1] = (1.0 - r.phi[0]) / x;
+  r.phi[2] = (1.0 - 2.0 * r.phi[1]) / x;
+  for (int j = 0; j < 3; ++j) r.psi[j] = r.phi[j] - 1.0 / (j + 1);
+  return r;
+}
+
+// Full slip of the exponential law σ = a (exp(b g) - 1) over a cell on which the closure g is
+// linear (and >= 0), in polar coordinates about p: along a ray the closure is linear in r, so
+// the radial integrals ∫ σ r^m dr (m = 1 for V, m = 2 for W) are closed forms (RayMoments), and
+// the angle is integrated by Gauss-Legendre along each edge (see face_twist.hpp).
+//
+// Ray: from r = R1 (closure g1) to the edge point at r = ρ (closure g_e), λ1 = R1 / ρ,
+// x = b (g_e - g1); with r = R1 + t (ρ - R1) and exp(b g(r)) = exp(b g_e) exp(-x (1 - t)),
+//   ∫_{R1}^{ρ} σ r^m dr = a ρ^{m+1} Σ_j C(m, j) λ1^{m-j} (1 - λ1)^{j+1}
+//                           [expm1(b g_e) φ_j(x) + ψ_j(x)]   (=: a ρ^{m+1} Ĩ_m),
+// written with expm1 and ψ so that a small b g (σ ≈ a b g) loses nothing to the "-1".
+// Edge: the points p + d(s), d = h ν + s t as in linear_slip_sums; the fan triangle's area
+// element is (h / ρ²) ds r dr, and with s = |h| sinh u (ds = ρ du, ρ = |h| cosh u) the angular
+// integrands h d Ĩ_1 (for V) and h ρ² Ĩ_2 (for W) are analytic in u: no 1/ρ singularity is left
+// for the quadrature. Per edge, Gauss-Legendre (6 points) on pieces of at most kPieceWidth in u
+// and kPieceExponent in b g_e (both bound the integrand's variation on a piece).
+// Where the rays start: p inside the cell (or on its boundary), R1 = 0 and g1 = g(p) from the
+// fan triangle containing p (an interpolation). p outside: the chord L between the two vertices
+// where the edges seen from p turn from near (h of the other sign than the cell's) to far
+// divides every ray's chord of the cell; each edge integrates between L and itself (the near
+// edges, with their negative h and λ1 > 1, the part of the cell between them and L), so g1 is
+// interpolated on L, every closure used is one of the cell's, and the parts of the signed fan
+// between p and L, which cancel, are never formed (the stress extrapolated there can exceed the
+// cell's by exp(b Δg)).
+constexpr double kPieceWidth = 2.0;
+constexpr double kPieceExponent = 1.0;
+constexpr double kPoleRatio = 0.5;
+// Gauss-Legendre on [-1, 1]: nodes and weights.
+struct GaussPoint {
+  double x, w;
+};
+constexpr std::array<GaussPoint, 4> kGauss{{{-0.8611363115940526, 0.3478548451374538},
+                                            {-0.3399810435848563, 0.6521451548625461},
+                                            {0.3399810435848563, 0.6521451548625461},
+                                            {0.8611363115940526, 0.3478548451374538}}};
+
+std::optional<SlipSums> exponential_slip_sums(std::span<const Eigen::Vector3d> v,
+                                              std::span<const double> g,
+                                              const ExponentialNormal& law,
+                                              const Eigen::Vector3d& normal,
+                                              const Eigen::Vector3d& p) {
+  const std::size_t m = v.size();
+  if (m < 3) return std::nullopt;
+  // Heights of the edges seen from p, the cell's sense, and which edges are far (p sees the
+  // cell's inside beyond them: +1), near (-1) or of no height (0).
+  SmallVector<double, 8> heights;
+  SmallVector<int, 8> side;
+  double signed_area = 0.0, diameter2 = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Eigen::Vector3d edge = v[(i + 1) % m] - v[i];
+    const double length = edge.norm();
+    const double h = length > 0.0 ? (v[i] - p).dot(edge.cross(normal)) / length : 0.0;
+    heights.push_back(h);
+    side.push_back(h > 1e-14 * length ? 1 : h < -1e-14 * length ? -1 : 0);
+    signed_area += 0.5 * h * length;
+    for (std::size_t j = i + 1; j < m; ++j)
+      diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
+  }
+  if (!(signed_area != 0.0)) return std::nullopt;
+  const double sense = signed_area < 0.0 ? -1.0 : 1.0;
+  const auto far = [&](std::size_t i) { return sense * side[i] > 0; };
+  const auto near = [&](std::size_t i) { return sense * side[i] < 0; };
+  bool outside = false;
+  for (std::size_t i = 0; i < m; ++i) outside = outside || near(i);
+  // The rays' start: the chord L (outside) or p with its closure (inside).
+  Eigen::Vector3d chord_start = Eigen::Vector3d::Zero(), chord = Eigen::Vector3d::Zero();
+  Eigen::Vector3d chord_normal = Eigen::Vector3d::Zero();
+  double chord_height = 0.0, g_lo = 0.0, g_hi = 0.0, g_p = 0.0;
+  if (outside) {
+    std::size_t lo = m, hi = m;
+    for (std::size_t i = 0; i < m; ++i) {
+      if (far(i) && !far((i + m - 1) % m)) lo = i;
+      if (far(i) && !far((i + 1) % m)) hi = (i + 1) % m;
+    }
+    if (lo == m || hi == m || lo == hi) return std::nullopt;
+    chord_start = v[lo];
+    chord = v[hi] - v[lo];
+    chord_normal = chord.cross(normal).normalized();
+    chord_height = (v[lo] - p).dot(chord_normal);
+    if (chord_height < 0.0) {
+      chord_normal = -chord_normal;
+      chord_height = -chord_height;
+    }
+    if (!(chord_height > 0.0)) return std::nullopt;
+    g_lo = g[lo];
+    g_hi = g[hi];
+  } else {
+    // g(p) by interpolation in the fan triangle (v0, v_k, v_k+1) that contains p best (the
+    // largest least barycentric coordinate); none of them a sliver.
+    double best = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k + 1 < m; ++k) {
+      const double area = (v[k] - v[0]).cross(v[k + 1] - v[0]).dot(normal);
+      if (!(std::abs(area) >= kSliver * diameter2)) continue;
+      const double l1 = (v[k] - p).cross(v[k + 1] - p).dot(normal) / area;
+      const double l2 = (v[k + 1] - p).cross(v[0] - p).dot(normal) / area;
+      const double l3 = 1.0 - l1 - l2;
+      const double least = std::min({l1, l2, l3});
+      if (least > best) {
+        best = least;
+        g_p = l1 * g[0] + l2 * g[k] + l3 * g[k + 1];
+      }
+    }
+    if (!(best > -1e-6)) return std::nullopt;
+  }
+  const double b = law.b;
+  SlipSums out;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double h = heights[i];
+    if (!far(i) && !near(i)) continue;  // a triangle of zero height adds nothing
+    const Eigen::Vector3d a = v[i] - p, edge = v[(i + 1) % m] - v[i];
+    const double length = edge.norm();
+    const Eigen::Vector3d t = edge / length, nu = t.cross(normal);
+    const double sa = a.dot(t), ah = std::abs(h);
+    const double ua = std::asinh(sa / ah), ub = std::asinh((sa + length) / ah);
+    const double ga = g[i], slope = (g[(i + 1) % m] - ga) / length;  // g_e = ga + slope (s - sa)
+    // The widest piece: b g_e changes along u at the rate b |slope| ρ, at most at the farther end.
+    const double rate = b * std::abs(slope) * std::max(a.norm(), (a + edge).norm());
+    const double widest = 1.0 / std::max(1.0 / kPieceWidth, rate / kPieceExponent);
+    // Outside, λ1 = h_L / (d · ν_L) has a pole at the ray parallel to L: the pieces shrink
+    // towards it (each at most kPoleRatio of its distance from it; at least 1/64 of the edge).
+    const double across_t = t.dot(chord_normal);
+    const bool has_pole = outside && across_t != 0.0;
+    const double pole = has_pole ? std::asinh(-h * nu.dot(chord_normal) / across_t / ah) : 0.0;
+    Eigen::Vector3d edge_v = Eigen::Vector3d::Zero();
+    double edge_w = 0.0;
+    for (double u0 = ua; u0 < ub;) {
+      double width = widest;
+      if (has_pole && pole <= u0) width = std::min(width, kPoleRatio * (u0 - pole));
+      if (has_pole && pole > u0)
+        width = std::min(width, kPoleRatio * (pole - u0) / (1.0 + kPoleRatio));
+      width = std::max(width, (ub - ua) / 64.0);
+      const double u1 = std::min(u0 + width, ub), half = 0.5 * (u1 - u0), mid = u0 + half;
+      u0 = u1;
+      Eigen::Vector3d piece_v = Eigen::Vector3d::Zero();
+      double piece_w = 0.0;
+      for (const GaussPoint& gp : kGauss) {
+        const double u = mid + gp.x * half, weight = gp.w;
+        const double eu = std::exp(u);
+        const double s = 0.5 * ah * (eu - 1.0 / eu), rho2 = h * h + s * s;  // |h| sinh u
+        const Eigen::Vector3d d = h * nu + s * t;
+        const double ge = ga + slope * (s - sa), bg = b * ge;
+        const double expm = bg > 0.5 ? std::exp(bg) - 1.0 : std::expm1(bg);
+        double lambda = 0.0, g1 = g_p;
+        if (outside) {
+          const double across = d.dot(chord_normal);
+          if (!(across > 0.0)) return std::nullopt;
+          lambda = chord_height / across;
+          const double along =
+              std::clamp((p + lambda * d - chord_start).dot(chord) / chord.squaredNorm(), 0.0, 1.0);
+          g1 = g_lo + along * (g_hi - g_lo);
+        }
+        const RayMoments rm = ray_moments(b * (ge - g1), outside ? 0 : 1);
+        const auto term = [&](int j) { return expm * rm.phi[j] + rm.psi[j]; };
+        double i1, i2;
+        if (lambda == 0.0) {
+          i1 = term(1);
+          i2 = term(2);
+        } else {
+          const double mu = 1.0 - lambda, t0 = term(0), t1 = term(1);
+          i1 = mu * (lambda * t0 + mu * t1);
+          i2 = mu * (lambda * lambda * t0 + mu * (2.0 * lambda * t1 + mu * term(2)));
+        }
+        piece_v += (weight * i1) * d;
+        piece_w += weight * rho2 * i2;
+      }
+      edge_v += half * piece_v;
+      edge_w += half * piece_w;
+    }
+    out.direction += h * edge_v;
+    out.radial += h * edge_w;
+  }
+  out.direction *= sense * law.a;
+  out.radial *= sense * law.a;
+  return out;
+}
+
 // Beyond this many cell diameters from the centre the slip direction is smooth over the cell
 // (analytic in a disc of that radius): the 7-point rule on the fan triangles alone is exact to
 // about (1e-3)⁶, while the closed forms' terms, of order D² a σ, cancel to the result's a² σ.
@@ -166,12 +395,13 @@ constexpr double kLinearStressTolerance = 1e-6;
 // exponential law by its chord in g between the cell's least and largest closures, whose error
 // is at most σ''(g_max) Δg² / 8 = b² (σ(g_max) + a) Δg² / 8 (a convex function above its chord).
 // False otherwise (the quadrature then integrates the cell).
-bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law,
-                        SmallVector<double, 8>& out) {
+bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law, SmallVector<double, 8>& out,
+                        double& stress_per_closure) {
   const auto& g = cell.closures;
   out.clear();
   if (const auto* linear = std::get_if<LinearNormal>(&law)) {
     for (const double gi : g) out.push_back(linear->stiffness * std::max(gi, 0.0));
+    stress_per_closure = linear->stiffness;
     return true;
   }
   const auto& e = std::get<ExponentialNormal>(law);
@@ -184,6 +414,7 @@ bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law,
   }
   const double slope = spread > 0.0 ? (s1 - s0) / spread : 0.0;
   for (const double gi : g) out.push_back(s0 + slope * (std::max(gi, 0.0) - g0));
+  stress_per_closure = e.b * (s1 + e.a);  // the law's largest slope on the cell
   return true;
 }
 
@@ -195,14 +426,60 @@ Eigen::Vector3d cell_normal(std::span<const Eigen::Vector3d> v) {
   return norm > 0.0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
 }
 
-// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its 16 similar sub-triangles.
+// Whether the cell is a sliver (linear_slip_sums: its largest fan triangle's twice area below
+// kSliver of its diameter squared). Its area is then below kSliver D² / 2, so the rule on its
+// fan triangles alone (7 points, no split) errs by a fraction of the cell's own sums, themselves
+// below kSliver D² σ_max (times |y - p| for W): under 1e-6 of those of a contact of that
+// diameter, within the closed forms' tolerance; 16 sub-triangles would buy nothing but cost.
+bool sliver_cell(std::span<const Eigen::Vector3d> v) {
+  double twice_area = 0.0, diameter2 = 0.0;
+  for (std::size_t k = 1; k + 1 < v.size(); ++k)
+    twice_area = std::max(twice_area, (v[k] - v[0]).cross(v[k + 1] - v[0]).norm());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = i + 1; j < v.size(); ++j)
+      diameter2 = std::max(diameter2, (v[j] - v[i]).squaredNorm());
+  }
+  return !(twice_area >= kSliver * diameter2);
+}
+
+// ∫ σ_n(g) |x - centre| dA over a triangle, by the rule on its kSplit² similar sub-triangles.
+template <int kSplit>
 double radial_stress_moment(const Node& a, const Node& b, const Node& c, const NormalLaw& law,
                             const Eigen::Vector3d& centre) {
   double sum = 0.0;
-  const double area = integrate_split(a, b, c, [&](const Node& y, double weight) {
+  const double area = integrate_split<kSplit>(a, b, c, [&](const Node& y, double weight) {
     sum += weight * normal_stress(law, y.g) * (y.x - centre).norm();
   });
   return sum * area;
+}
+
+// Adds to `s` full slip over the cell by the rule with kSplit² sub-triangles on each fan
+// triangle of the cell.
+template <int kSplit>
+void add_slip_by_rule(FullSlip& s, const ClosureCell& cell, const NormalLaw& law,
+                      const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                      const SlipCentre& centre) {
+  const Eigen::Vector3d& p = centre.point;
+  const auto& v = cell.vertices;
+  const auto& g = cell.closures;
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+    FullSlip t;  // this triangle's sums Σ w f
+    const double area = integrate_split<kSplit>(
+        {v[0], g[0]}, {v[k], g[k]}, {v[k + 1], g[k + 1]}, [&](const Node& y, double weight) {
+          const double sigma = normal_stress(law, y.g);
+          // w = s n × (y - p): the slip of B at y; the traction on B opposes it.
+          const Eigen::Vector3d w = centre.sense * normal.cross(y.x - p);
+          const double speed = w.norm();
+          if (!(sigma > 0.0) || !(speed > 0.0)) return;
+          const Eigen::Vector3d traction = (weight * sigma / speed) * w;
+          t.force -= traction;
+          t.moment -= (y.x - force_point).cross(traction).dot(normal);
+          t.power += weight * sigma * speed;
+        });
+    s.force += area * t.force;
+    s.moment += area * t.moment;
+    s.power += area * t.power;
+  }
 }
 
 }  // namespace
@@ -247,17 +524,26 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
     m.compressed_area += pm.area;
     m.polar_moment += pm.polar_moment;
     m.radial_moment += pm.radial_moment;
-    if (linear_cell_stress(cell, law, stress)) {
+    if (double slope = 0.0; linear_cell_stress(cell, law, stress, slope)) {
       const std::span<const double> s(stress.data(), stress.size());
-      if (const auto sums = linear_slip_sums(vertices, s, cell_normal(vertices), centre)) {
+      if (const auto sums = linear_slip_sums(vertices, s, slope, cell_normal(vertices), centre)) {
         m.radial_normal_moment += sums->radial;
         continue;
       }
     }
+    if (const auto* e = std::get_if<ExponentialNormal>(&law)) {
+      const std::span<const double> g(cell.closures.data(), cell.closures.size());
+      if (const auto sums = exponential_slip_sums(vertices, g, *e, cell_normal(vertices), centre)) {
+        m.radial_normal_moment += sums->radial;
+        continue;
+      }
+    }
+    const bool sliver = sliver_cell(vertices);
     for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
-      m.radial_normal_moment +=
-          radial_stress_moment({vertices[0], cell.closures[0]}, {vertices[k], cell.closures[k]},
-                               {vertices[k + 1], cell.closures[k + 1]}, law, centre);
+      const Node a{vertices[0], cell.closures[0]}, b{vertices[k], cell.closures[k]},
+          c{vertices[k + 1], cell.closures[k + 1]};
+      m.radial_normal_moment += sliver ? radial_stress_moment<1>(a, b, c, law, centre)
+                                       : radial_stress_moment<4>(a, b, c, law, centre);
     }
   }
   return m;
@@ -269,52 +555,47 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
   FullSlip s;
   SmallVector<double, 8> stress;
   const Eigen::Vector3d& p = centre.point;
-  // Sums by the rule with kSplit² sub-triangles on each fan triangle of the cell.
-  const auto by_rule = [&]<int kSplit>(const ClosureCell& cell) {
-    const auto& v = cell.vertices;
-    const auto& g = cell.closures;
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-      FullSlip t;  // this triangle's sums Σ w f
-      const double area = integrate_split<kSplit>(
-          {v[0], g[0]}, {v[k], g[k]}, {v[k + 1], g[k + 1]}, [&](const Node& y, double weight) {
-            const double sigma = normal_stress(law, y.g);
-            // w = s n × (y - p): the slip of B at y; the traction on B opposes it.
-            const Eigen::Vector3d w = centre.sense * normal.cross(y.x - p);
-            const double speed = w.norm();
-            if (!(sigma > 0.0) || !(speed > 0.0)) return;
-            const Eigen::Vector3d traction = (weight * sigma / speed) * w;
-            t.force -= traction;
-            t.moment -= (y.x - force_point).cross(traction).dot(normal);
-            t.power += weight * sigma * speed;
-          });
-      s.force += area * t.force;
-      s.moment += area * t.moment;
-      s.power += area * t.power;
-    }
-  };
   for (const ClosureCell& cell : cells) {
     const auto& v = cell.vertices;
     double size = 0.0;
     for (const auto& x : v) size = std::max(size, (x - v[0]).norm());
     if ((p - v[0]).norm() > kFarCentre * size) {
-      by_rule.template operator()<1>(cell);
+      add_slip_by_rule<1>(s, cell, law, normal, force_point, centre);
       continue;
     }
-    const std::optional<SlipSums> sums =
-        linear_cell_stress(cell, law, stress)
-            ? linear_slip_sums(std::span<const Eigen::Vector3d>(v.data(), v.size()),
-                               std::span<const double>(stress.data(), stress.size()), normal, p)
+    const std::span<const Eigen::Vector3d> vertices(v.data(), v.size());
+    double slope = 0.0;
+    std::optional<SlipSums> sums =
+        linear_cell_stress(cell, law, stress, slope)
+            ? linear_slip_sums(vertices, std::span<const double>(stress.data(), stress.size()),
+                               slope, normal, p)
             : std::nullopt;
+    if (const auto* e = std::get_if<ExponentialNormal>(&law); !sums && e) {
+      sums = exponential_slip_sums(
+          vertices, std::span<const double>(cell.closures.data(), cell.closures.size()), *e, normal,
+          p);
+    }
     if (sums) {
       // Traction -σ s n × d / |d| (d = y - p): F = -s n × V, power W, and the moment about x_p
       // -s ∫ σ (y - x_p) · d / |d| dA = -s (W + (p - x_p) · V).
       s.force -= centre.sense * normal.cross(sums->direction);
       s.moment -= centre.sense * (sums->radial + (p - force_point).dot(sums->direction));
       s.power += sums->radial;
+    } else if (sliver_cell(vertices)) {
+      add_slip_by_rule<1>(s, cell, law, normal, force_point, centre);
     } else {
-      by_rule.template operator()<4>(cell);
+      add_slip_by_rule<4>(s, cell, law, normal, force_point, centre);
     }
   }
+  return s;
+}
+
+FullSlip face_full_slip_by_rule(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                                const SlipCentre& centre) {
+  FullSlip s;
+  for (const ClosureCell& cell : cells)
+    add_slip_by_rule<4>(s, cell, law, normal, force_point, centre);
   return s;
 }
 

@@ -23,7 +23,9 @@ struct FaceTwistMoments {
 /// Moments about `centre` (a point of the contact plane, m) over the cells of linear closure.
 /// Area, J and ∫ r dA are exact (polygon_moments). ∫ σ_n r dA: on a cell where σ_n is linear
 /// (the linear law; the exponential law within 1e-6 of the cell's largest stress by its chord,
-/// face_full_slip) in closed form, exact to round-off; otherwise by the 7-point degree-5 rule of
+/// face_full_slip) in closed form, exact to round-off; the exponential law otherwise by its
+/// closed radial integrals and Gauss-Legendre in angle (face_full_slip); otherwise by the
+/// 7-point degree-5 rule of
 /// Dunavant (1985, Int. J. Numer. Meth. Eng. 21, Table I, n = 7) on each fan triangle split into
 /// 16 similar triangles: r is smooth on each piece except at the centre, where it is continuous,
 /// so the rule converges like h³ there (about 1e-4 relative on a square under uniform closure).
@@ -51,15 +53,29 @@ ClosurePolarMoments face_closure_polar_moments(std::span<const ClosureCell> cell
 ///   three square roots per edge (linear_slip_sums in the source), exact to round-off; the
 ///   stress gradient comes from the cell's largest fan triangle, so only on a cell that is not a
 ///   sliver (twice that triangle's area at least 1e-6 of the diameter squared) and whose every
-///   vertex agrees with it (1e-9 of the largest stress): a sliver's closures, at nearly
-///   coincident vertices, need not be those of one plane;
+///   vertex agrees with it (1e-9 of the largest stress, or the round-off of closures computed at
+///   the coordinates' magnitude): a sliver's closures, at nearly coincident vertices, need not
+///   be those of one plane;
+/// - the exponential law otherwise (a partly open joint): along a ray from p the closure is
+///   linear in r, so ∫ σ_n r^m dr (m = 1, 2) is a closed form in expm1 and φ_j(x) =
+///   ∫_0^1 exp(-x (1 - t)) t^j dt; the angle by 4-point Gauss-Legendre along each edge in
+///   u = asinh(s / |h|) (the integrands analytic in u), on pieces at most 2 in u and 1 in b g;
+///   a centre outside the cell starts its rays on the chord between the two tangent vertices,
+///   never extrapolating the closure; 2e-6 of F_n;
 /// - otherwise by the rule of face_twist_moments (7 points on each of 16 sub-triangles of every
 ///   fan triangle; the slip direction is smooth except at p, so about 1e-4 relative under uniform
-///   closure, 2e-3 with p inside the cell);
+///   closure, 2e-3 with p inside the cell); a sliver by the rule on its fan triangles alone (its
+///   area below 5e-7 D²: the error is below 1e-6 of a contact of that size);
 /// - a centre beyond 1e3 cell diameters: the 7-point rule on the fan triangles alone (the
 ///   direction is smooth over the cell; the closed forms' terms would cancel from D² a σ_n).
 FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law,
                         const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
                         const SlipCentre& centre);
+
+/// Full slip by the rule alone (7 points on each of 16 sub-triangles of every fan triangle of
+/// every cell): the reference face_full_slip falls back on, kept as its check.
+FullSlip face_full_slip_by_rule(std::span<const ClosureCell> cells, const NormalLaw& law,
+                                const Eigen::Vector3d& normal, const Eigen::Vector3d& force_point,
+                                const SlipCentre& centre);
 
 }  // namespace blockdem

@@ -4,6 +4,7 @@
 // test (exceeds_full_slip, certified_inside) of contact/shear_twist.hpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -130,12 +131,13 @@ TEST(FaceFullSlip, MatchesTheInstantaneousCentreOracle) {
 
 // The centres of the test above for a stress that is not uniform, against the oracle with the
 // same stress, each case of the integration: the linear law with the closure rising from 0 to
-// 2 kClosure across the square (a partly open joint; the closed forms, exact) and the
-// exponential law at a uniform closure (its chord is exact): within 2e-5 of σ A and σ A a (the
-// oracle's error, about 1e-5; 2e-6 measured); the exponential law with the closure rising across
-// the square (the quadrature): within 5e-3 (the rule's error with the centre inside a cell under a
-// stress rising from zero, 3.7e-3 measured). σ A is the oracle's normal force. The power is the
-// maximum-power identity (1e-12).
+// 2 kClosure across the square (a partly open joint; the closed forms, exact), the exponential
+// law at a uniform closure (its chord is exact), and the exponential law by its radial closed
+// forms and Gauss-Legendre in angle: the closure rising from 0 to 2 kClosure and to
+// 5 kClosure across the square (b Δg = 1.5 and 3.7, partly open) and a closed joint at
+// 10 kClosure whose closure varies by 1e-7 m (b g = 7.4: too curved for the chord): all within
+// 2e-5 of σ A and σ A a (the oracle's error, about 1e-5). σ A is the oracle's normal force. The
+// power is the maximum-power identity (1e-12).
 TEST(FaceFullSlip, MatchesTheOracleUnderAVaryingStress) {
   struct Case {
     NormalLaw law;
@@ -144,7 +146,9 @@ TEST(FaceFullSlip, MatchesTheOracleUnderAVaryingStress) {
   const ExponentialNormal exponential = ExponentialNormal::eq3();
   const std::vector<Case> cases{{LinearNormal{kStiffness}, 0.0, 2 * kClosure / kSide, 2e-5},
                                 {exponential, kClosure, 0.0, 2e-5},
-                                {exponential, 0.0, 2 * kClosure / kSide, 5e-3}};
+                                {exponential, 0.0, 2 * kClosure / kSide, 2e-5},
+                                {exponential, 0.0, 5 * kClosure / kSide, 2e-5},
+                                {exponential, 10 * kClosure, 1e-7 / kSide, 2e-5}};
   for (const Case& c : cases) {
     const FaceContactGeometry fc = square_cells(c.g0, c.slope);
     const auto stress = [&](const Eigen::Vector3d& y) {
@@ -167,6 +171,50 @@ TEST(FaceFullSlip, MatchesTheOracleUnderAVaryingStress) {
         const Eigen::Vector3d v = sense * kNormal.cross(kCentre - p);
         EXPECT_NEAR(-(s.force.dot(v) + s.moment * sense), s.power, 1e-12 * s.power);
       }
+    }
+  }
+}
+
+// The exponential law over a partly open pentagon (closure 0 at one vertex, b Δg = 5.6 across)
+// by its closed forms against the rule alone (face_full_slip_by_rule) with the centre outside
+// the cell, where the slip direction is smooth over it: near a vertex, beside another (the chord
+// between the tangent vertices splits the cell unevenly), beyond the largest closure (where the
+// stress extrapolated to the centre would be 8 times the cell's largest) and 30 diameters away;
+// both senses. Within 5e-6 of F_n and F_n D (D the diameter), the power within 5e-6 of itself:
+// the rule's error here (up to 3.1e-6 measured; the closed forms move by less than 1e-9 of F_n
+// when their Gauss-Legendre pieces are made five times narrower).
+TEST(FaceFullSlip, ExponentialClosedFormsMatchTheRuleOutsideTheCell) {
+  const ExponentialNormal law = ExponentialNormal::eq3();
+  ClosureCell cell;
+  const Eigen::Vector2d gradient(1.2e-3, 0.5e-3);  // closure gradient (-)
+  const std::array<Eigen::Vector2d, 5> corners{
+      {{0.0, 0.0}, {0.04, -0.005}, {0.05, 0.03}, {0.02, 0.045}, {-0.01, 0.025}}};
+  for (const Eigen::Vector2d& c : corners) {
+    cell.vertices.push_back(Eigen::Vector3d(c.x(), c.y(), 0.0));
+    cell.closures.push_back(gradient.dot(c - corners[4]) + 0.0125e-3);
+  }
+  double low = cell.closures[0];
+  for (const double g : cell.closures) low = std::min(low, g);
+  for (double& g : cell.closures) g -= low;  // 0 at the lowest vertex
+  const std::vector<ClosureCell> cells{cell};
+  const Eigen::Vector3d xp(0.02, 0.02, 0.0);
+  const double diameter = 0.055;
+  const double normal_force =
+      std::abs(face_full_slip_by_rule(cells, law, kNormal, xp,
+                                      centre_at(xp + Eigen::Vector3d(0, 1e4, 0), 1.0))
+                   .force.x());
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.045, -0.01, 0), Eigen::Vector3d(-0.02, -0.004, 0),
+        Eigen::Vector3d(0.07, 0.04, 0), Eigen::Vector3d(0.03, 0.06, 0),
+        Eigen::Vector3d(-1.0, 1.3, 0)}) {
+    for (const double sense : {1.0, -1.0}) {
+      const FullSlip s = face_full_slip(cells, law, kNormal, xp, centre_at(p, sense));
+      const FullSlip r = face_full_slip_by_rule(cells, law, kNormal, xp, centre_at(p, sense));
+      const double tol = 5e-6 * normal_force;
+      EXPECT_NEAR(s.force.x(), r.force.x(), tol) << p.transpose();
+      EXPECT_NEAR(s.force.y(), r.force.y(), tol) << p.transpose();
+      EXPECT_NEAR(s.moment, r.moment, tol * diameter) << p.transpose();
+      EXPECT_NEAR(s.power, r.power, 5e-6 * r.power) << p.transpose();
     }
   }
 }
@@ -217,6 +265,43 @@ TEST(FaceFullSlip, ASliverCellAddsNothing) {
   EXPECT_LT(
       std::abs(face_twist_moments(cells, law, Eigen::Vector3d(x0, 0.046, 0)).radial_normal_moment),
       1e-9 * scale * kSide);
+}
+
+// A cell barely closed (0.05 m by 0.01 m at x = 0.45 m, its closure rising from 1e-9 m to
+// 2e-9 m along it) whose closures carry the round-off of a difference of plane offsets there,
+// (X + g) - X, one of them one ulp of X = 5.6e-17 m off: the vertices then disagree with one
+// plane by 3e-8 of the largest closure, beyond the former 1e-9, though only by round-off. The
+// closed forms apply (linear_slip_sums' tolerance counts the round-off of the coordinates): full
+// slip about a centre inside the cell equals that of the same cell at the origin with exact
+// closures to 1e-6 of F_n and F_n L (the rule, with the centre inside, errs by some 1e-3; the
+// round-off itself moves the sums by about 1e-7).
+TEST(FaceFullSlip, ClosuresPlanarToRoundOffTakeTheClosedForms) {
+  const LinearNormal law{kStiffness};
+  const double x0 = 0.45, length = 0.05, width = 0.01;
+  const auto cell_at = [&](double origin, bool rounded) {
+    ClosureCell cell;
+    for (const auto& [x, y] : {std::pair{0.0, 0.0}, {length, 0.0}, {length, width}, {0.0, width}}) {
+      const double g = 1e-9 + 2e-8 * x + 3e-9 * y;
+      cell.vertices.push_back(Eigen::Vector3d(origin + x, y, 0.0));
+      cell.closures.push_back(rounded ? (origin + g) - origin : g);
+    }
+    if (rounded) cell.closures[2] = std::nextafter(origin + cell.closures[2], 1.0) - origin;
+    return std::vector<ClosureCell>{cell};
+  };
+  const std::vector<ClosureCell> far = cell_at(x0, true), exact = cell_at(0.0, false);
+  const auto& g = far[0].closures;
+  ASSERT_GT(std::abs(g[0] - g[1] + g[2] - g[3]), 1e-9 * g[2]);  // zero for a plane
+  const Eigen::Vector3d p(0.3 * length, 0.4 * width, 0.0), shift(x0, 0.0, 0.0);
+  const double normal_force = kStiffness * 1.5e-9 * length * width;
+  for (const double sense : {1.0, -1.0}) {
+    const FullSlip a = face_full_slip(far, law, kNormal, shift, centre_at(p + shift, sense));
+    const FullSlip b =
+        face_full_slip(exact, law, kNormal, Eigen::Vector3d::Zero(), centre_at(p, sense));
+    EXPECT_NEAR(a.force.x(), b.force.x(), 1e-6 * normal_force);
+    EXPECT_NEAR(a.force.y(), b.force.y(), 1e-6 * normal_force);
+    EXPECT_NEAR(a.moment, b.moment, 1e-6 * normal_force * length);
+    EXPECT_NEAR(a.power, b.power, 1e-6 * normal_force * length);
+  }
 }
 
 // The closed forms of ∫ r² dA and ∫ g r² dA (face_closure_polar_moments) on the square about
