@@ -46,7 +46,7 @@ void World::keep_open_bonds() {
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
-    if (s.active && !contact_of(s).geometry.touching) open.emplace_back(s.a, s.b);
+    if (s.active && !contact_of(s).touching) open.emplace_back(s.a, s.b);
   }
   if (open.empty()) return;
   std::vector<std::pair<int, int>> all;
@@ -343,6 +343,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
     return;
   }
   ct.geometry = ContactGeometryRecord(g);
+  ct.touching = g.touching;
   const JointLaw& law = laws_[ct.law];
   const Eigen::Vector3d& n = ct.geometry.normal;
 
