@@ -233,7 +233,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     control.write_checkpoint_files = mpi.rank() == 0;
     control.shared_out = opt.shared_out;
     sc.settings.distribution = mpi.distribution();
-    r = run_scenario(sc, opt.out, cb, control);
+    r = run_scenario(std::move(sc), opt.out, cb, control);
   } catch (const CheckpointError& e) {
     // Found by every process alike (the same bytes): one message.
     if (mpi.rank() == 0) std::cerr << "blockdem: error: " << e.what() << "\n";

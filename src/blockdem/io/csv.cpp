@@ -14,7 +14,9 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
   out_.precision(12);
   if (append) return;
   for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
-  out_ << "\n";
+  // In the file at once: a restart file taken before the first rows are flushed (a checkpoint
+  // in the first stage) carries the file as it is on disk, and its run appends to it.
+  out_ << "\n" << std::flush;
 }
 
 void CsvWriter::separator() {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <optional>
 
 #include "blockdem/io/atomic_file.hpp"
@@ -46,10 +47,11 @@ bool is_checkpoint(const std::string& rel) {
   return rel == kCheckpointName || rel == kPreviousCheckpointName;
 }
 
-}  // namespace
-
-RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, const RunCallbacks& cb,
-                       const RunControl& control) {
+// run_scenario with the world built by `build` (from the scenario's blocks, copied or moved),
+// which is called once, after the restart file has been read.
+RunResult run_built(const Scenario& sc, const std::function<World()>& build,
+                    const std::filesystem::path& out, const RunCallbacks& cb,
+                    const RunControl& control) {
   const auto wall0 = std::chrono::steady_clock::now();
   const VoussoirScene* voussoir = voussoir_scene(sc);
   const bool beam = voussoir != nullptr;
@@ -71,7 +73,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     }
     if (resume->level >= n) throw CheckpointError(control.restart, "saved stage index is corrupt");
   }
-  World world = build_world(sc);  // may throw ScenarioError: nothing written yet
+  World world = build();  // may throw ScenarioError: nothing written yet
   check_time_step(sc, world);
   const auto& distribution = world.settings().distribution;
   const int ranks = distribution ? distribution->size() : 1;
@@ -90,6 +92,9 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
     const Stage& at = sc.stages[resume->level];
     const bool search = at.find_collapse && at.kind == Stage::Kind::equilibrium;
     try {
+      // The world before the searching stage starts from the world as built (a copy: the
+      // scenario's blocks may have been moved into the world).
+      if (resume->in_stage && search) resumed_before.emplace(world);
       load_bytes(world, resume->world);
       if (resume->in_stage) {
         if (at.kind == Stage::Kind::strength_reduction || search != !resume->before.empty())
@@ -97,7 +102,7 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
         StateReader r(reinterpret_cast<const std::uint8_t*>(resume->monitor.data()),
                       resume->monitor.size());
         resumed_monitor.emplace(r);
-        if (search) load_bytes(resumed_before.emplace(build_world(sc)), resume->before);
+        if (search) load_bytes(*resumed_before, resume->before);
       }
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
@@ -508,6 +513,20 @@ RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, con
   summary["files"] = run_files_record(out, res.foreign_files);
   write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
   return res;
+}
+
+}  // namespace
+
+RunResult run_scenario(const Scenario& sc, const std::filesystem::path& out, const RunCallbacks& cb,
+                       const RunControl& control) {
+  return run_built(
+      sc, [&] { return build_world(sc); }, out, cb, control);
+}
+
+RunResult run_scenario(Scenario&& sc, const std::filesystem::path& out, const RunCallbacks& cb,
+                       const RunControl& control) {
+  return run_built(
+      sc, [&] { return build_world_taking_blocks(sc); }, out, cb, control);
 }
 
 }  // namespace blockdem

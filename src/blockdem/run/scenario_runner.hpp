@@ -86,5 +86,9 @@ struct RunControl {
 /// file (both before anything is written).
 RunResult run_scenario(const Scenario& scenario, const std::filesystem::path& out,
                        const RunCallbacks& callbacks = {}, const RunControl& control = {});
+/// The same, moving the scenario's blocks into the world instead of copying them (the scenario
+/// is left without blocks; nothing else in it changes): a large scene holds its blocks once.
+RunResult run_scenario(Scenario&& scenario, const std::filesystem::path& out,
+                       const RunCallbacks& callbacks = {}, const RunControl& control = {});
 
 }  // namespace blockdem

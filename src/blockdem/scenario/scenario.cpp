@@ -13,6 +13,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/uniform_grid.hpp"
@@ -588,12 +590,22 @@ void check_time_step(const Scenario& sc, const World& world) {
   }
 }
 
-World build_world(const Scenario& sc) {
+namespace {
+
+// build_world with the blocks given apart: copied from the scenario's (const), or moved.
+template <class Blocks>
+World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   World w(sc.settings);
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
-  w.reserve_blocks(sc.blocks.size());
-  for (const auto& b : sc.blocks) w.add_block(b);
+  w.reserve_blocks(scenario_blocks.size());
+  for (auto& b : scenario_blocks) {
+    if constexpr (std::is_const_v<Blocks>) {
+      w.add_block(b);
+    } else {
+      w.add_block(std::move(b));
+    }
+  }
   for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
     if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
   }
@@ -667,6 +679,18 @@ World build_world(const Scenario& sc) {
     throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
   }
   return w;
+}
+
+}  // namespace
+
+World build_world(const Scenario& sc) {
+  return build_world_from(sc, sc.blocks);
+}
+
+World build_world_taking_blocks(Scenario& sc) {
+  std::vector<Block> blocks = std::move(sc.blocks);
+  sc.blocks.clear();
+  return build_world_from(sc, blocks);
 }
 
 }  // namespace blockdem

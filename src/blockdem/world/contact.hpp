@@ -11,25 +11,18 @@
 namespace blockdem {
 
 /// The narrow phase's result as a contact keeps it between steps: ContactGeometry without the
-/// slice polygon, which only the narrow phase itself needs (it is ~400 bytes per contact).
+/// slice polygon, which only the narrow phase itself needs (it is ~400 bytes per contact), and
+/// without the overlap LP's ball, which the pair's warm start keeps. Whether the LP found
+/// r* > tolerance is Contact::touching (beside the other flags, without padding).
 struct ContactGeometryRecord {
-  bool touching = false;                              ///< the LP found r* > tolerance
   Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< contact point x_c (m)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit normal, from A to B (-)
-  double overlap = 0.0;           ///< δ: chord of A∩B through x_c along n (m)
-  double area = 0.0;              ///< A_c: area of the slice of A∩B at x_c (m^2)
-  double inscribed_radius = 0.0;  ///< r* of the overlap LP (m)
-  Eigen::Vector3d inscribed_centre = Eigen::Vector3d::Zero();  ///< x* of the overlap LP (m)
+  double overlap = 0.0;  ///< δ: chord of A∩B through x_c along n (m)
+  double area = 0.0;     ///< A_c: area of the slice of A∩B at x_c (m^2)
 
   ContactGeometryRecord() = default;
   explicit ContactGeometryRecord(const ContactGeometry& g)
-      : touching(g.touching),
-        point(g.point),
-        normal(g.normal),
-        overlap(g.overlap),
-        area(g.area),
-        inscribed_radius(g.inscribed_radius),
-        inscribed_centre(g.inscribed_centre) {}
+      : point(g.point), normal(g.normal), overlap(g.overlap), area(g.area) {}
 };
 
 struct Contact {
@@ -40,6 +33,7 @@ struct Contact {
   bool has_history = false;  ///< false on the step the contact forms
   bool integrated = false;   ///< the force came from face integration (else point contact)
   bool sliding = false;      ///< the shear law yielded this step
+  bool touching = false;     ///< this step's overlap LP found r* > tolerance (geometry is set)
 
   ContactGeometryRecord geometry;  ///< this step's geometry
   ShearState shear;                ///< shear history (force on b, plastic slip)

@@ -339,8 +339,17 @@ void World::save_checkpoint() {
   }
   // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
+  // Counted first and reserved exactly: near pairs with an intact bond count too, and a vector
+  // grown by doubling would briefly hold three times the records.
+  const auto kept = [&](const PairSlot& s) {
+    if (s.contact < 0) return s.bond != BondState::unbonded;
+    const Contact& c = contact_of(s);
+    return s.active || c.has_history || c.shear.bond != BondState::unbonded;
+  };
   checkpoint_.contacts.clear();
-  checkpoint_.contacts.reserve(active_count_);
+  checkpoint_.contacts.shrink_to_fit();
+  checkpoint_.contacts.reserve(
+      static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), kept)));
   for (const auto& s : slots_) {
     if (s.contact < 0) {
       // No contact state: only the bond of the pair.

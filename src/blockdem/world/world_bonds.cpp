@@ -69,7 +69,7 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
     forget_history(ct);
     return true;
   }
-  ct.geometry.touching = false;
+  ct.touching = false;
   ct.geometry.point = x;
   ct.geometry.normal = n;
   ct.geometry.overlap = closure;

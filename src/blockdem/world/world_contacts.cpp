@@ -46,7 +46,7 @@ void World::keep_open_bonds() {
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
-    if (s.active && !contact_of(s).geometry.touching) open.emplace_back(s.a, s.b);
+    if (s.active && !contact_of(s).touching) open.emplace_back(s.a, s.b);
   }
   if (open.empty()) return;
   std::vector<std::pair<int, int>> all;
@@ -171,47 +171,68 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
   const std::size_t runs = (n + pending_run_ - 1) / pending_run_;
   pending_.clear();
   pending_.resize(runs);
+  // No slot has a state yet (the first step, a restore): every state is new and goes to the
+  // end of the store, in slot order. The runs are then taken a few per thread at a time and
+  // each wave's lists are appended and freed before the next wave, so that the lists and the
+  // store are never both whole in memory. The store is reserved for every slot: only the pages
+  // the states fill are touched (a settled pile has ~1.5 slots per state).
+  const bool all_new = contacts_.empty();
+  const std::size_t wave =
+      all_new ? static_cast<std::size_t>(std::max(threads, 1)) * 4 : std::max<std::size_t>(runs, 1);
+  if (all_new) contacts_.reserve(n);
   // An exception inside the parallel loop is kept (the one of the first pair in order) and
   // returned after it, as a serial loop would.
   std::size_t failed = n;
   std::exception_ptr error;
-  const std::int64_t run_count = static_cast<std::int64_t>(runs);
+  for (std::size_t first = 0; first < runs; first += wave) {
+    const std::int64_t wave_end = static_cast<std::int64_t>(std::min(runs, first + wave));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && runs > 1)
-  for (std::int64_t r = 0; r < run_count; ++r) {
-    const std::size_t begin = static_cast<std::size_t>(r) * pending_run_;
-    const std::size_t end = std::min(n, begin + pending_run_);
-    std::vector<PendingContact> formed;
-    for (std::size_t i = begin; i < end; ++i) {
-      if (only != nullptr && (*only)[i] == 0) continue;
-      PairSlot& slot = slots_[i];
-      try {
-        if (slot.contact >= 0) {
-          Contact& ct = contact_of(slot);
-          evaluate_pair(slot, ct, dt, advance_shear);
-          slot.pending = false;
-          if (!slot.active) slot.bond = ct.shear.bond;  // the state goes at settle_contacts
-        } else {
-          Contact ct = fresh_contact(slot);
-          evaluate_pair(slot, ct, dt, advance_shear);
-          slot.pending = slot.active;
-          if (slot.active) {
-            formed.push_back({i, ct});
+    for (std::int64_t r = static_cast<std::int64_t>(first); r < wave_end; ++r) {
+      const std::size_t begin = static_cast<std::size_t>(r) * pending_run_;
+      const std::size_t end = std::min(n, begin + pending_run_);
+      std::vector<PendingContact> formed;
+      for (std::size_t i = begin; i < end; ++i) {
+        if (only != nullptr && (*only)[i] == 0) continue;
+        PairSlot& slot = slots_[i];
+        try {
+          if (slot.contact >= 0) {
+            Contact& ct = contact_of(slot);
+            evaluate_pair(slot, ct, dt, advance_shear);
+            slot.pending = false;
+            if (!slot.active) slot.bond = ct.shear.bond;  // the state goes at settle_contacts
           } else {
-            slot.bond = ct.shear.bond;
+            Contact ct = fresh_contact(slot);
+            evaluate_pair(slot, ct, dt, advance_shear);
+            slot.pending = slot.active;
+            if (slot.active) {
+              formed.push_back({i, ct});
+            } else {
+              slot.bond = ct.shear.bond;
+            }
+          }
+        } catch (...) {
+          slot.active = false;  // no state to read: the step fails
+          slot.pending = false;
+#pragma omp critical(blockdem_pair_error)
+          if (i < failed) {
+            failed = i;
+            error = std::current_exception();
           }
         }
-      } catch (...) {
-        slot.active = false;  // no state to read: the step fails
-        slot.pending = false;
-#pragma omp critical(blockdem_pair_error)
-        if (i < failed) {
-          failed = i;
-          error = std::current_exception();
-        }
       }
+      // Exactly the size needed.
+      pending_[static_cast<std::size_t>(r)].assign(formed.begin(), formed.end());
     }
-    // Exactly the size needed: at the first step every contact waits here.
-    pending_[static_cast<std::size_t>(r)].assign(formed.begin(), formed.end());
+    if (!all_new) continue;
+    for (std::size_t r = first; r < static_cast<std::size_t>(wave_end); ++r) {
+      for (const PendingContact& p : pending_[r]) {
+        PairSlot& s = slots_[p.slot];
+        s.pending = false;
+        s.contact = static_cast<std::int32_t>(contacts_.size());
+        contacts_.push_back(p.contact);
+      }
+      std::vector<PendingContact>().swap(pending_[r]);
+    }
   }
   return error;
 }
@@ -239,8 +260,8 @@ void World::settle_contacts() {
   const std::size_t total = kept + formed;
   if (total > contacts_.capacity()) contacts_.reserve(total + total / 8);
   if (kept == 0) {
-    // Every state is new (the first step): appended run by run, each run's list freed once
-    // taken, so that the store and the lists are never both whole in memory.
+    // Every state is new, though some slots had one before: appended run by run, each run's
+    // list freed once taken.
     contacts_.clear();
     for (std::vector<PendingContact>& list : pending_) {
       for (const PendingContact& p : list) {
@@ -322,6 +343,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
     return;
   }
   ct.geometry = ContactGeometryRecord(g);
+  ct.touching = g.touching;
   const JointLaw& law = laws_[ct.law];
   const Eigen::Vector3d& n = ct.geometry.normal;
 

@@ -97,13 +97,14 @@ void write_contact(StateWriter& w, const Contact& c, const Boon2012Cache& cache)
   w.pod(static_cast<std::int32_t>(c.b));
   w.pod(static_cast<std::int32_t>(c.law));
   const ContactGeometryRecord& g = c.geometry;
-  w.pod(static_cast<std::uint8_t>(g.touching));
+  w.pod(static_cast<std::uint8_t>(c.touching));
   w.vec(g.point);
   w.vec(g.normal);
   w.pod(g.overlap);
   w.pod(g.area);
-  w.pod(g.inscribed_radius);
-  w.vec(g.inscribed_centre);
+  // The overlap LP's ball, which a contact kept in this record's place: the warm start's.
+  w.pod(cache.ball.radius);
+  w.vec(cache.ball.center);
   write_shear(w, c.shear);
   w.pod(static_cast<std::uint8_t>(c.has_history));
   w.vec(c.previous_normal);
@@ -126,13 +127,13 @@ Contact read_contact(StateReader& r, Boon2012Cache& cache) {
   c.b = r.pod<std::int32_t>();
   c.law = r.pod<std::int32_t>();
   ContactGeometryRecord& g = c.geometry;
-  g.touching = r.pod<std::uint8_t>() != 0;
+  c.touching = r.pod<std::uint8_t>() != 0;
   g.point = r.vec();
   g.normal = r.vec();
   r.pod(g.overlap);
   r.pod(g.area);
-  r.pod(g.inscribed_radius);
-  g.inscribed_centre = r.vec();
+  r.pod<double>();  // the overlap LP's ball: the warm start's, read with it below
+  r.vec();
   c.shear = read_shear(r);
   c.has_history = r.pod<std::uint8_t>() != 0;
   c.previous_normal = r.vec();

@@ -3,6 +3,7 @@
 // checkpoints are refused (exit 2, nothing touched); the run record lists what the run wrote.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -54,6 +55,21 @@ TEST_F(Restart, ContinuingFromEitherKeptCheckpointWithOneOrTwoThreadsIsBitIdenti
       expect_same_outputs(reference_, out);
     }
   }
+}
+
+// A stop in the first stage, before any table has rows: the checkpoint carries the tables as
+// they are on disk, headers included. Reference: the uninterrupted run (bytes).
+TEST_F(Restart, ResumingAStopInTheFirstStageIsBitIdentical) {
+  const fs::path out = fresh_dir("restart_first_stage");
+  ::setenv("BLOCKDEM_TEST_KILL_RANK", "0:200:TERM", 1);
+  const CommandOutput stopped = run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                                        "' --quiet --no-figures --threads 1");
+  ::unsetenv("BLOCKDEM_TEST_KILL_RANK");
+  ASSERT_EQ(stopped.exit_code, 143) << stopped.err;
+  const CommandOutput r = run_cli("run '" + scenario_.string() + "' --out '" + out.string() +
+                                  "' --quiet --no-figures --threads 2 --resume");
+  EXPECT_EQ(r.exit_code, reference_exit_) << r.err;
+  expect_same_outputs(reference_, out);
 }
 
 TEST_F(Restart, CheckpointsDoNotChangeTheRun) {
