@@ -238,6 +238,10 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
     kept_planes.push_back(h);
   }
   if (faces.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
+  // A shape lives as long as its blocks: no spare capacity.
+  vertices.shrink_to_fit();
+  kept_planes.shrink_to_fit();
+  faces.shrink_to_fit();
 
   // Mass properties: fan each face into triangles and form tetrahedra with an interior point c.
   // For a tetrahedron p0..p3: V = (p1-p0)·((p2-p0)×(p3-p0))/6 and
