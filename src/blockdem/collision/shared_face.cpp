@@ -2,19 +2,21 @@
 // time) by B's planes other than the coincident one.
 #include "blockdem/collision/shared_face.hpp"
 
-#include <vector>
+#include <utility>
 
+#include "blockdem/collision/small_vector.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
 
 namespace blockdem {
 namespace {
 
-/// Keeps the part of the convex polygon `poly` with n·x <= d + tolerance.
-std::vector<Eigen::Vector3d> clip(const std::vector<Eigen::Vector3d>& poly, const Halfspace& h,
-                                  double tolerance) {
-  std::vector<Eigen::Vector3d> out;
+// A face polygon of the usual size stays on the stack.
+using Polygon = SmallVector<Eigen::Vector3d, 16>;
+
+/// Keeps the part of the convex polygon `poly` with n·x <= d + tolerance, into `out`.
+void clip(const Polygon& poly, const Halfspace& h, double tolerance, Polygon& out) {
+  out.clear();
   const std::size_t n = poly.size();
-  out.reserve(n + 1);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& p = poly[i];
     const Eigen::Vector3d& q = poly[(i + 1) % n];
@@ -24,7 +26,6 @@ std::vector<Eigen::Vector3d> clip(const std::vector<Eigen::Vector3d>& poly, cons
     if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
       out.push_back(p + (sp / (sp - sq)) * (q - p));
   }
-  return out;
 }
 
 }  // namespace
@@ -41,14 +42,18 @@ std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
       // Opposite normals and the same plane: n_b = -n_a and d_b = -d_a.
       if (pa.normal.dot(pb.normal) > -1.0 + 1e-9) continue;
       if (std::abs(pa.offset + pb.offset) > tolerance) continue;
-      std::vector<Eigen::Vector3d> poly;
-      poly.reserve(face.vertices.size());
-      for (int v : face.vertices) poly.push_back(vertices_a[static_cast<std::size_t>(v)]);
-      for (std::size_t k = 0; k < planes_b.size() && poly.size() >= 3; ++k) {
-        if (k != j) poly = clip(poly, planes_b[k], tolerance);
+      Polygon buffers[2];
+      Polygon* poly = &buffers[0];
+      Polygon* clipped = &buffers[1];
+      for (int v : face.vertices) poly->push_back(vertices_a[static_cast<std::size_t>(v)]);
+      for (std::size_t k = 0; k < planes_b.size() && poly->size() >= 3; ++k) {
+        if (k == j) continue;
+        clip(*poly, planes_b[k], tolerance, *clipped);
+        std::swap(poly, clipped);
       }
-      if (poly.size() < 3) continue;
-      const PolygonMoments m = polygon_moments_about_centroid(poly);
+      if (poly->size() < 3) continue;
+      const PolygonMoments m =
+          polygon_area_centroid(std::span<const Eigen::Vector3d>(poly->data(), poly->size()));
       if (!(m.area > tolerance * tolerance) || (best && m.area <= best->area)) continue;
       best = SharedFace{face.plane, static_cast<int>(j), pa.normal, m.centroid, m.area};
     }

@@ -18,10 +18,10 @@ double integral_sec4(double t) {
   return t + t * t * t / 3.0;
 }
 
-}  // namespace
-
-PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
-                               const Eigen::Vector3d& pole) {
+// The moments about `pole`; with `second` false only the area and the centroid (the same
+// arithmetic for those two, so the same bits).
+PolygonMoments moments(std::span<const Eigen::Vector3d> vertices, const Eigen::Vector3d& pole,
+                       bool second) {
   PolygonMoments m;
   const std::size_t n = vertices.size();
   if (n < 3) return m;
@@ -41,6 +41,7 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
     const double area = 0.5 * normal.dot(p.cross(q));
     m.area += area;
     first += area * (p + q) / 3.0;
+    if (!second) continue;
     const Eigen::Vector3d edge = q - p;
     const double length = edge.norm();
     // A sliver (pole on or within round-off of the edge's line) adds at most |area| r_max², below
@@ -65,11 +66,27 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
   return m;
 }
 
-PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> vertices) {
+// Moments about the centroid found in a first pass about the first vertex.
+PolygonMoments about_centroid(std::span<const Eigen::Vector3d> vertices, bool second) {
   const PolygonMoments about_first =
-      vertices.size() < 3 ? PolygonMoments{} : polygon_moments(vertices, vertices[0]);
+      vertices.size() < 3 ? PolygonMoments{} : moments(vertices, vertices[0], false);
   if (about_first.area == 0.0) return about_first;
-  return polygon_moments(vertices, about_first.centroid);
+  return moments(vertices, about_first.centroid, second);
+}
+
+}  // namespace
+
+PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
+                               const Eigen::Vector3d& pole) {
+  return moments(vertices, pole, true);
+}
+
+PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> vertices) {
+  return about_centroid(vertices, true);
+}
+
+PolygonMoments polygon_area_centroid(std::span<const Eigen::Vector3d> vertices) {
+  return about_centroid(vertices, false);
 }
 
 }  // namespace blockdem

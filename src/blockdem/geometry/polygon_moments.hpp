@@ -27,4 +27,8 @@ PolygonMoments polygon_moments(std::span<const Eigen::Vector3d> vertices,
 /// Moments about the polygon's own centroid.
 PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> vertices);
 
+/// The area and centroid of polygon_moments_about_centroid (the same values, bit for bit),
+/// without the polar and radial moments (left zero): no transcendental function per edge.
+PolygonMoments polygon_area_centroid(std::span<const Eigen::Vector3d> vertices);
+
 }  // namespace blockdem

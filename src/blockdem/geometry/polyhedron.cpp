@@ -69,7 +69,13 @@ double polygon_area(std::span<const Eigen::Vector3d> points, const Eigen::Vector
 
 Polyhedron Polyhedron::from_planes(std::span<const Halfspace> planes) {
   Polyhedron p;
-  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()));
+  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()), false);
+  return p;
+}
+
+Polyhedron Polyhedron::from_closed_planes(std::span<const Halfspace> planes) {
+  Polyhedron p;
+  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()), true);
   return p;
 }
 
@@ -157,7 +163,8 @@ Polyhedron::Polyhedron() {
   data_ = empty;
 }
 
-std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace> planes) {
+std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace> planes,
+                                                          bool known_closed) {
   auto data = std::make_shared<Data>();
   auto& vertices = data->vertices;
   auto& kept_planes = data->planes;
@@ -182,21 +189,23 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
     throw GeometryError("all planes pass through the origin: the shape is unbounded or empty");
 
   // Unbounded sets: close them with a box far outside and see whether the box is touched.
-  const double far = 1e6 * scale;
-  std::vector<Halfspace> closed = planes;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (double sign : {1.0, -1.0})
-      closed.push_back(Halfspace{sign * Eigen::Vector3d::Unit(axis), far});
-  }
-  const double tol = kRelTol * scale;
-  const auto closed_vertices = enumerate_vertices(closed, kRelTol * far);
-  if (closed_vertices.empty())
-    throw GeometryError("the planes enclose no point: the shape is empty");
-  for (const auto& v : closed_vertices) {
-    if (v.cwiseAbs().maxCoeff() > 0.5 * far) {
-      throw GeometryError("the planes do not enclose a bounded region: the shape is unbounded");
+  if (!known_closed) {
+    const double far = 1e6 * scale;
+    std::vector<Halfspace> closed = planes;
+    for (int axis = 0; axis < 3; ++axis) {
+      for (double sign : {1.0, -1.0})
+        closed.push_back(Halfspace{sign * Eigen::Vector3d::Unit(axis), far});
+    }
+    const auto closed_vertices = enumerate_vertices(closed, kRelTol * far);
+    if (closed_vertices.empty())
+      throw GeometryError("the planes enclose no point: the shape is empty");
+    for (const auto& v : closed_vertices) {
+      if (v.cwiseAbs().maxCoeff() > 0.5 * far) {
+        throw GeometryError("the planes do not enclose a bounded region: the shape is unbounded");
+      }
     }
   }
+  const double tol = kRelTol * scale;
 
   vertices = enumerate_vertices(planes, tol);
   if (vertices.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
@@ -229,6 +238,10 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
     kept_planes.push_back(h);
   }
   if (faces.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
+  // A shape lives as long as its blocks: no spare capacity.
+  vertices.shrink_to_fit();
+  kept_planes.shrink_to_fit();
+  faces.shrink_to_fit();
 
   // Mass properties: fan each face into triangles and form tetrahedra with an interior point c.
   // For a tetrahedron p0..p3: V = (p1-p0)·((p2-p0)×(p3-p0))/6 and
@@ -283,7 +296,8 @@ Polyhedron Polyhedron::transformed(const Eigen::Matrix3d& rotation,
     m.offset = h.offset + m.normal.dot(translation);
     moved.push_back(m);
   }
-  return from_planes(moved);
+  // A rigid motion of a closed solid is closed.
+  return from_closed_planes(moved);
 }
 
 }  // namespace blockdem

@@ -27,6 +27,11 @@ class Polyhedron {
  public:
   /// From planes (unit outward normals; redundant planes are dropped).
   static Polyhedron from_planes(std::span<const Halfspace> planes);
+  /// As from_planes, for planes known to enclose a bounded solid (a rigid motion of a
+  /// polyhedron, the faces of a convex cell cut from one): the same shape, bit for bit, without
+  /// the test for an empty or unbounded set (a vertex enumeration with six far planes added,
+  /// most of the cost of from_planes). The checks for a degenerate solid stay.
+  static Polyhedron from_closed_planes(std::span<const Halfspace> planes);
   /// Axis-aligned box centred at the origin with the given full side lengths (m).
   static Polyhedron box(const Eigen::Vector3d& size);
   /// Convex hull of points; every point must be a vertex of (or lie on) the hull, otherwise the
@@ -72,7 +77,7 @@ class Polyhedron {
     Eigen::Matrix3d unit_inertia = Eigen::Matrix3d::Zero();
     double bounding_radius = 0.0;
   };
-  static std::shared_ptr<const Data> build(std::vector<Halfspace> planes);
+  static std::shared_ptr<const Data> build(std::vector<Halfspace> planes, bool known_closed);
 
   std::shared_ptr<const Data> data_;  ///< never null; shared by copies
 };

@@ -210,6 +210,12 @@ std::optional<CellParts> ConvexCell::split(const Halfspace& plane, const FaceTag
   return p;
 }
 
+void ConvexCell::shrink_to_fit() {
+  vertices_.shrink_to_fit();
+  faces_.shrink_to_fit();
+  for (auto& f : faces_) f.vertices.shrink_to_fit();
+}
+
 void ConvexCell::update_mass_properties() {
   // Signed tetrahedra from a reference vertex r over a fan of every face:
   // V = Σ (p0-r)·((p1-r)×(p2-r))/6, centroid = Σ V_t (r+p0+p1+p2)/4 / V.

@@ -51,6 +51,9 @@ class ConvexCell {
   /// `snap` (m) to the plane count as on it, so no face edge shorter than snap is made there.
   std::optional<CellParts> split(const Halfspace& plane, const FaceTag& tag, double snap) const;
 
+  /// Frees the spare capacity of the vertex and face lists (a cell kept after slicing).
+  void shrink_to_fit();
+
  private:
   void update_mass_properties();
 

@@ -262,8 +262,9 @@ RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
     const ConvexCell& c = cells[i];
     std::vector<Halfspace> planes;
     for (const auto& f : c.faces()) planes.push_back(f.plane);
-    Block b = make_block(Polyhedron::from_planes(planes), m.density, RockMassModel::block_name(i),
-                         m.group);
+    // A cell cut from the (closed) region is closed.
+    Block b = make_block(Polyhedron::from_closed_planes(planes), m.density,
+                         RockMassModel::block_name(i), m.group);
     // Each world plane of the block is one of the cell's faces: match by normal and offset.
     std::vector<int> laws(b.world_planes.size(), -1);
     const double scale = 1e-9 * (1.0 + b.position.norm() + b.shape.bounding_radius());

@@ -333,6 +333,8 @@ RockMass slice_rock_mass(const RockMassSpec& spec) {
       if (ext) t.bonded = overlap(c.face_polygon(f), *ext, tol) != Overlap::inside;
     }
   }
+  // The cells are kept with the rock mass: no spare capacity from the cuts' push_backs.
+  for (auto& c : cells) c.shrink_to_fit();
   rm.blocks = std::move(cells);
   for (std::size_t e = 0; e < spec.excavations.size(); ++e) {
     if (rm.blocks_inside(spec, static_cast<int>(e)).empty())

@@ -2,6 +2,7 @@
 #include "blockdem/rockmass/scene.hpp"
 
 #include <stdexcept>
+#include <unordered_set>
 
 namespace blockdem {
 
@@ -27,10 +28,15 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   RockMassBlocks made = make_rock_mass_blocks(scene->model);
   // Face laws run parallel to the scenario's blocks; blocks given by hand have none.
   sc.face_laws.resize(sc.blocks.size());
+  // Rock-mass names are distinct (rock_1, rock_2, ...): only the blocks given by hand can clash.
+  std::unordered_set<std::string> hand_names;
+  for (const auto& b : sc.blocks) hand_names.insert(b.name);
+  sc.blocks.reserve(sc.blocks.size() + made.blocks.size());
+  sc.face_laws.reserve(sc.blocks.size() + made.blocks.size());
   for (std::size_t i = 0; i < made.blocks.size(); ++i) {
-    for (const auto& b : sc.blocks) {
-      if (b.name == made.blocks[i].name)
-        root.fail("blocks", "block \"" + b.name + "\" clashes with a rock-mass block name");
+    if (hand_names.count(made.blocks[i].name) != 0) {
+      root.fail("blocks",
+                "block \"" + made.blocks[i].name + "\" clashes with a rock-mass block name");
     }
     sc.blocks.push_back(std::move(made.blocks[i]));
     sc.face_laws.push_back(std::move(made.face_laws[i]));

@@ -19,6 +19,14 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
   if (!ct.has_history) {
     // A bond starts only where the blocks share a face at the start of the run.
     if (step_count_ != 0 || !advance_shear) return false;
+    // No law the face could take can break: no bond, and no shared face to look for.
+    const auto breakable = [&](int l) {
+      return l >= 0 && strength_of(laws_[static_cast<std::size_t>(l)].shear).can_break();
+    };
+    if (!breakable(slot.group_law) &&
+        std::none_of(face_laws(ct.a).begin(), face_laws(ct.a).end(), breakable) &&
+        std::none_of(face_laws(ct.b).begin(), face_laws(ct.b).end(), breakable))
+      return false;
     std::vector<Eigen::Vector3d> vertices;
     vertices.reserve(a.shape.vertices().size());
     for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace blockdem {
@@ -98,6 +99,33 @@ TEST(PolygonMoments, ThinRectangleFarFromTheOrigin) {
   const PolygonMoments m = polygon_moments_about_centroid(v);
   EXPECT_NEAR(m.area / (a * b), 1.0, 1e-6);
   EXPECT_NEAR(m.polar_moment / (a * b * (a * a + b * b) / 12.0), 1.0, 1e-6);
+}
+
+TEST(PolygonMoments, AreaAndCentroidAloneAreTheSameBits) {
+  // Oracle: polygon_moments_about_centroid. Random convex polygons (points on an ellipse, sorted
+  // by angle), turned and moved far from the origin, from triangles to 12-gons, and a sliver.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 3 + trial % 10;
+    std::vector<double> angles;
+    for (int i = 0; i < n; ++i) angles.push_back(2.0 * std::acos(-1.0) * u(rng));
+    std::sort(angles.begin(), angles.end());
+    const double a = 0.01 + u(rng), b = trial % 50 == 0 ? 1e-9 : 0.01 + u(rng);
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(6.0 * u(rng), Eigen::Vector3d(u(rng), u(rng), 1.0).normalized())
+            .toRotationMatrix();
+    const Eigen::Vector3d t(100.0 * u(rng), 100.0 * u(rng), 10.0 * u(rng));
+    std::vector<Eigen::Vector3d> poly;
+    for (double th : angles)
+      poly.push_back(t + r * Eigen::Vector3d(a * std::cos(th), b * std::sin(th), 0.0));
+    const PolygonMoments full = polygon_moments_about_centroid(poly);
+    const PolygonMoments lean = polygon_area_centroid(poly);
+    EXPECT_EQ(lean.area, full.area);
+    EXPECT_EQ(lean.centroid, full.centroid);
+    EXPECT_EQ(lean.polar_moment, 0.0);
+    EXPECT_EQ(lean.radial_moment, 0.0);
+  }
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "blockdem/geometry/geometry_error.hpp"
 
@@ -70,6 +72,62 @@ TEST(Polyhedron, RotatedTranslatedBoxKeepsMassProperties) {
   EXPECT_NEAR(q.volume(), p.volume(), 1e-14);
   EXPECT_LT((q.centroid() - t).norm(), 1e-13);
   EXPECT_LT((q.unit_inertia() - r * p.unit_inertia() * r.transpose()).norm(), 1e-14);
+}
+
+// Every stored value of two shapes, compared bit for bit.
+void expect_same_bits(const Polyhedron& a, const Polyhedron& b) {
+  ASSERT_EQ(a.planes().size(), b.planes().size());
+  for (std::size_t i = 0; i < a.planes().size(); ++i) {
+    EXPECT_EQ(a.planes()[i].normal, b.planes()[i].normal);
+    EXPECT_EQ(a.planes()[i].offset, b.planes()[i].offset);
+  }
+  EXPECT_EQ(a.vertices(), b.vertices());
+  ASSERT_EQ(a.faces().size(), b.faces().size());
+  for (std::size_t f = 0; f < a.faces().size(); ++f) {
+    EXPECT_EQ(a.faces()[f].plane, b.faces()[f].plane);
+    EXPECT_EQ(a.faces()[f].vertices, b.faces()[f].vertices);
+  }
+  EXPECT_EQ(a.volume(), b.volume());
+  EXPECT_EQ(a.centroid(), b.centroid());
+  EXPECT_EQ(a.unit_inertia(), b.unit_inertia());
+  EXPECT_EQ(a.bounding_radius(), b.bounding_radius());
+}
+
+TEST(Polyhedron, ClosedPlanesGiveTheSameShapeAsTheCheckedPath) {
+  // Oracle: from_planes, which also tests for an empty or unbounded set. Random hulls of 5 to 20
+  // planes (redundant and near-coplanar planes included), placed off the origin.
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int m = 5 + trial % 16;
+    const Eigen::Vector3d centre(3.0 * u(rng), 3.0 * u(rng), 3.0 * u(rng));
+    std::vector<Halfspace> planes;
+    // A box first, so that every set is closed; then random cuts through points near the box.
+    for (int axis = 0; axis < 3; ++axis) {
+      for (double sign : {1.0, -1.0}) {
+        const Eigen::Vector3d n = sign * Eigen::Vector3d::Unit(axis);
+        planes.push_back(Halfspace{n, n.dot(centre) + 0.5 + 0.2 * u(rng)});
+      }
+    }
+    for (int k = 6; k < m; ++k) {
+      const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+      planes.push_back(Halfspace{n, n.dot(centre) + 0.3 + 0.3 * u(rng)});
+    }
+    const Polyhedron checked = Polyhedron::from_planes(planes);
+    expect_same_bits(Polyhedron::from_closed_planes(planes), checked);
+    // A rigid motion (which takes the unchecked path) against the checked path on its planes.
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(3.0 * u(rng), Eigen::Vector3d(u(rng), u(rng), 1.0).normalized())
+            .toRotationMatrix();
+    const Eigen::Vector3d t(u(rng), u(rng), u(rng));
+    const Polyhedron moved = checked.transformed(r, t);
+    std::vector<Halfspace> moved_planes;
+    for (const auto& h : checked.planes()) {
+      const Eigen::Vector3d n = (r * h.normal).normalized();
+      moved_planes.push_back(Halfspace{n, h.offset + n.dot(t)});
+    }
+    expect_same_bits(moved, Polyhedron::from_planes(moved_planes));
+  }
 }
 
 TEST(Polyhedron, RedundantPlanesAreDropped) {

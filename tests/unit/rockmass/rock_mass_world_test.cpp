@@ -128,6 +128,12 @@ TEST(RockMassWorld, BadInputNamesFileAndKey) {
                         "boundaries[1].faces");
   expect_scenario_error(replaced("dip_direction_deg = 90", "dip_direction_deg = 90\ncolour = 1"),
                         "joint_sets[1].colour");
+  // A block given by hand may not take a rock-mass block's name (rock_1, rock_2, ...).
+  expect_scenario_error(replaced("[[boundaries]]",
+                                 "[[materials]]\nname = \"granite\"\ndensity = 2700.0\n"
+                                 "[[blocks]]\nname = \"rock_2\"\nmaterial = \"granite\"\n"
+                                 "size = [0.1, 0.1, 0.1]\nposition = [10, 10, 10]\n[[boundaries]]"),
+                        "blocks");
 }
 
 TEST(RockMassWorld, ExcavationStageRemovesTheBlocksInside) {
