@@ -216,8 +216,7 @@ ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t plane
   fill_slacks(columns, out.point, at_point.slack);
   const double r = settings.rounding_distance;
   const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a, r);
-  const Eigen::Vector3d gb =
-      gradient_of(columns, at_point.slack, planes_a, columns.size(), r);
+  const Eigen::Vector3d gb = gradient_of(columns, at_point.slack, planes_a, columns.size(), r);
   out.normal = (ga - gb).normalized();
 
   // 4. Overlap distance: the chord of A∩B through x_c along n.
