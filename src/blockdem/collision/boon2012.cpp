@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "blockdem/collision/analytic_centre.hpp"
@@ -165,6 +166,27 @@ double chord_length(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
 
 namespace {
 
+// Runs f on one span holding the planes of A followed by those of B: on the stack (left
+// uninitialised until the copy) for up to kStack planes, on the heap beyond.
+template <typename F>
+auto with_both(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b, F&& f) {
+  constexpr std::size_t kStack = 96;
+  union Storage {
+    Storage() {}
+    Halfspace planes[kStack];
+  } storage;
+  std::vector<Halfspace> heap_buffer;
+  const std::size_t total = planes_a.size() + planes_b.size();
+  Halfspace* all = storage.planes;
+  if (total > kStack) {
+    heap_buffer.resize(total);
+    all = heap_buffer.data();
+  }
+  std::uninitialized_copy(planes_a.begin(), planes_a.end(), all);
+  std::uninitialized_copy(planes_b.begin(), planes_b.end(), all + planes_a.size());
+  return f(std::span<const Halfspace>(all, total));
+}
+
 // Clears the cache if it was filled for other plane lists.
 void match_cache(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b,
                  Boon2012Cache* cache) {
@@ -177,11 +199,11 @@ void match_cache(std::span<const Halfspace> planes_a, std::span<const Halfspace>
   cache->planes_b = size_b;
 }
 
-// Steps 2-5 given the LP solution for `columns`, the planes of A (the first `planes_a`) then
-// those of B.
-ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t planes_a,
-                                  const InscribedBall& ball, double extent,
-                                  const Boon2012Settings& settings, Boon2012Cache* cache) {
+// Steps 2-5 given the LP solution for the planes of A then those of B.
+ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
+                                  std::span<const Halfspace> planes_b, const InscribedBall& ball,
+                                  double extent, const Boon2012Settings& settings,
+                                  Boon2012Cache* cache) {
   ContactGeometry out;
   out.inscribed_radius = ball.radius;
   out.inscribed_centre = ball.center;
@@ -191,6 +213,7 @@ ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t plane
   // 2. Contact point: analytic centre of all planes, from the previous step's point when it is
   //    still strictly inside, otherwise from the ball's centre or, when that is far from
   //    central, from a central point of a face contact's overlap.
+  const PlaneColumns columns(planes_a, planes_b);
   SliceWarmStart local_edges;
   SliceWarmStart& edges = cache != nullptr ? cache->slice : local_edges;
   AnalyticCentreResult centre;
@@ -201,7 +224,7 @@ ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t plane
     centre = analytic_centre(columns, ball.center, 1);
     Eigen::Vector3d start = centre.point;
     if (!(centre.decrement < 0.25)) {
-      face_contact_start(columns, planes_a, ball, extent, start, edges);
+      face_contact_start(columns, planes_a.size(), ball, extent, start, edges);
     }
     if (!centre.converged) centre = analytic_centre(columns, start);
   }
@@ -215,8 +238,9 @@ ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t plane
   PointColumns at_point(columns.size());
   fill_slacks(columns, out.point, at_point.slack);
   const double r = settings.rounding_distance;
-  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a, r);
-  const Eigen::Vector3d gb = gradient_of(columns, at_point.slack, planes_a, columns.size(), r);
+  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a.size(), r);
+  const Eigen::Vector3d gb =
+      gradient_of(columns, at_point.slack, planes_a.size(), columns.size(), r);
   out.normal = (ga - gb).normalized();
 
   // 4. Overlap distance: the chord of A∩B through x_c along n.
@@ -238,17 +262,16 @@ ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
                                  const Boon2012Settings& settings, Boon2012Cache* cache) {
   // 1. Overlap test: the largest ball inside A∩B (4-variable LP), warm-started from this pair's
   //    solution at the previous step when the cache has one for the same plane lists.
-  //    The planes of A then those of B as columns, shared by all the steps.
   match_cache(planes_a, planes_b, cache);
-  const PlaneColumns columns(planes_a, planes_b);
   const bool warm = cache != nullptr && cache->has_ball;
-  const InscribedBall ball =
-      warm ? largest_inscribed_ball(columns, cache->ball) : largest_inscribed_ball(columns);
+  const InscribedBall ball = with_both(planes_a, planes_b, [&](std::span<const Halfspace> both) {
+    return warm ? largest_inscribed_ball(both, cache->ball) : largest_inscribed_ball(both);
+  });
   if (cache != nullptr) {
     cache->ball = ball;
     cache->has_ball = true;
   }
-  return contact_from_ball(columns, planes_a.size(), ball, extent, settings, cache);
+  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
 }
 
 ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
@@ -256,8 +279,7 @@ ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
                                            const InscribedBall& ball, double extent,
                                            const Boon2012Settings& settings, Boon2012Cache* cache) {
   match_cache(planes_a, planes_b, cache);
-  const PlaneColumns columns(planes_a, planes_b);
-  return contact_from_ball(columns, planes_a.size(), ball, extent, settings, cache);
+  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
 }
 
 }  // namespace blockdem

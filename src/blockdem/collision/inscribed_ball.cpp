@@ -40,8 +40,6 @@
 
 #include <Eigen/LU>
 
-#include "blockdem/collision/plane_columns.hpp"
-
 namespace blockdem {
 namespace {
 
@@ -58,12 +56,9 @@ constexpr double kConditionLimit = 1e12;   // warm-start basis B rejected above 
 constexpr double kFeasibilityRel = 1e-13;  // slack tolerance, relative to the problem's extent
 constexpr int kBlandAfter = 8;             // consecutive degenerate steps before Bland's rule
 
-// The planes (as columns) and the per-plane workspace shared by both methods.
+// The planes and the per-plane workspace shared by both methods.
 struct Problem {
-  const double* nx = nullptr;
-  const double* ny = nullptr;
-  const double* nz = nullptr;
-  const double* offset = nullptr;
+  const Halfspace* planes = nullptr;
   int m = 0;
   double* gap = nullptr;          ///< d_j - n_j·x at the current x; the slack is gap_j - r (m)
   double* alpha = nullptr;        ///< a_j·p for the current step direction p (-)
@@ -72,11 +67,15 @@ struct Problem {
   bool min_gap_valid = false;     ///< set by the passes that compute the gaps from scratch
   int max_iterations = 0;
 
-  Vec4 row(int j) const { return Vec4(nx[j], ny[j], nz[j], 1.0); }
-  double d(int j) const { return offset[j]; }
+  Vec4 row(int j) const {
+    const Eigen::Vector3d& n = planes[j].normal;
+    return Vec4(n.x(), n.y(), n.z(), 1.0);
+  }
+  double d(int j) const { return planes[j].offset; }
   /// n_j·v (m or -).
   double normal_dot(int j, double vx, double vy, double vz) const {
-    return nx[j] * vx + ny[j] * vy + nz[j] * vz;
+    const Eigen::Vector3d& n = planes[j].normal;
+    return n.x() * vx + n.y() * vy + n.z() * vz;
   }
 };
 
@@ -367,8 +366,8 @@ InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
 // Runs `solve` with the gap and step workspace on the stack for short plane lists and on the
 // heap otherwise.
 template <typename Solve>
-InscribedBall with_workspace(const PlaneColumns& planes, Solve&& solve) {
-  if (planes.size() == 0) {
+InscribedBall with_workspace(std::span<const Halfspace> planes, Solve&& solve) {
+  if (planes.empty()) {
     throw std::invalid_argument("largest_inscribed_ball: the plane list is empty");
   }
   const int m = static_cast<int>(planes.size());
@@ -380,10 +379,7 @@ InscribedBall with_workspace(const PlaneColumns& planes, Solve&& solve) {
     buffer = heap_buffer.data();
   }
   Problem pb;
-  pb.nx = planes.nx();
-  pb.ny = planes.ny();
-  pb.nz = planes.nz();
-  pb.offset = planes.d();
+  pb.planes = planes.data();
   pb.m = m;
   pb.gap = buffer;
   pb.alpha = buffer + m;
@@ -392,12 +388,9 @@ InscribedBall with_workspace(const PlaneColumns& planes, Solve&& solve) {
 }
 
 // The mean of the foot points d_j n_j: the centre of a box, near the middle of a pair of blocks.
-Eigen::Vector3d mean_foot_point(const PlaneColumns& planes) {
+Eigen::Vector3d mean_foot_point(std::span<const Halfspace> planes) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (std::size_t j = 0; j < planes.size(); ++j) {
-    const double d = planes.d()[j];
-    sum += Eigen::Vector3d(d * planes.nx()[j], d * planes.ny()[j], d * planes.nz()[j]);
-  }
+  for (const Halfspace& h : planes) sum += h.offset * h.normal;
   return sum / static_cast<double>(planes.size());
 }
 
@@ -483,21 +476,13 @@ InscribedBall positive_multiplier_set(const Problem& pb, const InscribedBall& pr
 }  // namespace
 
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes) {
-  return largest_inscribed_ball(PlaneColumns(planes));
-}
-
-InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
-                                     const InscribedBall& previous) {
-  return largest_inscribed_ball(PlaneColumns(planes), previous);
-}
-
-InscribedBall largest_inscribed_ball(const PlaneColumns& planes) {
   // Cold start from the mean of the foot points.
   return with_workspace(planes,
                         [&](Problem& pb) { return solve_cold(pb, mean_foot_point(planes), 0); });
 }
 
-InscribedBall largest_inscribed_ball(const PlaneColumns& planes, const InscribedBall& previous) {
+InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
+                                     const InscribedBall& previous) {
   if (!previous.bounded || !previous.center.allFinite()) return largest_inscribed_ball(planes);
   return with_workspace(planes, [&](Problem& pb) {
     State st;

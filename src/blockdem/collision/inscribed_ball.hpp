@@ -7,7 +7,6 @@
 
 #include <Eigen/Core>
 
-#include "blockdem/collision/plane_columns.hpp"
 #include "blockdem/geometry/halfspace.hpp"
 
 namespace blockdem {
@@ -57,11 +56,6 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes);
 /// it is not unique.
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous);
-
-/// The same two solves for planes stored column by column (the narrow phase's layout, built
-/// once per pair for the LP and the steps after it). Results are those of the span versions.
-InscribedBall largest_inscribed_ball(const PlaneColumns& planes);
-InscribedBall largest_inscribed_ball(const PlaneColumns& planes, const InscribedBall& previous);
 
 /// Plane lists up to this length are solved without heap allocation.
 inline constexpr int kInscribedBallStackPlanes = 64;
