@@ -219,6 +219,53 @@ TEST(FaceFullSlip, ExponentialClosedFormsMatchTheRuleOutsideTheCell) {
   }
 }
 
+// A vertex doubled by the clipping (a second one 1e-17 m along the next edge) leaves an edge
+// whose span in the angle about the centre is below the angle's round-off: full slip is that of
+// the cell without it (5e-6 of the normal force, as against the rule above), for centres inside,
+// outside, on a vertex and near the doubled one.
+TEST(FaceFullSlip, ADoubledVertexLeavesFullSlipAsItWas) {
+  const ExponentialNormal law = ExponentialNormal::eq3();
+  const Eigen::Vector2d gradient(1.2e-3, 0.5e-3);  // closure gradient (-)
+  const std::array<Eigen::Vector2d, 5> corners{
+      {{0.0, 0.0}, {0.04, -0.005}, {0.05, 0.03}, {0.02, 0.045}, {-0.01, 0.025}}};
+  ClosureCell cell, doubled;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector2d& c = corners[i];
+    const double g = gradient.dot(c - corners[4]) + 0.0125e-3 - 0.06e-3;  // partly open
+    cell.vertices.push_back(Eigen::Vector3d(c.x(), c.y(), 0.0));
+    cell.closures.push_back(g);
+    doubled.vertices.push_back(cell.vertices.back());
+    doubled.closures.push_back(g);
+    if (i == 1) {
+      const Eigen::Vector2d along = (corners[2] - c).normalized();
+      const Eigen::Vector2d twin = c + 1e-17 * along;
+      doubled.vertices.push_back(Eigen::Vector3d(twin.x(), twin.y(), 0.0));
+      doubled.closures.push_back(gradient.dot(twin - corners[4]) + 0.0125e-3 - 0.06e-3);
+    }
+  }
+  const std::vector<ClosureCell> one{cell}, two{doubled};
+  const Eigen::Vector3d xp(0.02, 0.02, 0.0);
+  const double diameter = 0.055;
+  const double normal_force = std::abs(
+      face_full_slip_by_rule(one, law, kNormal, xp, centre_at(xp + Eigen::Vector3d(0, 1e4, 0), 1.0))
+          .force.x());
+  ASSERT_GT(normal_force, 0.0);
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.045, -0.01, 0), Eigen::Vector3d(-0.02, -0.004, 0),
+        Eigen::Vector3d(0.07, 0.04, 0), Eigen::Vector3d(0.03, 0.06, 0),
+        Eigen::Vector3d(0.02, 0.01, 0), Eigen::Vector3d(0.04, -0.005, 0),
+        Eigen::Vector3d(0.04 + 1e-3, -0.005 + 1e-3, 0), Eigen::Vector3d(-1.0, 1.3, 0)}) {
+    for (const double sense : {1.0, -1.0}) {
+      const FullSlip a = face_full_slip(one, law, kNormal, xp, centre_at(p, sense));
+      const FullSlip b = face_full_slip(two, law, kNormal, xp, centre_at(p, sense));
+      const double tol = 5e-6 * normal_force;
+      EXPECT_NEAR(b.force.x(), a.force.x(), tol) << p.transpose();
+      EXPECT_NEAR(b.force.y(), a.force.y(), tol) << p.transpose();
+      EXPECT_NEAR(b.moment, a.moment, tol * diameter) << p.transpose();
+    }
+  }
+}
+
 // Centres far away on both sides of the distance beyond which the cells are integrated by the
 // rule rather than the closed forms (1e3 cell diameters; the cells here are 1.12 a across):
 // D = 300 a and 3000 a, both the translation limit |F| = σ A (1e-6) and the slip lines'
