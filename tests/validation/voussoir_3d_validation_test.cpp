@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -45,9 +48,10 @@ RunResult run_variant(const std::string& id, bool plane_motion, bool twist) {
 
 class Voussoir3d : public ::testing::TestWithParam<std::string> {};
 
-// Reference: the plane-constrained run of the same case; tolerance 1% (the issue's; measured
-// 1.7e-5 at most, T3-full's deflection at 10 g). A beam that buckles sideways stops as "collapsed"
-// before 40 g.
+// Reference: the plane-constrained run of the same case; tolerance 1% (measured at most 3e-6 for
+// T2-1 and 3e-3 for T3-full, whose partly open exponential joints slip fully: 1.7e-5 while their
+// full slip was integrated by the 7-point rule). A beam that buckles sideways stops as
+// "collapsed" before 40 g. Prints the 40 g figures and the largest difference.
 TEST_P(Voussoir3d, NoSidewaysBucklingAndThePlaneResultsWithoutTheConstraint) {
   const RunResult plane = run_variant(GetParam(), true, true);
   const RunResult free = run_variant(GetParam(), false, true);
@@ -55,13 +59,24 @@ TEST_P(Voussoir3d, NoSidewaysBucklingAndThePlaneResultsWithoutTheConstraint) {
   ASSERT_EQ(free.status, "completed") << free.message;
   ASSERT_EQ(free.levels.size(), plane.levels.size());
   EXPECT_DOUBLE_EQ(free.levels.back().g_level, 40.0);
+  double largest = 0.0;  // the largest relative difference over the levels
   for (std::size_t k = 1; k < plane.levels.size(); ++k) {
     const VoussoirLevel& p = plane.levels[k];
     const VoussoirLevel& f = free.levels[k];
     SCOPED_TRACE("g = " + std::to_string(p.g_level));
     EXPECT_NEAR(f.thrust, p.thrust, 0.01 * p.thrust);
     EXPECT_NEAR(f.midspan_deflection, p.midspan_deflection, 0.01 * p.midspan_deflection);
+    largest = std::max(
+        {largest, std::abs(f.thrust - p.thrust) / p.thrust,
+         std::abs(f.midspan_deflection - p.midspan_deflection) / std::abs(p.midspan_deflection)});
   }
+  const VoussoirLevel& p = plane.levels.back();
+  const VoussoirLevel& f = free.levels.back();
+  std::printf(
+      "%s at %.0f g: thrust %.6f N (plane) / %.6f N (3D), midspan deflection %.6f / %.6f mm; "
+      "largest relative difference over the levels %.2g\n",
+      GetParam().c_str(), p.g_level, p.thrust, f.thrust, 1e3 * p.midspan_deflection,
+      1e3 * f.midspan_deflection, largest);
 }
 
 std::string case_name(const ::testing::TestParamInfo<std::string>& p) {
