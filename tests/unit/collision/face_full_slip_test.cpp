@@ -175,6 +175,33 @@ TEST(FaceFullSlip, MatchesTheOracleUnderAVaryingStress) {
   }
 }
 
+// The force within `tol` and the moment within `tol` times `diameter` (centre p, for the trace).
+void expect_slip_near(const FullSlip& got, const FullSlip& want, double tol, double diameter,
+                      const Eigen::Vector3d& p) {
+  EXPECT_NEAR(got.force.x(), want.force.x(), tol) << p.transpose();
+  EXPECT_NEAR(got.force.y(), want.force.y(), tol) << p.transpose();
+  EXPECT_NEAR(got.moment, want.moment, tol * diameter) << p.transpose();
+}
+
+// A pentagon 5.5 cm across whose closure rises with the gradient (1.2e-3, 0.5e-3) from `offset`
+// at its last vertex; `doubled`: a second vertex 1e-17 m from the second one along its next edge
+// (as the clipping can leave).
+ClosureCell pentagon(double offset, bool doubled = false) {
+  const Eigen::Vector2d gradient(1.2e-3, 0.5e-3);  // closure gradient (-)
+  const std::array<Eigen::Vector2d, 5> corners{
+      {{0.0, 0.0}, {0.04, -0.005}, {0.05, 0.03}, {0.02, 0.045}, {-0.01, 0.025}}};
+  ClosureCell cell;
+  const auto add = [&](const Eigen::Vector2d& c) {
+    cell.vertices.push_back(Eigen::Vector3d(c.x(), c.y(), 0.0));
+    cell.closures.push_back(gradient.dot(c - corners[4]) + offset);
+  };
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    add(corners[i]);
+    if (doubled && i == 1) add(corners[1] + 1e-17 * (corners[2] - corners[1]).normalized());
+  }
+  return cell;
+}
+
 // The exponential law over a partly open pentagon (closure 0 at one vertex, b Δg = 5.6 across)
 // by its closed forms against the rule alone (face_full_slip_by_rule) with the centre outside
 // the cell, where the slip direction is smooth over it: near a vertex, beside another (the chord
@@ -185,14 +212,7 @@ TEST(FaceFullSlip, MatchesTheOracleUnderAVaryingStress) {
 // when their Gauss-Legendre pieces are made five times narrower).
 TEST(FaceFullSlip, ExponentialClosedFormsMatchTheRuleOutsideTheCell) {
   const ExponentialNormal law = ExponentialNormal::eq3();
-  ClosureCell cell;
-  const Eigen::Vector2d gradient(1.2e-3, 0.5e-3);  // closure gradient (-)
-  const std::array<Eigen::Vector2d, 5> corners{
-      {{0.0, 0.0}, {0.04, -0.005}, {0.05, 0.03}, {0.02, 0.045}, {-0.01, 0.025}}};
-  for (const Eigen::Vector2d& c : corners) {
-    cell.vertices.push_back(Eigen::Vector3d(c.x(), c.y(), 0.0));
-    cell.closures.push_back(gradient.dot(c - corners[4]) + 0.0125e-3);
-  }
+  ClosureCell cell = pentagon(0.0125e-3);
   double low = cell.closures[0];
   for (const double g : cell.closures) low = std::min(low, g);
   for (double& g : cell.closures) g -= low;  // 0 at the lowest vertex
@@ -210,10 +230,7 @@ TEST(FaceFullSlip, ExponentialClosedFormsMatchTheRuleOutsideTheCell) {
     for (const double sense : {1.0, -1.0}) {
       const FullSlip s = face_full_slip(cells, law, kNormal, xp, centre_at(p, sense));
       const FullSlip r = face_full_slip_by_rule(cells, law, kNormal, xp, centre_at(p, sense));
-      const double tol = 5e-6 * normal_force;
-      EXPECT_NEAR(s.force.x(), r.force.x(), tol) << p.transpose();
-      EXPECT_NEAR(s.force.y(), r.force.y(), tol) << p.transpose();
-      EXPECT_NEAR(s.moment, r.moment, tol * diameter) << p.transpose();
+      expect_slip_near(s, r, 5e-6 * normal_force, diameter, p);
       EXPECT_NEAR(s.power, r.power, 5e-6 * r.power) << p.transpose();
     }
   }
@@ -225,25 +242,8 @@ TEST(FaceFullSlip, ExponentialClosedFormsMatchTheRuleOutsideTheCell) {
 // outside, on a vertex and near the doubled one.
 TEST(FaceFullSlip, ADoubledVertexLeavesFullSlipAsItWas) {
   const ExponentialNormal law = ExponentialNormal::eq3();
-  const Eigen::Vector2d gradient(1.2e-3, 0.5e-3);  // closure gradient (-)
-  const std::array<Eigen::Vector2d, 5> corners{
-      {{0.0, 0.0}, {0.04, -0.005}, {0.05, 0.03}, {0.02, 0.045}, {-0.01, 0.025}}};
-  ClosureCell cell, doubled;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const Eigen::Vector2d& c = corners[i];
-    const double g = gradient.dot(c - corners[4]) + 0.0125e-3 - 0.06e-3;  // partly open
-    cell.vertices.push_back(Eigen::Vector3d(c.x(), c.y(), 0.0));
-    cell.closures.push_back(g);
-    doubled.vertices.push_back(cell.vertices.back());
-    doubled.closures.push_back(g);
-    if (i == 1) {
-      const Eigen::Vector2d along = (corners[2] - c).normalized();
-      const Eigen::Vector2d twin = c + 1e-17 * along;
-      doubled.vertices.push_back(Eigen::Vector3d(twin.x(), twin.y(), 0.0));
-      doubled.closures.push_back(gradient.dot(twin - corners[4]) + 0.0125e-3 - 0.06e-3);
-    }
-  }
-  const std::vector<ClosureCell> one{cell}, two{doubled};
+  const double offset = 0.0125e-3 - 0.06e-3;  // partly open
+  const std::vector<ClosureCell> one{pentagon(offset)}, two{pentagon(offset, true)};
   const Eigen::Vector3d xp(0.02, 0.02, 0.0);
   const double diameter = 0.055;
   const double normal_force = std::abs(
@@ -258,10 +258,7 @@ TEST(FaceFullSlip, ADoubledVertexLeavesFullSlipAsItWas) {
     for (const double sense : {1.0, -1.0}) {
       const FullSlip a = face_full_slip(one, law, kNormal, xp, centre_at(p, sense));
       const FullSlip b = face_full_slip(two, law, kNormal, xp, centre_at(p, sense));
-      const double tol = 5e-6 * normal_force;
-      EXPECT_NEAR(b.force.x(), a.force.x(), tol) << p.transpose();
-      EXPECT_NEAR(b.force.y(), a.force.y(), tol) << p.transpose();
-      EXPECT_NEAR(b.moment, a.moment, tol * diameter) << p.transpose();
+      expect_slip_near(b, a, 5e-6 * normal_force, diameter, p);
     }
   }
 }
