@@ -352,9 +352,11 @@ std::optional<SlipSums> exponential_slip_sums(std::span<const Eigen::Vector3d> v
   // is left to the rule: a strongly curved stress seen from a centre close to an edge can ask
   // for up to 64 pieces per edge, and the rule is then the cheaper of two accurate answers.
   std::size_t points = 0;
+  SmallVector<EdgeSpan, 8> spans;
   for (std::size_t i = 0; i < m; ++i) {
+    spans.push_back(EdgeSpan{});
     if (!far(i) && !near(i)) continue;
-    const EdgeSpan e = edge_span(i);
+    const EdgeSpan& e = spans.back() = edge_span(i);
     for (double u0 = e.ua; u0 < e.ub; u0 = piece_end(e, u0)) points += kGauss.size();
   }
   if (points > kRulePoints * (m - 2)) return std::nullopt;
@@ -367,7 +369,7 @@ std::optional<SlipSums> exponential_slip_sums(std::span<const Eigen::Vector3d> v
     const Eigen::Vector3d t = edge / length, nu = t.cross(normal);
     const double sa = a.dot(t), ah = std::abs(h);
     const double ga = g[i], slope = (g[(i + 1) % m] - ga) / length;  // g_e = ga + slope (s - sa)
-    const EdgeSpan e = edge_span(i);
+    const EdgeSpan& e = spans[i];
     Eigen::Vector3d edge_v = Eigen::Vector3d::Zero();
     double edge_w = 0.0;
     for (double u0 = e.ua; u0 < e.ub;) {
