@@ -92,7 +92,7 @@ RunResult run_half_beam(ContactMode mode, const std::string& name) {
     sc.stages[k].find_collapse = true;
     sc.stages[k].collapse_tolerance = 0.5;
   }
-  const auto out = std::filesystem::temp_directory_path() / ("blockdem_" + name);
+  const auto out = test::run_folder(name);
   std::filesystem::remove_all(out);
   return run_scenario(sc, out);
 }
