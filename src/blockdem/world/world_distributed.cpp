@@ -367,14 +367,25 @@ void World::synchronize() {
     put_slot(out, s, s.active ? &contact_of(s) : nullptr);
   }
   std::vector<std::size_t> counts;
-  const std::vector<char> all = dist.all_gather(out, counts);
+  std::vector<char> all = dist.all_gather(out, counts);
+  // The refresh is the peak of a distributed run's memory (docs/scaling.md, "Memory"): this
+  // process's part is freed at once, the slots are reserved exactly, and the contact states are
+  // read from the gathered bytes in place (by offset) and copied once, into the new store.
+  const std::size_t out_bytes = out.size(), all_bytes = all.size();
+  std::vector<char>().swap(out);
 
   // Every process's blocks into place, every owned slot into one list sorted by (a, b).
   stiffness_.resize(n, 0.0);
   rotational_stiffness_.resize(n, 0.0);
   std::vector<PairSlot> slots;
-  std::vector<Contact> states;  // the received slots' contact states, by slot.contact
+  std::vector<std::size_t> states;  // the received slots' contact states (offsets in `all`)
   std::size_t begin = 0;
+  for (std::size_t r = 0, total = 0; r < counts.size(); begin += counts[r], ++r) {
+    if (counts[r] < 16) throw std::logic_error("replica refresh: a process sent a malformed part");
+    total += get<std::uint64_t>(all, begin + 8);
+    if (r + 1 == counts.size()) slots.reserve(total);
+  }
+  begin = 0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
     const auto blocks_in = get<std::uint64_t>(all, begin);
     const auto slots_in = get<std::uint64_t>(all, begin + 8);
@@ -420,7 +431,7 @@ void World::synchronize() {
       s.contact = -1;
       if (s.active) {
         s.contact = static_cast<std::int32_t>(states.size());
-        states.push_back(c);
+        states.push_back(at - sizeof(Contact));
       }
       slots.push_back(s);
     }
@@ -436,9 +447,10 @@ void World::synchronize() {
   contacts_.reserve(states.size());
   for (PairSlot& s : slots_) {
     if (s.contact < 0) continue;
-    contacts_.push_back(states[static_cast<std::size_t>(s.contact)]);
+    contacts_.push_back(get<Contact>(all, states[static_cast<std::size_t>(s.contact)]));
     s.contact = static_cast<std::int32_t>(contacts_.size() - 1);
   }
+  std::vector<char>().swap(all);
   sum_resting_loads();
   // The candidate list as one process leaves it after a step: the pairs of the slots, in order
   // (this process found only its own blocks' pairs; a checkpoint saves the list).
@@ -457,8 +469,8 @@ void World::synchronize() {
   local_.assign(n, 1);
   replica_complete_ = true;
   dist_stats_.replica_refreshes += 1;
-  dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out.size());
-  dist_stats_.replica_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out_bytes);
+  dist_stats_.replica_bytes_received += static_cast<std::int64_t>(all_bytes - out_bytes);
   dist_stats_.replica_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
