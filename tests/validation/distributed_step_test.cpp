@@ -85,6 +85,34 @@ Record run(World w, int steps, std::vector<int>* owners_early, std::vector<int>*
   return rec;
 }
 
+/// What run() gives on each of `parts` worlds stepped together in threads (deferred replica:
+/// `every`; a partition at least every `repartition` steps when > 0).
+struct PartRuns {
+  std::vector<Record> records;
+  std::vector<DistributionStats> stats;
+  std::vector<std::vector<int>> owners;  ///< the block owners at the end
+};
+
+PartRuns run_parts(const BrickPile& pile, const WorldSettings& s, double friction_deg, int parts,
+                   int steps, int every, std::int64_t repartition) {
+  auto meeting = std::make_shared<Meeting>(parts);
+  const auto n = static_cast<std::size_t>(parts);
+  PartRuns out{std::vector<Record>(n), std::vector<DistributionStats>(n),
+               std::vector<std::vector<int>>(n)};
+  std::vector<std::thread> threads;
+  for (int r = 0; r < parts; ++r) {
+    WorldSettings sr = s;
+    sr.distribution = std::make_shared<ThreadDistribution>(meeting, r, repartition);
+    threads.emplace_back([&, r, sr] {
+      const auto k = static_cast<std::size_t>(r);
+      out.records[k] =
+          run(pile.world(sr, friction_deg), steps, nullptr, &out.owners[k], every, &out.stats[k]);
+    });
+  }
+  for (auto& t : threads) t.join();
+  return out;
+}
+
 TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
   WorldSettings s;
   s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: the pile slides on its base
@@ -141,20 +169,9 @@ TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
   const int steps = 150, every = 10;
   const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr, every);
   for (int parts : {2, 3}) {
-    auto meeting = std::make_shared<Meeting>(parts);
-    std::vector<Record> records(static_cast<std::size_t>(parts));
-    std::vector<DistributionStats> stats(static_cast<std::size_t>(parts));
-    std::vector<std::vector<int>> late(static_cast<std::size_t>(parts));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < parts; ++r) {
-      WorldSettings sr = s;
-      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r, 25);
-      threads.emplace_back([&, r, sr] {
-        const auto k = static_cast<std::size_t>(r);
-        records[k] = run(pile.world(sr, 20.0), steps, nullptr, &late[k], every, &stats[k]);
-      });
-    }
-    for (auto& t : threads) t.join();
+    const PartRuns runs = run_parts(pile, s, 20.0, parts, steps, every, 25);
+    const std::vector<Record>& records = runs.records;
+    const std::vector<DistributionStats>& stats = runs.stats;
     for (int r = 0; r < parts; ++r) {
       const auto k = static_cast<std::size_t>(r);
       ASSERT_EQ(records[k].size(), oracle.size());
@@ -195,20 +212,10 @@ TEST(DistributedStep, BasePlateOwnerReceivesNoMoreThanTheOthers) {
   ASSERT_NE(plate, probe.blocks().end());
   const Record oracle = run(pile.world(s, 30.0), steps, nullptr, nullptr, every);
   for (int parts : {2, 3}) {
-    auto meeting = std::make_shared<Meeting>(parts);
-    std::vector<Record> records(static_cast<std::size_t>(parts));
-    std::vector<DistributionStats> stats(static_cast<std::size_t>(parts));
-    std::vector<std::vector<int>> owners(static_cast<std::size_t>(parts));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < parts; ++r) {
-      WorldSettings sr = s;
-      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
-      threads.emplace_back([&, r, sr] {
-        const auto k = static_cast<std::size_t>(r);
-        records[k] = run(pile.world(sr, 30.0), steps, nullptr, &owners[k], every, &stats[k]);
-      });
-    }
-    for (auto& t : threads) t.join();
+    const PartRuns runs = run_parts(pile, s, 30.0, parts, steps, every, 0);
+    const std::vector<Record>& records = runs.records;
+    const std::vector<DistributionStats>& stats = runs.stats;
+    const std::vector<std::vector<int>>& owners = runs.owners;
     double others = 0.0, plate_owner = 0.0;
     const int holder = owners[0][static_cast<std::size_t>(plate->index)];
     for (int r = 0; r < parts; ++r) {
