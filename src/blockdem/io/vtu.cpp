@@ -263,7 +263,7 @@ std::size_t write_vtu_contact_piece(const std::filesystem::path& path, const Wor
                                     int process) {
   const std::vector<int>& owners = world.block_owners();
   std::vector<const Contact*> mine;
-  for (const Contact* c : world.contacts()) {
+  for (const Contact* c : world.counted_contacts()) {
     const bool a_moves = world.blocks()[static_cast<std::size_t>(c->a)].is_dynamic();
     const bool b_moves = world.blocks()[static_cast<std::size_t>(c->b)].is_dynamic();
     if (pair_owner_process(owners, c->a, a_moves, c->b, b_moves) == process) mine.push_back(c);

@@ -37,8 +37,8 @@ void write_vtu_contacts(const std::filesystem::path& path, const World& world);
 std::size_t write_vtu_block_piece(const std::filesystem::path& path, const World& world, int stage,
                                   int process);
 /// The piece of process `process` of the contacts: those of the pairs it owns
-/// (world/pair_owner.hpp), in (a, b) order. Reads World::contacts(): the world must be whole.
-/// Returns the contact count.
+/// (world/pair_owner.hpp), in (a, b) order. Needs only those contacts (World::counted_contacts:
+/// the world need not be whole). Returns the contact count.
 std::size_t write_vtu_contact_piece(const std::filesystem::path& path, const World& world,
                                     int process);
 /// The .pvtu index of a block frame or a contact frame: the arrays the pieces carry and the

@@ -356,13 +356,12 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       if (due && !beam) checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
       return now.stop;
     };
-    // What the step callback reads: the history and the VTK frames, only when they are due.
+    // What the step callback reads through the whole world: the history, only when a row is
+    // due. A VTK frame of a distributed world is written in pieces, each process its own blocks
+    // and contacts, and needs no whole world.
     StageSync sync;
     sync.after_step_synchronizes = true;
-    sync.on_step_reads = [&](const World& w) {
-      return history->due(w) ||
-             (sc.output.vtk_interval > 0 && (w.step_count() - 1) % sc.output.vtk_interval == 0);
-    };
+    sync.on_step_reads = [&](const World& w) { return history->due(w); };
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {

@@ -141,6 +141,9 @@ class World {
 
   /// The current contacts, sorted by (a, b).
   std::vector<const Contact*> contacts() const;
+  /// The contacts this process counts (counts_contact), sorted by (a, b): every contact of a
+  /// whole world; on a distributed world that is not whole, those of the pairs it owns, exact.
+  std::vector<const Contact*> counted_contacts() const;
   std::size_t contact_count() const { return active_count_; }
   /// Candidate pairs of the last step (contacts and near pairs whose narrow-phase warm start is
   /// kept), sorted by (a, b).
@@ -308,6 +311,8 @@ class World {
   int pair_owner(const PairSlot& s) const { return pair_owner(s.a, s.b); }
   void exchange_ghosts();
   void require_replica(const char* what) const;
+  void mark_resting();
+  void sum_resting_loads();
 
   void scatter_loads();
   /// `only`: servos of these blocks only (per block, nonzero: apply); null: every block.
@@ -347,6 +352,10 @@ class World {
   bool deferred_replica_ = false;
   std::vector<char> own_;    ///< per block: owned by this process
   std::vector<char> local_;  ///< per block: exact here (owned, or a ghost received this step)
+  /// Per block: fixed and at rest, marked on a whole world (mark_resting). Its state is the same
+  /// on every process; its pairs and slots stay with the other blocks' owners, and its loads are
+  /// summed only when the world is made whole (sum_resting_loads).
+  std::vector<char> resting_;
   double overlap_key_ =
       std::numeric_limits<double>::infinity();  ///< a N + b of the first too-deep contact
 

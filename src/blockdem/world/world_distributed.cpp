@@ -157,6 +157,15 @@ int World::pair_owner(int a, int b) const {
   return pair_owner_process(owner_, a, blocks_[a].is_dynamic(), b, blocks_[b].is_dynamic());
 }
 
+std::vector<const Contact*> World::counted_contacts() const {
+  std::vector<const Contact*> out;
+  for (const auto& s : slots_) {
+    if (s.active && (replica_complete_ || pair_owner(s) == settings_.distribution->rank()))
+      out.push_back(&contact_of(s));
+  }
+  return out;
+}
+
 bool World::counts_contact(const Contact& c) const {
   return replica_complete_ || pair_owner(c.a, c.b) == settings_.distribution->rank();
 }
@@ -213,15 +222,94 @@ std::vector<int> World::gather_indices(const std::vector<int>& mine) const {
   return out;
 }
 
+void World::mark_resting() {
+  require_replica("mark_resting");
+  // A fixed block keeps its pose, and its zero velocities, until a caller changes it on a whole
+  // world: its state is then the same bytes on every process, and it needs no owner's loads.
+  resting_.assign(blocks_.size(), 0);
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& b = blocks_[i];
+    resting_[i] = b.motion == Motion::fixed && (b.velocity.array() == 0.0).all() &&
+                          (b.angular_velocity.array() == 0.0).all()
+                      ? 1
+                      : 0;
+  }
+}
+
+void World::sum_resting_loads() {
+  // The loads on a resting block come from pairs that other processes own, and no process keeps
+  // them whole between refreshes (nothing in a step reads them). On a whole world they are summed
+  // again from every slot with scatter_loads's arithmetic, in its (a, b) order, and the energy
+  // ledger's record of the step's contact impulses (EnergyLedger::block_terms: dt F, dt T for a
+  // block that does not move) follows, so the world is one process's, bit for bit.
+  const std::size_t n = blocks_.size();
+  if (resting_.size() != n) return;
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (resting_[i] == 0) continue;
+    Block& b = blocks_[i];
+    b.force.setZero();
+    b.torque.setZero();
+    b.contact_force.setZero();
+    stiffness_[i] = 0.0;
+    rotational_stiffness_[i] = 0.0;
+    any = true;
+  }
+  if (!any) return;
+  for (const PairSlot& s : slots_) {
+    if (!s.active) continue;
+    const Contact& ct = contact_of(s);
+    const Eigen::Vector3d& xf = ct.force_point;
+    const Eigen::Vector3d f = ct.force_on_b();
+    const double spread = ct.compressed_area / 12.0;
+    for (const int i : {ct.a, ct.b}) {
+      const auto k = static_cast<std::size_t>(i);
+      if (resting_[k] == 0) continue;
+      Block& b = blocks_[k];
+      if (i == ct.b) {
+        b.force += f;
+        b.contact_force += f;
+        b.torque += (xf - b.position).cross(f);
+        if (ct.twist.moment != 0.0) b.torque += ct.twist.moment * ct.geometry.normal;
+      } else {
+        b.force -= f;
+        b.contact_force -= f;
+        b.torque -= (xf - b.position).cross(f);
+        if (ct.twist.moment != 0.0) b.torque -= ct.twist.moment * ct.geometry.normal;
+      }
+      stiffness_[k] += s.stiffness;
+      rotational_stiffness_[k] += s.stiffness * ((xf - b.position).squaredNorm() + spread);
+      rotational_stiffness_[k] += s.twist_stiffness;
+    }
+  }
+  if (step_count_ == 0) return;
+  energy_.prepare(n);
+  double record[EnergyLedger::kBlockRecordDoubles];
+  constexpr std::size_t kContact = 24;  // the record's dt F, then dt T (block_record's order)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (resting_[i] == 0) continue;
+    energy_.block_record(i, record);
+    const Eigen::Vector3d impulse = last_dt_ * blocks_[i].contact_force;
+    const Eigen::Vector3d angular = last_dt_ * blocks_[i].torque;
+    for (int k = 0; k < 3; ++k) {
+      record[kContact + static_cast<std::size_t>(k)] = impulse[k];
+      record[kContact + 3 + static_cast<std::size_t>(k)] = angular[k];
+    }
+    energy_.set_block_record(i, record);
+  }
+}
+
 void World::partition_blocks() {
   require_replica("partition");
-  // Weight: one for the block plus one per candidate pair it is in (the narrow phase's work).
+  mark_resting();
+  // Weight: one for the block plus one per candidate pair it is in (the narrow phase's work),
+  // which a resting block leaves to the other block's owner.
   std::vector<Eigen::Vector3d> points(blocks_.size());
   std::vector<double> weights(blocks_.size(), 1.0);
   for (std::size_t i = 0; i < blocks_.size(); ++i) points[i] = blocks_[i].position;
   for (const auto& s : slots_) {
-    weights[static_cast<std::size_t>(s.a)] += 1.0;
-    weights[static_cast<std::size_t>(s.b)] += 1.0;
+    for (const int i : {s.a, s.b})
+      if (resting_[static_cast<std::size_t>(i)] == 0) weights[static_cast<std::size_t>(i)] += 1.0;
   }
   owner_ = settings_.distribution->partition(points, weights);
   if (owner_.size() != blocks_.size())
@@ -279,14 +367,25 @@ void World::synchronize() {
     put_slot(out, s, s.active ? &contact_of(s) : nullptr);
   }
   std::vector<std::size_t> counts;
-  const std::vector<char> all = dist.all_gather(out, counts);
+  std::vector<char> all = dist.all_gather(out, counts);
+  // The refresh is the peak of a distributed run's memory (docs/scaling.md, "Memory"): this
+  // process's part is freed at once, the slots are reserved exactly, and the contact states are
+  // read from the gathered bytes in place (by offset) and copied once, into the new store.
+  const std::size_t out_bytes = out.size(), all_bytes = all.size();
+  std::vector<char>().swap(out);
 
   // Every process's blocks into place, every owned slot into one list sorted by (a, b).
   stiffness_.resize(n, 0.0);
   rotational_stiffness_.resize(n, 0.0);
   std::vector<PairSlot> slots;
-  std::vector<Contact> states;  // the received slots' contact states, by slot.contact
+  std::vector<std::size_t> states;  // the received slots' contact states (offsets in `all`)
   std::size_t begin = 0;
+  for (std::size_t r = 0, total = 0; r < counts.size(); begin += counts[r], ++r) {
+    if (counts[r] < 16) throw std::logic_error("replica refresh: a process sent a malformed part");
+    total += get<std::uint64_t>(all, begin + 8);
+    if (r + 1 == counts.size()) slots.reserve(total);
+  }
+  begin = 0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
     const auto blocks_in = get<std::uint64_t>(all, begin);
     const auto slots_in = get<std::uint64_t>(all, begin + 8);
@@ -332,7 +431,7 @@ void World::synchronize() {
       s.contact = -1;
       if (s.active) {
         s.contact = static_cast<std::int32_t>(states.size());
-        states.push_back(c);
+        states.push_back(at - sizeof(Contact));
       }
       slots.push_back(s);
     }
@@ -348,9 +447,11 @@ void World::synchronize() {
   contacts_.reserve(states.size());
   for (PairSlot& s : slots_) {
     if (s.contact < 0) continue;
-    contacts_.push_back(states[static_cast<std::size_t>(s.contact)]);
+    contacts_.push_back(get<Contact>(all, states[static_cast<std::size_t>(s.contact)]));
     s.contact = static_cast<std::int32_t>(contacts_.size() - 1);
   }
+  std::vector<char>().swap(all);
+  sum_resting_loads();
   // The candidate list as one process leaves it after a step: the pairs of the slots, in order
   // (this process found only its own blocks' pairs; a checkpoint saves the list).
   pairs_.resize(slots_.size());
@@ -368,8 +469,8 @@ void World::synchronize() {
   local_.assign(n, 1);
   replica_complete_ = true;
   dist_stats_.replica_refreshes += 1;
-  dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out.size());
-  dist_stats_.replica_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out_bytes);
+  dist_stats_.replica_bytes_received += static_cast<std::int64_t>(all_bytes - out_bytes);
   dist_stats_.replica_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -385,14 +486,15 @@ void World::exchange_ghosts() {
   const std::size_t n = blocks_.size();
   // The own blocks' boxes at their new poses (as the next step's geometry pass computes them;
   // the blocks keep this step's planes and boxes, as in one process). A process's subdomain is
-  // published as the union of its movable blocks' boxes plus the box of each fixed block, so that
-  // a base plate under the whole model does not make the union the whole model.
+  // published as the union of its movable blocks' boxes plus the box of each fixed block that is
+  // not resting, so that a base plate under the whole model does not make the union the whole
+  // model. A resting block is exact on every process: it is neither sent nor needs ghosts.
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf), hi = Eigen::Vector3d::Constant(-inf);
   std::vector<Eigen::Vector3d> next_min(n, lo), next_max(n, hi);
   std::vector<char> box;
   for (std::size_t i = 0; i < n; ++i) {
-    if (own_[i] == 0) continue;
+    if (own_[i] == 0 || resting_[i] != 0) continue;
     const Block& b = blocks_[i];
     const Eigen::Matrix3d rot = b.rotation();
     for (const auto& v : b.shape.vertices()) {
@@ -423,7 +525,7 @@ void World::exchange_ghosts() {
   // message lists its blocks in index order.
   std::vector<std::pair<std::int64_t, int>> sends;
   for (std::size_t i = 0; i < n; ++i) {
-    if (own_[i] == 0) continue;
+    if (own_[i] == 0 || resting_[i] != 0) continue;
     for (std::size_t r = 0; r < k; ++r) {
       if (static_cast<int>(r) == rank) continue;
       for (const auto& [box_lo, box_hi] : subdomain[r]) {
@@ -436,6 +538,7 @@ void World::exchange_ghosts() {
   }
   for (const auto& s : slots_) {
     const int a = s.a, b = s.b;
+    if (resting_[a] != 0 || resting_[b] != 0) continue;
     if (own_[a] != 0 && owner_[b] != rank) sends.emplace_back(a, owner_[b]);
     if (own_[b] != 0 && owner_[a] != rank) sends.emplace_back(b, owner_[a]);
   }
@@ -445,7 +548,7 @@ void World::exchange_ghosts() {
   for (const auto& [i, r] : sends)
     put(to[static_cast<std::size_t>(r)], ghost_of(blocks_[static_cast<std::size_t>(i)]));
   const std::vector<std::vector<char>> from = dist.exchange(to);
-  for (std::size_t i = 0; i < n; ++i) local_[i] = own_[i];
+  for (std::size_t i = 0; i < n; ++i) local_[i] = own_[i] != 0 || resting_[i] != 0 ? 1 : 0;
   for (std::size_t r = 0; r < k; ++r) {
     if (from[r].size() % sizeof(GhostState) != 0)
       throw std::logic_error("ghost exchange: a process sent a malformed part");
@@ -474,7 +577,10 @@ void World::step_distributed(double dt, int threads) {
     synchronize();
     partition_blocks();
   }
-  if (replica_complete_) local_.assign(n, 1);
+  if (replica_complete_) {
+    local_.assign(n, 1);
+    mark_resting();
+  }
   // Time spent in the exchanges and reductions, waiting included (s).
   using Clock = std::chrono::steady_clock;
   double waiting = 0.0;
@@ -496,19 +602,20 @@ void World::step_distributed(double dt, int threads) {
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   }
-  // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots.
+  // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots; a
+  // resting block's pairs only where the other block is this process's.
+  const auto keeps = [&](int i) { return own_[i] != 0 && resting_[i] == 0; };
   broad_phase_.find_pairs(
       box_min_, box_max_,
       [&](int a, int b) {
-        return local_[a] != 0 && local_[b] != 0 && (own_[a] != 0 || own_[b] != 0) &&
+        return local_[a] != 0 && local_[b] != 0 && (keeps(a) || keeps(b)) &&
                (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
                (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
       },
       pairs_, threads);
   keep_open_bonds();
-  std::erase_if(pairs_, [&](const std::pair<int, int>& p) {
-    return own_[p.first] == 0 && own_[p.second] == 0;
-  });
+  std::erase_if(pairs_,
+                [&](const std::pair<int, int>& p) { return !keeps(p.first) && !keeps(p.second); });
   merge_pairs();
 
   // 4. This process's pairs (in parallel over its threads; each writes only its own slot).
@@ -557,13 +664,14 @@ void World::step_distributed(double dt, int threads) {
     total_pairs += static_cast<double>(h.slots);
   }
 
-  // Each evaluated slot to the owner of the pair's other block, byte for byte.
+  // Each evaluated slot to the owner of the pair's other block, byte for byte (not to a resting
+  // block's owner: its loads wait for the whole world, sum_resting_loads).
   std::vector<std::vector<char>> to(k_ranks);
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
     for (int block : {s.a, s.b}) {
       const int r = owner_[static_cast<std::size_t>(block)];
-      if (r == rank) continue;
+      if (r == rank || resting_[static_cast<std::size_t>(block)] != 0) continue;
       put_slot(to[static_cast<std::size_t>(r)], s, s.active ? &contact_of(s) : nullptr);
     }
   }
