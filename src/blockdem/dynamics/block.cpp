@@ -69,8 +69,8 @@ bool same_bits(const Servo& a, const Servo& b) {
   };
   return same(a.axis.x(), b.axis.x()) && same(a.axis.y(), b.axis.y()) &&
          same(a.axis.z(), b.axis.z()) && same(a.target_force, b.target_force) &&
-         same(a.gain, b.gain) && same(a.max_speed, b.max_speed) &&
-         same(a.tolerance, b.tolerance) && a.hold == b.hold;
+         same(a.gain, b.gain) && same(a.max_speed, b.max_speed) && same(a.tolerance, b.tolerance) &&
+         a.hold == b.hold;
 }
 
 Eigen::Vector3d Block::rotation_since_start() const {

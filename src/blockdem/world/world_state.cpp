@@ -233,8 +233,8 @@ void World::save_state(StateWriter& w) const {
     w.quat(s.orientation);
     write_motion(w, s.motion);
     const auto& servos = checkpoint_.servos;
-    write_servo(w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second
-                                                                      : Servo{});
+    write_servo(
+        w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{});
   }
   w.size(checkpoint_.contacts.size());
   for (const ContactHistory& h : checkpoint_.contacts) {

@@ -62,8 +62,8 @@ TEST(Checkpoint, RestoreGivesBackStatesAndShearHistoryAndTheSamePath) {
 // as saved, a servo block's and a plain block's (Servo{}), even after both were changed.
 TEST(Checkpoint, RestoreGivesBackEachBlocksServo) {
   World w = pushed_cube();
-  Block pusher = box_block(Eigen::Vector3d::Constant(0.046), {0.2, 0, 0.023}, 1207.0,
-                           Motion::servo, "pusher");
+  Block pusher =
+      box_block(Eigen::Vector3d::Constant(0.046), {0.2, 0, 0.023}, 1207.0, Motion::servo, "pusher");
   pusher.servo.axis = -Eigen::Vector3d::UnitX();
   pusher.servo.target_force = 2.5;
   pusher.servo.gain = -0.0;  // a bit pattern Servo{} does not have
