@@ -68,7 +68,9 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
   if (n == 0) return;
   build(box_min, box_max);
   if (threads < 1) threads = 1;
-  chunks_.resize(static_cast<std::size_t>(threads));
+  // One thread writes straight into `pairs` (no second list of every pair to keep between
+  // calls); several write their own lists, joined in thread order.
+  chunks_.resize(threads > 1 ? static_cast<std::size_t>(threads) : 0);
   for (auto& c : chunks_) c.clear();
   auto overlap = [&](int i, int j) {
     return !(box_min[j].x() > box_max[i].x() || box_min[i].x() > box_max[j].x() ||
@@ -78,9 +80,10 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
 #pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
   {
 #ifdef _OPENMP
-    std::vector<std::pair<int, int>>& out = chunks_[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<std::pair<int, int>>& out =
+        threads > 1 ? chunks_[static_cast<std::size_t>(omp_get_thread_num())] : pairs;
 #else
-    std::vector<std::pair<int, int>>& out = chunks_[0];
+    std::vector<std::pair<int, int>>& out = threads > 1 ? chunks_[0] : pairs;
 #endif
     // Ordinary against ordinary: box i looks at the cells whose boxes can reach it (their min
     // corner at most one cell below its own min corner, at most its max corner) and keeps j > i.

@@ -2,7 +2,9 @@
 #include "blockdem/dynamics/block.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "blockdem/geometry/geometry_error.hpp"
@@ -59,6 +61,16 @@ void Block::update_world_geometry() {
     aabb_min = aabb_min.cwiseMin(w);
     aabb_max = aabb_max.cwiseMax(w);
   }
+}
+
+bool same_bits(const Servo& a, const Servo& b) {
+  const auto same = [](double x, double y) {
+    return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+  };
+  return same(a.axis.x(), b.axis.x()) && same(a.axis.y(), b.axis.y()) &&
+         same(a.axis.z(), b.axis.z()) && same(a.target_force, b.target_force) &&
+         same(a.gain, b.gain) && same(a.max_speed, b.max_speed) && same(a.tolerance, b.tolerance) &&
+         a.hold == b.hold;
 }
 
 Eigen::Vector3d Block::rotation_since_start() const {

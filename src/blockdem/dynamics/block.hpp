@@ -30,6 +30,10 @@ struct Servo {
   bool hold = false;        ///< when true the block stays where it is
 };
 
+/// Whether two servos hold the same bits in every field (-0.0 and 0.0 differ): a servo equal to
+/// Servo{} this way is Servo{}.
+bool same_bits(const Servo& a, const Servo& b);
+
 struct Block {
   std::string name;
   std::string group;

@@ -220,17 +220,31 @@ CheckedTable CheckedTable::table(const std::string& key) const {
   return CheckedTable(*t, file_, key_path(key));
 }
 
-std::vector<CheckedTable> CheckedTable::tables(const std::string& key) const {
+std::size_t CheckedTable::for_each_table(
+    const std::string& key, const std::function<void(const CheckedTable&)>& read) const {
   const toml::node* n = get(key);
-  std::vector<CheckedTable> out;
-  if (n == nullptr) return out;
+  if (n == nullptr) return 0;
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array of tables ([[" + key + "]]), got " + type_name(*n));
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table* t = a->get(i)->as_table();
     if (t == nullptr) fail(key, "entry " + std::to_string(i + 1) + " must be a table");
-    out.emplace_back(*t, file_, key_path(key) + "[" + std::to_string(i + 1) + "]");
+    read(CheckedTable(*t, file_, key_path(key) + "[" + std::to_string(i + 1) + "]"));
   }
+  return a->size();
+}
+
+std::size_t CheckedTable::table_count(const std::string& key) const {
+  const toml::node* n = table_->get(key);
+  if (n == nullptr) return 0;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of tables ([[" + key + "]]), got " + type_name(*n));
+  return a->size();
+}
+
+std::vector<CheckedTable> CheckedTable::tables(const std::string& key) const {
+  std::vector<CheckedTable> out;
+  for_each_table(key, [&](const CheckedTable& t) { out.push_back(t); });
   return out;
 }
 

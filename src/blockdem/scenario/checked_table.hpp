@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -66,6 +67,13 @@ class CheckedTable {
   CheckedTable table(const std::string& key) const;
   /// An array of tables ([[key]]); empty when absent.
   std::vector<CheckedTable> tables(const std::string& key) const;
+  /// The entries of an array of tables ([[key]]), each checked as by tables() and passed to
+  /// `read` in turn, its reader (and the keys it recorded) dropped before the next: a list of
+  /// 1e5 blocks does not hold 1e5 readers at once. Returns the number of entries.
+  std::size_t for_each_table(const std::string& key,
+                             const std::function<void(const CheckedTable&)>& read) const;
+  /// The number of entries of an array of tables ([[key]]) (0 when absent); fails as tables().
+  std::size_t table_count(const std::string& key) const;
   /// Every key of the table with a numeric value, as a map (for joint-law parameters), skipping
   /// the keys in `except`.
   std::map<std::string, double> numbers_except(const std::set<std::string>& except) const;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -460,15 +461,17 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
 
   std::set<std::string> names, groups;
   BoxCache boxes;
-  const std::vector<CheckedTable> block_tables = t.tables("blocks");
-  sc.blocks.reserve(block_tables.size());
-  for (const auto& bt : block_tables) {
+  // One block's reader at a time, and without world planes (see the end): the set-up of a long
+  // list holds its TOML tree and its blocks, not a reader and six planes per block as well.
+  sc.blocks.reserve(t.table_count("blocks"));
+  t.for_each_table("blocks", [&](const CheckedTable& bt) {
     Block b = read_block(bt, materials, boxes);
     if (names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
     names.insert(b.name);
     groups.insert(b.group);
+    std::vector<Halfspace>().swap(b.world_planes);
     sc.blocks.push_back(std::move(b));
-  }
+  });
   if (builder) {
     builder->build_from_root(t, sc);
     for (std::size_t i = 0; i < sc.blocks.size(); ++i) {
@@ -574,9 +577,17 @@ Scenario load_scenario(const std::string& path, const SceneBuilders& builders) {
             " MiB, more than the 64 MiB limit of a scenario file (describe a "
             "large rock mass by joint sets, [rock_mass], instead of listing blocks)");
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scenario(ss.str(), path, builders);
+  // Read straight into one string of the file's size (a stringstream and its str() would hold
+  // the text twice, and more while the stream's buffer grows).
+  std::string text;
+  if (!error) {
+    text.resize(static_cast<std::size_t>(bytes));
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  }
+  // Whatever the size did not cover (unknown, or the file grew).
+  if (in) text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return parse_scenario(text, path, builders);
 }
 
 void check_time_step(const Scenario& sc, const World& world) {

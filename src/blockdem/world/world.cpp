@@ -331,11 +331,12 @@ EquilibriumMeasures World::equilibrium() const {
 void World::save_checkpoint() {
   require_replica("save_checkpoint");
   checkpoint_.blocks.resize(blocks_.size());
+  checkpoint_.servos.clear();
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& b = blocks_[i];
-    checkpoint_.blocks[i] = {
-        b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation,
-        b.motion,   b.servo};
+    checkpoint_.blocks[i] = {b.position,         b.velocity,    b.angular_velocity,
+                             b.angular_momentum, b.orientation, b.motion};
+    if (!same_bits(b.servo, Servo{})) checkpoint_.servos.emplace_back(i, b.servo);
   }
   // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
@@ -377,6 +378,7 @@ void World::save_checkpoint() {
 
 void World::restore_checkpoint() {
   if (!checkpoint_.valid) return;
+  std::size_t servo = 0;  // the next of checkpoint_.servos
   for (std::size_t i = 0; i < blocks_.size() && i < checkpoint_.blocks.size(); ++i) {
     Block& b = blocks_[i];
     const BlockState& s = checkpoint_.blocks[i];
@@ -386,7 +388,8 @@ void World::restore_checkpoint() {
     b.angular_momentum = s.angular_momentum;
     b.orientation = s.orientation;
     b.motion = s.motion;
-    b.servo = s.servo;
+    const auto& servos = checkpoint_.servos;
+    b.servo = servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{};
     b.update_world_geometry();
   }
   // Contacts come back with their shear history; geometry and normal forces are re-derived at

@@ -368,7 +368,6 @@ class World {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;
     Eigen::Quaterniond orientation;
     Motion motion;
-    Servo servo;
   };
   /// What a contact needs to go on after a restore (its geometry is re-derived).
   struct ContactHistory {
@@ -385,6 +384,9 @@ class World {
   };
   struct Checkpoint {
     std::vector<BlockState> blocks;
+    /// The servos that are not Servo{} bit for bit, by block index in increasing order; every
+    /// other block's is Servo{} (a servo in each BlockState would add 64 bytes per block).
+    std::vector<std::pair<std::size_t, Servo>> servos;
     std::vector<ContactHistory> contacts;
     double time = 0.0;
     std::int64_t step_count = 0;

@@ -223,14 +223,18 @@ void World::save_state(StateWriter& w) const {
   w.pod(checkpoint_.step_count);
   w.pod(checkpoint_.broken_bonds);
   w.size(checkpoint_.blocks.size());
-  for (const BlockState& s : checkpoint_.blocks) {
+  std::size_t servo = 0;  // the next of checkpoint_.servos (the others are Servo{})
+  for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
+    const BlockState& s = checkpoint_.blocks[i];
     w.vec(s.position);
     w.vec(s.velocity);
     w.vec(s.angular_velocity);
     w.vec(s.angular_momentum);
     w.quat(s.orientation);
     write_motion(w, s.motion);
-    write_servo(w, s.servo);
+    const auto& servos = checkpoint_.servos;
+    write_servo(
+        w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{});
   }
   w.size(checkpoint_.contacts.size());
   for (const ContactHistory& h : checkpoint_.contacts) {
@@ -370,14 +374,17 @@ void World::load_state(StateReader& r) {
   r.pod(checkpoint_.step_count);
   r.pod(checkpoint_.broken_bonds);
   checkpoint_.blocks.resize(r.size());
-  for (BlockState& s : checkpoint_.blocks) {
+  checkpoint_.servos.clear();
+  for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
+    BlockState& s = checkpoint_.blocks[i];
     s.position = r.vec();
     s.velocity = r.vec();
     s.angular_velocity = r.vec();
     s.angular_momentum = r.vec();
     s.orientation = r.quat();
     s.motion = read_motion(r);
-    s.servo = read_servo(r);
+    const Servo servo = read_servo(r);
+    if (!same_bits(servo, Servo{})) checkpoint_.servos.emplace_back(i, servo);
   }
   checkpoint_.contacts.resize(r.size());
   for (ContactHistory& h : checkpoint_.contacts) {

@@ -2,6 +2,8 @@
 // the run then follows the same path as a copy of the world taken at the checkpoint.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "validation/scenes.hpp"
 
 namespace blockdem::test {
@@ -54,6 +56,30 @@ TEST(Checkpoint, RestoreGivesBackStatesAndShearHistoryAndTheSamePath) {
   EXPECT_LT((w.blocks()[1].position - reference.blocks()[1].position).norm(), 1e-12);
   ASSERT_EQ(w.contact_count(), 1u);
   EXPECT_LT((w.contacts()[0]->shear.force - reference.contacts()[0]->shear.force).norm(), 1e-9);
+}
+
+// The checkpoint keeps only the servos that are not Servo{}: a restore gives every block its servo
+// as saved, a servo block's and a plain block's (Servo{}), even after both were changed.
+TEST(Checkpoint, RestoreGivesBackEachBlocksServo) {
+  World w = pushed_cube();
+  Block pusher =
+      box_block(Eigen::Vector3d::Constant(0.046), {0.2, 0, 0.023}, 1207.0, Motion::servo, "pusher");
+  pusher.servo.axis = -Eigen::Vector3d::UnitX();
+  pusher.servo.target_force = 2.5;
+  pusher.servo.gain = -0.0;  // a bit pattern Servo{} does not have
+  w.add_block(pusher);
+  w.save_checkpoint();
+  const Servo saved = w.blocks()[2].servo;
+  for (Block& b : w.blocks()) {
+    b.servo.target_force = 7.0;
+    b.servo.hold = true;
+  }
+  w.restore_checkpoint();
+  EXPECT_TRUE(same_bits(w.blocks()[0].servo, Servo{}));
+  EXPECT_TRUE(same_bits(w.blocks()[1].servo, Servo{}));
+  EXPECT_TRUE(same_bits(w.blocks()[2].servo, saved));
+  EXPECT_FALSE(same_bits(saved, Servo{}));
+  EXPECT_TRUE(std::signbit(w.blocks()[2].servo.gain));
 }
 
 }  // namespace
