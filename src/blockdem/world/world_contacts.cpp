@@ -294,7 +294,7 @@ void World::settle_contacts() {
   // many as states formed or dropped before the run) are copied aside first and written last,
   // with the new states, after every run has moved its own.
   const int threads = thread_count();
-  if (threads < 2 || slots_.size() < 4096 || !settle_contacts_parallel(threads))
+  if (threads < 2 || slots_.size() < 256 || !settle_contacts_parallel(threads))
     settle_contacts_serial();
 }
 
@@ -716,7 +716,7 @@ void World::scatter_loads() {
     EnergyStepSums energy;
   };
   std::vector<RunTotals> totals;
-  const std::int64_t big_enough = 1024;
+  const std::int64_t big_enough = 256;
 #pragma omp parallel num_threads(threads) if (threads > 1 && \
                                               static_cast <std::int64_t>(m) > big_enough)
   {
