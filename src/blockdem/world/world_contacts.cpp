@@ -45,6 +45,19 @@ int team_rank() {
 #endif
 }
 
+// How many of the indices [0, n) satisfy `pred` (a count: the same for any split).
+template <class Pred>
+std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
+  const auto m = static_cast<std::int64_t>(n);
+  std::int64_t count = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count) \
+    if (threads > 1 && m > 4096)
+  for (std::int64_t k = 0; k < m; ++k) {
+    if (pred(static_cast<std::size_t>(k))) ++count;
+  }
+  return count;
+}
+
 }  // namespace
 
 void World::compute_contacts(double dt, int threads) {
@@ -66,16 +79,10 @@ void World::keep_open_bonds() {
   // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
   // Counted first in parallel (a settled scene has none): the list is made only if needed.
-  const std::int64_t m = static_cast<std::int64_t>(slots_.size());
-  const int threads = thread_count();
-  std::int64_t count = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count) \
-    if (threads > 1 && m > 4096)
-  for (std::int64_t k = 0; k < m; ++k) {
-    const PairSlot& s = slots_[static_cast<std::size_t>(k)];
-    if (s.active && !contact_of(s).touching) ++count;
-  }
-  if (count == 0) return;
+  const auto is_open = [&](std::size_t k) {
+    return slots_[k].active && !contact_of(slots_[k]).touching;
+  };
+  if (count_in_parallel(slots_.size(), thread_count(), is_open) == 0) return;
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
     if (s.active && !contact_of(s).touching) open.emplace_back(s.a, s.b);
@@ -91,16 +98,10 @@ void World::merge_pairs() {
   // The common case: the same pairs as last step.
   bool same = pairs_.size() == slots_.size();
   if (same) {
-    const std::int64_t m = static_cast<std::int64_t>(pairs_.size());
-    const int threads = thread_count();
-    std::int64_t differ = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : differ) \
-    if (threads > 1 && m > 4096)
-    for (std::int64_t j = 0; j < m; ++j) {
-      const auto k = static_cast<std::size_t>(j);
-      if (slots_[k].a != pairs_[k].first || slots_[k].b != pairs_[k].second) ++differ;
-    }
-    same = differ == 0;
+    const auto differs = [&](std::size_t k) {
+      return slots_[k].a != pairs_[k].first || slots_[k].b != pairs_[k].second;
+    };
+    same = count_in_parallel(pairs_.size(), thread_count(), differs) == 0;
   }
   if (!same) {
     // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
