@@ -154,28 +154,16 @@ double World::a_priori_time_step() const {
     k_law = std::max(k_law, shear_stiffness_estimate(law.shear, 0.0));
   }
   if (k_law == 0.0) return std::numeric_limits<double>::infinity();
-  // A minimum over the blocks: exact, the same for any split over threads.
   double dt = std::numeric_limits<double>::infinity();
-  const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
-  const int threads = thread_count();
-#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
-  {
-    double part = std::numeric_limits<double>::infinity();
-#pragma omp for schedule(static) nowait
-    for (std::int64_t j = 0; j < n; ++j) {
-      const auto i = static_cast<std::size_t>(j);
-      const Block& b = blocks_[i];
-      if (!b.is_dynamic()) continue;
-      // Shapes are rigid: the largest face area is kept per block from add_block.
-      const double area =
-          i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
-      const double k = k_law * area;
-      const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
-      part = std::min(part, std::sqrt(b.mass / k));
-      part = std::min(part, std::sqrt(b.inertia.minCoeff() / (k * (r2 + area / 12.0))));
-    }
-#pragma omp critical(blockdem_time_step_min)
-    dt = std::min(dt, part);
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& b = blocks_[i];
+    if (!b.is_dynamic()) continue;
+    // Shapes are rigid: the largest face area is kept per block from add_block.
+    const double area = i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
+    const double k = k_law * area;
+    const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
+    dt = std::min(dt, std::sqrt(b.mass / k));
+    dt = std::min(dt, std::sqrt(b.inertia.minCoeff() / (k * (r2 + area / 12.0))));
   }
   return settings_.safety_factor * dt;
 }
@@ -221,29 +209,17 @@ void World::apply_servos(double dt, const std::vector<char>* only) {
 }
 
 void World::check_divergence() {
-  // The first block in order that is not finite or too fast (a minimum index: any split).
-  const auto diverges = [&](const Block& b) {
-    return !b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
-           !b.orientation.coeffs().allFinite() || b.velocity.norm() > settings_.max_speed;
-  };
-  const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
-  const int threads = thread_count();
-  std::int64_t first = n;
-#pragma omp parallel for num_threads(threads) schedule(static) \
-    reduction(min                                              \
-              : first) if (threads > 1 && n > 256)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (i < first && diverges(blocks_[static_cast<std::size_t>(i)])) first = i;
-  }
   std::ostringstream why;
-  if (first < n) {
-    const Block& b = blocks_[static_cast<std::size_t>(first)];
+  for (const auto& b : blocks_) {
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
         !b.orientation.coeffs().allFinite()) {
       why << "block '" << b.name << "' has a non-finite position or velocity";
-    } else {
+      break;
+    }
+    if (b.velocity.norm() > settings_.max_speed) {
       why << "block '" << b.name << "' moves at " << b.velocity.norm() << " m/s (limit "
           << settings_.max_speed << " m/s)";
+      break;
     }
   }
   if (why.str().empty() && overlap_violation_ >= 0) {

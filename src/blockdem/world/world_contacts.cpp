@@ -312,17 +312,21 @@ bool World::settle_contacts_parallel(int threads) {
     const auto runs = static_cast<std::size_t>(team_size());
     const auto t = static_cast<std::size_t>(team_rank());
     const std::size_t begin = t * m / runs, end = (t + 1) * m / runs;
-    // 1. Counts, and the run's first old state.
+    // 1. Counts, and the run's first old state (kept locally: no shared cache lines).
+    std::size_t my_kept = 0, my_formed = 0, my_first = contacts_.size();
     for (std::size_t k = begin; k < end; ++k) {
       const PairSlot& s = slots_[k];
-      if (s.contact >= 0 && old_first[t] == contacts_.size())
-        old_first[t] = static_cast<std::size_t>(s.contact);
+      if (s.contact >= 0 && my_first == contacts_.size())
+        my_first = static_cast<std::size_t>(s.contact);
       if (s.pending) {
-        ++formed[t];
+        ++my_formed;
       } else if (s.contact >= 0 && s.active) {
-        ++kept[t];
+        ++my_kept;
       }
     }
+    kept[t] = my_kept;
+    formed[t] = my_formed;
+    old_first[t] = my_first;
 #pragma omp barrier
 #pragma omp single
     {
@@ -768,7 +772,7 @@ void World::scatter_loads() {
         if (b >= first && b < last) load_b(s);
       }
     }
-    RunTotals& mine = totals[t];
+    RunTotals mine;  // local: no cache line shared with another run's totals
     for (std::size_t k = begin; k < end; ++k) {
       const PairSlot& s = slots_[k];
       if (s.broke) ++mine.broken;  // a bond that broke in tension leaves its slot inactive
@@ -793,6 +797,7 @@ void World::scatter_loads() {
       mine.dt_min =
           std::min(mine.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
     }
+    totals[t] = std::move(mine);
   }
   active_count_ = 0;
   overlap_violation_ = -1;
