@@ -46,6 +46,17 @@ void EnergyStepSums::add_contact(const Contact& contact, double twist_stiffness,
   slip_work.add(slip);
 }
 
+EnergyStepSums& EnergyStepSums::operator+=(const EnergyStepSums& other) {
+  gravity += other.gravity;
+  load += other.load;
+  damping += other.damping;
+  kinetic += other.kinetic;
+  boundary += other.boundary;
+  elastic += other.elastic;
+  slip_work += other.slip_work;
+  return *this;
+}
+
 std::vector<std::int64_t> EnergyStepSums::limbs() const {
   std::vector<std::int64_t> out;
   out.reserve(kLimbs);

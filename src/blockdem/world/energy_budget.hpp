@@ -64,6 +64,8 @@ struct EnergyStepSums {
   /// A contact's springs (normal, shear and, with `twist_stiffness` k_s J > 0, the twist spring)
   /// and the work its slip dissipated in the step (J).
   void add_contact(const Contact& contact, double twist_stiffness, double slip_work);
+  /// Adds another part's sums (exact: the same bits for any split of the terms).
+  EnergyStepSums& operator+=(const EnergyStepSums& other);
   static constexpr std::size_t kLimbs = 7 * ExactSum::kLimbs;
   /// Every sum's limbs (ExactSum::limbs), for an integer-sum reduction over processes.
   std::vector<std::int64_t> limbs() const;

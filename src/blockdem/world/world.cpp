@@ -262,17 +262,26 @@ void World::step() {
   apply_servos(dt);
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   const double damping = settings_.damping;
+  // 7. With each block, its terms of the energy budget at the level whose forces this step
+  // used: exact sums, the same bits for any split over threads (the contacts' terms were summed
+  // by scatter_loads).
   energy_.before_integration(blocks_);
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > 256)
-  for (std::int64_t i = 0; i < n; ++i) {
-    integrate_block(blocks_[static_cast<std::size_t>(i)], dt, damping);
+  energy_.prepare(blocks_.size());
+  EnergyStepSums sums = contact_energy_;
+  const Eigen::Vector3d gravity = settings_.gravity;
+#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
+  {
+    EnergyStepSums part;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      integrate_block(blocks_[k], dt, damping);
+      part.add_block(energy_.block_terms(k, blocks_[k], gravity, damping, dt));
+    }
+#pragma omp critical(blockdem_energy_sums)
+    sums += part;
   }
-  // 7. Energy budget at the level whose forces this step used (exact sums).
-  EnergyStepSums contact_sums;
-  for (const auto& s : slots_) {
-    if (s.active) contact_sums.add_contact(contact_of(s), s.twist_stiffness, s.slip_work);
-  }
-  energy_.after_integration(blocks_, settings_.gravity, damping, dt, std::move(contact_sums));
+  energy_.add_step(sums);
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;

@@ -302,6 +302,8 @@ class World {
   /// After a per-pair pass: contacts_ holds the states of the active slots, in slot order (a
   /// sorted merge of the kept states and pending_, in place).
   void settle_contacts();
+  bool settle_contacts_parallel(int threads);
+  void settle_contacts_serial();
   /// Drops the states of slots that no longer exist (after slots were removed), keeping order.
   void compact_contacts();
   // world_distributed.cpp
@@ -343,6 +345,11 @@ class World {
   // Per-block stiffness sums of this step, for the automatic time step.
   std::vector<double> stiffness_, rotational_stiffness_;
   double contact_dt_ = 0.0;
+  // scatter_loads: its runs of slots (first block and first slot of each, and an end), the slots
+  // of each run whose block b lies in a later run, and this step's contact energy sums.
+  std::vector<std::size_t> scatter_first_, scatter_begin_;
+  std::vector<std::vector<std::size_t>> scatter_cross_;
+  EnergyStepSums contact_energy_;
 
   // Distributed runs (settings_.distribution): block owners, when they were last computed.
   std::vector<int> owner_;

@@ -17,11 +17,45 @@
 #include "blockdem/world/face_laws.hpp"
 #include "blockdem/world/world.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace blockdem {
 namespace {
 
 bool less_pair(int a1, int b1, int a2, int b2) {
   return a1 < a2 || (a1 == a2 && b1 < b2);
+}
+
+// The size of the current OpenMP team and this thread's rank in it (1 and 0 outside OpenMP).
+int team_size() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
+int team_rank() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// How many of the indices [0, n) satisfy `pred` (a count: the same for any split).
+template <class Pred>
+std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
+  const auto m = static_cast<std::int64_t>(n);
+  std::int64_t count = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count) \
+    if (threads > 1 && m > 4096)
+  for (std::int64_t k = 0; k < m; ++k) {
+    if (pred(static_cast<std::size_t>(k))) ++count;
+  }
+  return count;
 }
 
 }  // namespace
@@ -44,6 +78,11 @@ void World::compute_contacts(double dt, int threads) {
 void World::keep_open_bonds() {
   // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
+  // Counted first in parallel (a settled scene has none): the list is made only if needed.
+  const auto is_open = [&](std::size_t k) {
+    return slots_[k].active && !contact_of(slots_[k]).touching;
+  };
+  if (count_in_parallel(slots_.size(), thread_count(), is_open) == 0) return;
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
     if (s.active && !contact_of(s).touching) open.emplace_back(s.a, s.b);
@@ -58,8 +97,11 @@ void World::keep_open_bonds() {
 void World::merge_pairs() {
   // The common case: the same pairs as last step.
   bool same = pairs_.size() == slots_.size();
-  for (std::size_t k = 0; same && k < pairs_.size(); ++k) {
-    same = slots_[k].a == pairs_[k].first && slots_[k].b == pairs_[k].second;
+  if (same) {
+    const auto differs = [&](std::size_t k) {
+      return slots_[k].a != pairs_[k].first || slots_[k].b != pairs_[k].second;
+    };
+    same = count_in_parallel(pairs_.size(), thread_count(), differs) == 0;
   }
   if (!same) {
     // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
@@ -244,6 +286,139 @@ void World::evaluate_pairs(double dt, bool advance_shear, int threads) {
 }
 
 void World::settle_contacts() {
+  // Each slot's state goes to its place in slot order among the kept and new states: the
+  // (kept + new) states before it. The slots are cut into one run per thread; a run's old
+  // states lie in its own range of the store, range[t] to range[t + 1] (the store is in slot
+  // order), and their new places from places[t] on. Within its range a run moves the
+  // states that go down in increasing order and those that go up in decreasing order (no state
+  // is overwritten before it is moved); the few whose new place is outside the range (about as
+  // many as states formed or dropped before the run) are copied aside first and written last,
+  // with the new states, after every run has moved its own.
+  const int threads = thread_count();
+  if (threads < 2 || slots_.size() < 256 || !settle_contacts_parallel(threads))
+    settle_contacts_serial();
+}
+
+bool World::settle_contacts_parallel(int threads) {
+  const std::size_t m = slots_.size();
+  std::size_t kept_total = 0, runs_used = 1;
+  std::vector<std::size_t> kept(static_cast<std::size_t>(threads), 0);
+  std::vector<std::size_t> formed(kept.size(), 0), old_first(kept.size(), contacts_.size());
+  std::vector<std::size_t> places(kept.size() + 1, 0), range(kept.size() + 1, contacts_.size());
+  std::vector<std::vector<std::pair<std::size_t, Contact>>> aside(kept.size());
+  bool all_new = false, missing = false;
+#pragma omp parallel num_threads(threads)
+  {
+    const auto runs = static_cast<std::size_t>(team_size());
+    const auto t = static_cast<std::size_t>(team_rank());
+    const std::size_t begin = t * m / runs, end = (t + 1) * m / runs;
+    // 1. Counts, and the run's first old state (kept locally: no shared cache lines).
+    std::size_t my_kept = 0, my_formed = 0, my_first = contacts_.size();
+    for (std::size_t k = begin; k < end; ++k) {
+      const PairSlot& s = slots_[k];
+      if (s.contact >= 0 && my_first == contacts_.size())
+        my_first = static_cast<std::size_t>(s.contact);
+      if (s.pending) {
+        ++my_formed;
+      } else if (s.contact >= 0 && s.active) {
+        ++my_kept;
+      }
+    }
+    kept[t] = my_kept;
+    formed[t] = my_formed;
+    old_first[t] = my_first;
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t r = 0; r < runs; ++r) {
+        places[r + 1] = places[r] + kept[r] + formed[r];
+        kept_total += kept[r];
+      }
+      for (std::size_t r = runs; r-- > 0;) range[r] = std::min(old_first[r], range[r + 1]);
+      all_new = kept_total == 0;
+      runs_used = runs;
+      const std::size_t total = places[runs];
+      if (!all_new) {
+        if (total > contacts_.capacity()) contacts_.reserve(total + total / 8);
+        if (total > contacts_.size()) contacts_.resize(total);
+      }
+    }
+    if (!all_new) {
+      const std::size_t from = range[t], to = range[t + 1];
+      const auto inside = [&](std::size_t w) { return w >= from && w < to; };
+      // 2. Kept states whose new place is outside the run's range, aside.
+      std::size_t w = places[t];
+      for (std::size_t k = begin; k < end; ++k) {
+        const PairSlot& s = slots_[k];
+        if (s.pending) {
+          ++w;
+        } else if (s.contact >= 0 && s.active) {
+          if (!inside(w)) aside[t].emplace_back(w, contacts_[static_cast<std::size_t>(s.contact)]);
+          ++w;
+        }
+      }
+#pragma omp barrier
+      // 3. Within the range: down in increasing order, then up in decreasing order.
+      w = places[t];
+      for (std::size_t k = begin; k < end; ++k) {
+        PairSlot& s = slots_[k];
+        if (s.pending) {
+          ++w;
+        } else if (s.contact >= 0 && s.active) {
+          const auto o = static_cast<std::size_t>(s.contact);
+          if (inside(w) && w < o) contacts_[w] = contacts_[o];
+          ++w;
+        }
+      }
+      for (std::size_t k = end; k-- > begin;) {
+        PairSlot& s = slots_[k];
+        if (s.pending) {
+          --w;
+        } else if (s.contact >= 0 && s.active) {
+          const auto o = static_cast<std::size_t>(s.contact);
+          --w;
+          if (inside(w) && w > o) contacts_[w] = contacts_[o];
+          s.contact = static_cast<std::int32_t>(w);
+        } else {
+          s.contact = -1;
+        }
+      }
+#pragma omp barrier
+      // 4. The states set aside and the new states.
+      for (const auto& [place, state] : aside[t]) contacts_[place] = state;
+      w = places[t];
+      for (std::size_t k = begin; k < end; ++k) {
+        PairSlot& s = slots_[k];
+        if (s.pending) {
+          const std::vector<PendingContact>& list = pending_[k / pending_run_];
+          const auto it = std::lower_bound(
+              list.begin(), list.end(), k,
+              [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
+          if (it == list.end() || it->slot != k) {
+#pragma omp atomic write
+            missing = true;
+          } else {
+            contacts_[w] = it->contact;
+          }
+          s.pending = false;
+          s.contact = static_cast<std::int32_t>(w);
+          ++w;
+        } else if (s.contact >= 0) {
+          ++w;  // kept: placed in step 3
+        }
+      }
+    }
+  }
+  if (all_new) return false;
+  if (missing) throw std::logic_error("contact merge: a new contact state is missing");
+  const std::size_t total = places[runs_used];
+  contacts_.resize(total);
+  pending_.clear();
+  if (contacts_.capacity() > 2 * total + 1024) contacts_.shrink_to_fit();
+  return true;
+}
+
+void World::settle_contacts_serial() {
   // Forward: the kept states of active slots move down over those of inactive or gone slots
   // (both in slot order, so a state never moves up).
   std::size_t kept = 0, formed = 0;
@@ -483,62 +658,159 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
 }
 
 void World::scatter_loads() {
-  // Serial, in (a, b) order: every block's sums are formed in the same order for any number of
-  // threads. The pass also counts contacts and finds the first too-deep overlap.
-  stiffness_.assign(blocks_.size(), 0.0);
-  rotational_stiffness_.assign(blocks_.size(), 0.0);
-  active_count_ = 0;
-  overlap_violation_ = -1;
-  for (std::size_t slot = 0; slot < slots_.size(); ++slot) {
-    const PairSlot& s = slots_[slot];
-    if (s.broke) ++broken_bonds_;  // a bond that broke in tension leaves its slot inactive
-    if (!s.active) continue;
-    ++active_count_;
+  // Every block's sums are formed in (a, b) order, as a serial pass over the slots would form
+  // them, for any number of threads. The slots are split into T runs of whole blocks (run t:
+  // the slots whose a is in [first_[t], first_[t+1])). A block's terms in slot order are those
+  // where it is b (from slots with a smaller a) and then those where it is a, so run t's blocks
+  // take first the terms of earlier runs' slots whose b falls in run t (listed by those runs,
+  // in slot order), then run t's own slots in order. The pass also counts contacts and broken
+  // bonds, finds the first too-deep overlap, sums the contacts' energies (exact sums) and the
+  // automatic time step's minimum over blocks (a minimum is exact).
+  const std::size_t n_blocks = blocks_.size();
+  const std::size_t m = slots_.size();
+  stiffness_.assign(n_blocks, 0.0);
+  rotational_stiffness_.assign(n_blocks, 0.0);
+  const int threads = thread_count();
+
+  // The loads of one slot on its block b, and on its block a.
+  const auto load_b = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
-    Block& a = blocks_[ct.a];
     Block& b = blocks_[ct.b];
     const Eigen::Vector3d& xf = ct.force_point;
-
-    // Loads on both blocks, applied at the force point.
     const Eigen::Vector3d f = ct.force_on_b();
     b.force += f;
     b.contact_force += f;
     b.torque += (xf - b.position).cross(f);
-    a.force -= f;
-    a.contact_force -= f;
-    a.torque -= (xf - a.position).cross(f);
     // The twisting moment about the normal, a couple: M n on b, -M n on a.
     if (ct.twist.moment != 0.0) {
-      const Eigen::Vector3d m = ct.twist.moment * ct.geometry.normal;
-      b.torque += m;
-      a.torque -= m;
+      const Eigen::Vector3d moment = ct.twist.moment * ct.geometry.normal;
+      b.torque += moment;
     }
-
     // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
     // the rocking stiffness of a spread face.
     const double k = s.stiffness;
     const double spread = ct.compressed_area / 12.0;
-    stiffness_[ct.a] += k;
     stiffness_[ct.b] += k;
-    rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
     rotational_stiffness_[ct.b] += k * ((xf - b.position).squaredNorm() + spread);
-    rotational_stiffness_[ct.a] += s.twist_stiffness;
     rotational_stiffness_[ct.b] += s.twist_stiffness;
-
-    if (overlap_violation_ < 0) {
-      const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-      if (ct.geometry.overlap > settings_.max_overlap_fraction * size)
-        overlap_violation_ = static_cast<std::int64_t>(slot);
+  };
+  const auto load_a = [&](const PairSlot& s) {
+    const Contact& ct = contact_of(s);
+    Block& a = blocks_[ct.a];
+    const Eigen::Vector3d& xf = ct.force_point;
+    const Eigen::Vector3d f = ct.force_on_b();
+    a.force -= f;
+    a.contact_force -= f;
+    a.torque -= (xf - a.position).cross(f);
+    if (ct.twist.moment != 0.0) {
+      const Eigen::Vector3d moment = ct.twist.moment * ct.geometry.normal;
+      a.torque -= moment;
     }
-  }
+    const double k = s.stiffness;
+    const double spread = ct.compressed_area / 12.0;
+    stiffness_[ct.a] += k;
+    rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
+    rotational_stiffness_[ct.a] += s.twist_stiffness;
+  };
 
-  contact_dt_ = 0.0;
-  double dt_min = std::numeric_limits<double>::infinity();
-  for (const auto& bl : blocks_) {
-    if (!bl.is_dynamic() || stiffness_[bl.index] <= 0.0) continue;
-    dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[bl.index]));
-    dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[bl.index]));
+  struct RunTotals {
+    std::int64_t broken = 0;
+    std::size_t active = 0;
+    std::int64_t violation = -1;
+    double dt_min = std::numeric_limits<double>::infinity();
+    EnergyStepSums energy;
+  };
+  std::vector<RunTotals> totals;
+  const std::int64_t big_enough = 256;
+#pragma omp parallel num_threads(threads) if (threads > 1 && \
+                                              static_cast <std::int64_t>(m) > big_enough)
+  {
+#pragma omp single
+    {
+      const std::size_t runs = static_cast<std::size_t>(team_size());
+      totals.resize(runs);
+      scatter_first_.assign(runs + 1, n_blocks);
+      scatter_begin_.assign(runs + 1, m);
+      scatter_first_[0] = 0;
+      scatter_begin_[0] = 0;
+      for (std::size_t t = 1; t < runs; ++t) {
+        // Runs of about equal slot counts, cut at a block's first slot.
+        const std::size_t at = t * m / runs;
+        scatter_first_[t] =
+            at < m ? std::max(scatter_first_[t - 1], static_cast<std::size_t>(slots_[at].a))
+                   : n_blocks;
+        scatter_begin_[t] = static_cast<std::size_t>(
+            std::lower_bound(slots_.begin() + static_cast<std::ptrdiff_t>(scatter_begin_[t - 1]),
+                             slots_.end(), scatter_first_[t],
+                             [](const PairSlot& s, std::size_t a) {
+                               return static_cast<std::size_t>(s.a) < a;
+                             }) -
+            slots_.begin());
+      }
+      scatter_cross_.resize(runs);
+    }
+    const auto t = static_cast<std::size_t>(team_rank());
+    const std::size_t runs = totals.size();
+    const std::size_t begin = scatter_begin_[t], end = scatter_begin_[t + 1];
+    const std::size_t last = scatter_first_[t + 1];  // past this run's blocks
+    // 1. This run's slots whose b lies in a later run.
+    std::vector<std::size_t>& cross = scatter_cross_[t];
+    cross.clear();
+    if (runs > 1) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const PairSlot& s = slots_[k];
+        if (s.active && static_cast<std::size_t>(s.b) >= last) cross.push_back(k);
+      }
+    }
+#pragma omp barrier
+    // 2. The earlier runs' terms on this run's blocks, in slot order; then this run's slots.
+    const std::size_t first = scatter_first_[t];
+    for (std::size_t r = 0; r < t; ++r) {
+      for (const std::size_t k : scatter_cross_[r]) {
+        const PairSlot& s = slots_[k];
+        const auto b = static_cast<std::size_t>(s.b);
+        if (b >= first && b < last) load_b(s);
+      }
+    }
+    RunTotals mine;  // local: no cache line shared with another run's totals
+    for (std::size_t k = begin; k < end; ++k) {
+      const PairSlot& s = slots_[k];
+      if (s.broke) ++mine.broken;  // a bond that broke in tension leaves its slot inactive
+      if (!s.active) continue;
+      ++mine.active;
+      load_a(s);
+      if (static_cast<std::size_t>(s.b) < last) load_b(s);
+      const Contact& ct = contact_of(s);
+      mine.energy.add_contact(ct, s.twist_stiffness, s.slip_work);
+      if (mine.violation < 0) {
+        const double size =
+            std::min(blocks_[ct.a].shape.bounding_radius(), blocks_[ct.b].shape.bounding_radius());
+        if (ct.geometry.overlap > settings_.max_overlap_fraction * size)
+          mine.violation = static_cast<std::int64_t>(k);
+      }
+    }
+    // 3. This run's blocks are complete: their time-step bound.
+    for (std::size_t i = first; i < last; ++i) {
+      const Block& bl = blocks_[i];
+      if (!bl.is_dynamic() || stiffness_[i] <= 0.0) continue;
+      mine.dt_min = std::min(mine.dt_min, std::sqrt(bl.mass / stiffness_[i]));
+      mine.dt_min =
+          std::min(mine.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
+    }
+    totals[t] = std::move(mine);
   }
+  active_count_ = 0;
+  overlap_violation_ = -1;
+  contact_energy_ = EnergyStepSums{};
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (const RunTotals& r : totals) {
+    broken_bonds_ += r.broken;
+    active_count_ += r.active;
+    if (overlap_violation_ < 0) overlap_violation_ = r.violation;
+    dt_min = std::min(dt_min, r.dt_min);
+    contact_energy_ += r.energy;
+  }
+  contact_dt_ = 0.0;
   if (std::isfinite(dt_min)) contact_dt_ = settings_.safety_factor * dt_min;
 }
 
