@@ -379,24 +379,18 @@ class World {
   EnergyLedger energy_;
 
   // prime_narrow_phase's results until the next step takes them: the slots that step would
-  // open, with their warm starts after the cold solve, and per slot kPrimedGeometryNone (the
-  // narrow phase found no contact), kNotPrimed, or an index into primed_geometry_, which holds
-  // a contact's normal, overlap and area (its point is the warm start's last point). The
-  // blocks' poses and shapes at the time, to see that none changed.
-  struct PrimedGeometry {
-    Eigen::Vector3d normal;
-    double overlap = 0.0;
-    double area = 0.0;
-  };
+  // open, with their warm starts after the cold solve, and per slot the contact's slice area, 0
+  // where the narrow phase found no contact, or kNotPrimed (a contact's point is its warm
+  // start's last point; normal and overlap follow from it). The blocks' poses and shapes at the
+  // time, to see that none changed.
   struct PrimedPose {
     Eigen::Vector3d position;
     Eigen::Quaterniond orientation;
     Polyhedron shape;
   };
-  static constexpr std::int32_t kNotPrimed = -2, kPrimedGeometryNone = -1;
+  static constexpr double kNotPrimed = -1.0;
   std::vector<PairSlot> primed_slots_;
-  std::vector<std::int32_t> primed_index_;  ///< per slot, while the step may take them
-  std::vector<PrimedGeometry> primed_geometry_;
+  std::vector<double> primed_area_;  ///< per slot, while the step may take them
   std::vector<PrimedPose> primed_poses_;
   Boon2012Settings primed_settings_;
   std::int64_t primed_step_ = 0;  ///< step_count_ when primed

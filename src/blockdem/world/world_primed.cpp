@@ -33,11 +33,9 @@ void World::prime_narrow_phase(
       slot_of[k] = static_cast<std::int32_t>(count++);
   }
   primed_slots_.resize(count);
-  primed_index_.assign(count, kNotPrimed);
-  // A contact's geometry is kept only without twist, which reads the slice polygon as well.
+  primed_area_.assign(count, kNotPrimed);
+  // A contact's result is kept only without twist, which reads the slice polygon as well.
   const bool keep_contacts = !settings_.twist_enabled();
-  std::vector<std::uint8_t> has_geometry(keep_contacts ? count : 0, 0);
-  std::vector<PrimedGeometry> geometry(keep_contacts ? count : 0);
   const std::int64_t n = static_cast<std::int64_t>(pairs.size());
   const int threads = thread_count();
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
@@ -57,22 +55,11 @@ void World::prime_narrow_phase(
     slot.b = j;
     slot.group_law = law_for(i, j);
     if (step_count_ > 0) slot.bond = BondState::unbonded;  // as merge_pairs opens it
+    // What the step reads of the geometry: a contact has a positive area and overlap.
     const bool contact = g.touching && g.area > 0.0 && g.overlap > 0.0;
-    if (!contact) {
-      slot.narrow_cache = pack_warm_start(cache);
-      primed_index_[static_cast<std::size_t>(s)] = kPrimedGeometryNone;
-    } else if (keep_contacts) {
-      slot.narrow_cache = pack_warm_start(cache);
-      has_geometry[static_cast<std::size_t>(s)] = 1;
-      geometry[static_cast<std::size_t>(s)] = {g.normal, g.overlap, g.area};
-    }
-    // Else the step solves the pair again from an empty warm start, as it would have.
-  }
-  // The contacts' geometry, packed in slot order.
-  for (std::size_t s = 0; s < has_geometry.size(); ++s) {
-    if (!has_geometry[s]) continue;
-    primed_index_[s] = static_cast<std::int32_t>(primed_geometry_.size());
-    primed_geometry_.push_back(geometry[s]);
+    if (contact && !keep_contacts) continue;  // solved again, from an empty warm start
+    slot.narrow_cache = pack_warm_start(cache);
+    primed_area_[static_cast<std::size_t>(s)] = contact ? g.area : 0.0;
   }
   primed_poses_.reserve(blocks_.size());
   for (const Block& b : blocks_) primed_poses_.push_back({b.position, b.orientation, b.shape});
@@ -82,13 +69,12 @@ void World::prime_narrow_phase(
 
 void World::drop_primed() {
   std::vector<PairSlot>().swap(primed_slots_);
-  std::vector<std::int32_t>().swap(primed_index_);
-  std::vector<PrimedGeometry>().swap(primed_geometry_);
+  std::vector<double>().swap(primed_area_);
   std::vector<PrimedPose>().swap(primed_poses_);
 }
 
 void World::take_primed_slots() {
-  if (primed_index_.empty()) return;
+  if (primed_area_.empty()) return;
   // Taken only as a whole: into a step without slots whose pairs are the primed ones, with the
   // same narrow-phase settings and blocks (a changed block's pairs are solved again).
   bool take = slots_.empty() && step_count_ == primed_step_ &&
@@ -120,7 +106,7 @@ void World::take_primed_slots() {
     if (unchanged[static_cast<std::size_t>(s.a)] && unchanged[static_cast<std::size_t>(s.b)])
       continue;
     s.narrow_cache = NarrowWarmStart{};
-    primed_index_[k] = kNotPrimed;
+    primed_area_[k] = kNotPrimed;
   }
   slots_ = std::move(primed_slots_);
   primed_slots_.clear();
@@ -129,20 +115,20 @@ void World::take_primed_slots() {
 ContactGeometry World::narrow_phase(PairSlot& slot, const Block& a, const Block& b,
                                     double extent) const {
   const std::size_t k = static_cast<std::size_t>(&slot - slots_.data());
-  if (k < primed_index_.size() && primed_index_[k] != kNotPrimed) {
-    // The cold solve of the set-up at these very poses: its geometry, and its warm start (which
-    // is the slot's already).
+  if (k < primed_area_.size() && primed_area_[k] != kNotPrimed) {
+    // The cold solve of the set-up at these very poses: its warm start is the slot's already,
+    // the contact point its last point, from which steps 3 and 4 give the same normal and
+    // overlap again; the area (step 5, whose warm start of the cold solve is gone) was kept.
     ContactGeometry g;
     const NarrowWarmStart& w = slot.narrow_cache;
     g.inscribed_radius = w.radius;
     g.inscribed_centre = w.center;
-    if (primed_index_[k] >= 0) {
-      const PrimedGeometry& p = primed_geometry_[static_cast<std::size_t>(primed_index_[k])];
+    if (primed_area_[k] > 0.0) {
       g.touching = true;
       g.point = w.last_point;
-      g.normal = p.normal;
-      g.overlap = p.overlap;
-      g.area = p.area;
+      boon2012_normal_and_overlap(a.world_planes, b.world_planes, g.point, settings_.boon2012,
+                                  g.normal, g.overlap);
+      g.area = primed_area_[k];
     }
     return g;
   }
