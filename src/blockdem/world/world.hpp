@@ -146,9 +146,8 @@ class World {
   /// kept, and that step takes them instead of solving the same pairs again (the same bits: a
   /// pair with a block that moved or changed in between is solved again, and nothing is kept
   /// after that step). The set-up's check of the initial overlaps is such a pass.
-  void prime_narrow_phase(
-      const std::vector<std::pair<int, int>>& pairs,
-      const std::function<void(std::int64_t, const ContactGeometry&)>& visit);
+  void prime_narrow_phase(const std::vector<std::pair<int, int>>& pairs,
+                          const std::function<void(std::int64_t, const ContactGeometry&)>& visit);
 
   /// The current contacts, sorted by (a, b).
   std::vector<const Contact*> contacts() const;
@@ -298,8 +297,7 @@ class World {
   void take_primed_slots();
   void drop_primed();
   /// The pair's narrow phase with its warm start, or its primed result.
-  ContactGeometry narrow_phase(PairSlot& slot, const Block& a, const Block& b,
-                               double extent) const;
+  ContactGeometry narrow_phase(PairSlot& slot, const Block& a, const Block& b, double extent) const;
   void keep_open_bonds();
   void merge_pairs();
   /// The contact a slot starts a step with when it has no state: no history, its bond.

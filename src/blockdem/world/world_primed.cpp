@@ -78,8 +78,7 @@ void World::take_primed_slots() {
   // Taken only as a whole: into a step without slots whose pairs are the primed ones, with the
   // same narrow-phase settings and blocks (a changed block's pairs are solved again).
   bool take = slots_.empty() && step_count_ == primed_step_ &&
-              pairs_.size() == primed_slots_.size() &&
-              primed_poses_.size() == blocks_.size() &&
+              pairs_.size() == primed_slots_.size() && primed_poses_.size() == blocks_.size() &&
               same_bits(primed_settings_.rounding_distance, settings_.boon2012.rounding_distance) &&
               same_bits(primed_settings_.overlap_tolerance, settings_.boon2012.overlap_tolerance);
   for (std::size_t k = 0; take && k < pairs_.size(); ++k) {

@@ -104,8 +104,7 @@ TEST(CsvWriter, General12IsPrintfsText) {
   std::uniform_int_distribution<long long> mantissa13(100000000000LL, 999999999999LL);
   std::uniform_int_distribution<int> scale(-40, 40);
   for (int i = 0; i < 20000; ++i) {
-    const std::string text =
-        std::to_string(mantissa13(rng)) + "5e" + std::to_string(scale(rng));
+    const std::string text = std::to_string(mantissa13(rng)) + "5e" + std::to_string(scale(rng));
     const double v = std::strtod(text.c_str(), nullptr);
     values.push_back(v);
     values.push_back(std::nextafter(v, 0.0));

@@ -87,8 +87,7 @@ void expect_same_steps(World& primed, World& reference, int steps) {
     for (std::size_t i = 0; i < primed.blocks().size(); ++i) {
       EXPECT_TRUE(same(primed.blocks()[i].position, reference.blocks()[i].position))
           << "step " << step << " block " << i;
-      EXPECT_TRUE(same(primed.blocks()[i].angular_velocity,
-                       reference.blocks()[i].angular_velocity))
+      EXPECT_TRUE(same(primed.blocks()[i].angular_velocity, reference.blocks()[i].angular_velocity))
           << "step " << step << " block " << i;
     }
   }
