@@ -32,6 +32,8 @@ void World::prime_narrow_phase(
     if (steps_pair(pairs[k].first, pairs[k].second))
       slot_of[k] = static_cast<std::int32_t>(count++);
   }
+  // With merge_pairs' slack of an eighth, which the next steps' new pairs fill.
+  primed_slots_.reserve(count + count / 8);
   primed_slots_.resize(count);
   primed_area_.assign(count, kNotPrimed);
   // A contact's result is kept only without twist, which reads the slice polygon as well.
