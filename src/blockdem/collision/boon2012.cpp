@@ -199,6 +199,22 @@ void match_cache(std::span<const Halfspace> planes_a, std::span<const Halfspace>
   cache->planes_b = size_b;
 }
 
+// Steps 3 and 4 at the contact point x_c: the normal from the two inner potential particles,
+// A to B, and the overlap, the chord of A∩B through x_c along it. Fills the slacks at x_c and
+// the in-plane components for the normal's axes (axis_u, axis_v) for the slice.
+void normal_and_overlap(const PlaneColumns& columns, std::size_t planes_a,
+                        const Eigen::Vector3d& point, const Boon2012Settings& settings,
+                        PointColumns& at_point, Eigen::Vector3d& normal, double& overlap,
+                        Eigen::Vector3d& axis_u, Eigen::Vector3d& axis_v) {
+  fill_slacks(columns, point, at_point.slack);
+  const double r = settings.rounding_distance;
+  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a, r);
+  const Eigen::Vector3d gb = gradient_of(columns, at_point.slack, planes_a, columns.size(), r);
+  normal = (ga - gb).normalized();
+  plane_axes(normal, axis_u, axis_v);
+  overlap = chord_of(columns, at_point.slack, normal, &at_point, axis_u, axis_v);
+}
+
 // Steps 2-5 given the LP solution for the planes of A then those of B.
 ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
                                   std::span<const Halfspace> planes_b, const InscribedBall& ball,
@@ -234,19 +250,11 @@ ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
     cache->last_point = out.point;
   }
 
-  // 3. Normal from the two inner potential particles, A to B.
+  // 3-4. Normal and overlap.
   PointColumns at_point(columns.size());
-  fill_slacks(columns, out.point, at_point.slack);
-  const double r = settings.rounding_distance;
-  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a.size(), r);
-  const Eigen::Vector3d gb =
-      gradient_of(columns, at_point.slack, planes_a.size(), columns.size(), r);
-  out.normal = (ga - gb).normalized();
-
-  // 4. Overlap distance: the chord of A∩B through x_c along n.
   Eigen::Vector3d axis_u, axis_v;
-  plane_axes(out.normal, axis_u, axis_v);
-  out.overlap = chord_of(columns, at_point.slack, out.normal, &at_point, axis_u, axis_v);
+  normal_and_overlap(columns, planes_a.size(), out.point, settings, at_point, out.normal,
+                     out.overlap, axis_u, axis_v);
 
   // 5. Contact area: the slice of A∩B by the plane through x_c normal to n.
   const SliceLines lines{at_point.a_u, at_point.a_v, at_point.slack, columns.size()};
@@ -272,6 +280,17 @@ ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
     cache->has_ball = true;
   }
   return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
+}
+
+void boon2012_normal_and_overlap(std::span<const Halfspace> planes_a,
+                                 std::span<const Halfspace> planes_b, const Eigen::Vector3d& point,
+                                 const Boon2012Settings& settings, Eigen::Vector3d& normal,
+                                 double& overlap) {
+  const PlaneColumns columns(planes_a, planes_b);
+  PointColumns at_point(columns.size());
+  Eigen::Vector3d axis_u, axis_v;
+  normal_and_overlap(columns, planes_a.size(), point, settings, at_point, normal, overlap, axis_u,
+                     axis_v);
 }
 
 ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,

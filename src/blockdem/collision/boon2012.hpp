@@ -53,6 +53,13 @@ ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
                                            const Boon2012Settings& settings,
                                            Boon2012Cache* cache = nullptr);
 
+/// Steps 3 and 4 of the narrow phase at a contact point x_c found before: the normal and the
+/// overlap, the same bits as boon2012_contact gives with that point.
+void boon2012_normal_and_overlap(std::span<const Halfspace> planes_a,
+                                 std::span<const Halfspace> planes_b, const Eigen::Vector3d& point,
+                                 const Boon2012Settings& settings, Eigen::Vector3d& normal,
+                                 double& overlap);
+
 /// Rounded normal of one block at x: the gradient of
 /// f(x) = Σ_i <n_i·x - (d_i - r_round)>², i.e. 2 Σ_i <n_i·x - d_i + r_round> n_i; when x lies
 /// deeper than r_round behind every face, the gradient the nearest face would give on its own

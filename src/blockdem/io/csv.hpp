@@ -3,10 +3,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace blockdem {
+
+/// Writes `value` as printf's "%.12g" writes it (the text of a stream at precision 12), at
+/// `out`, which has room for 32 characters; returns the end of the text.
+char* write_general12(char* out, double value);
 
 class CsvWriter {
  public:
@@ -14,6 +19,9 @@ class CsvWriter {
   /// an existing file that has the header (a restarted run). Throws std::runtime_error on failure.
   CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
             bool append = false);
+  ~CsvWriter();
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
 
   /// One row: values in column order. Numbers print with 12 significant digits.
   CsvWriter& cell(double value);
@@ -22,12 +30,28 @@ class CsvWriter {
   CsvWriter& cell(const std::string& value);
   /// Ends the row; throws if the number of cells differs from the header.
   void end_row();
-  void flush() { out_.flush(); }
+  /// Puts every row so far in the file.
+  void flush();
 
  private:
-  void separator();
+  // Rows gather in a buffer of this size, passed to the file when it is nearly full.
+  static constexpr std::size_t kBuffer = 1 << 16;
+  // The longest cell that is written into the buffer directly (a number).
+  static constexpr std::size_t kCell = 40;
+  // Room for `bytes` more characters: the buffer goes to the file first if they do not fit.
+  char* room(std::size_t bytes) {
+    if (used_ + bytes > kBuffer) write_buffer();
+    return buffer_.get() + used_;
+  }
+  void separator() {
+    if (in_row_++ > 0) *room(1) = ',', ++used_;
+  }
+  void append(const char* text, std::size_t size);
+  void write_buffer();
   std::filesystem::path path_;
   std::ofstream out_;
+  std::unique_ptr<char[]> buffer_;
+  std::size_t used_ = 0;
   std::size_t columns_ = 0;
   std::size_t in_row_ = 0;
 };

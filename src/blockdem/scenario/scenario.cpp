@@ -649,26 +649,22 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   };
   std::vector<std::pair<int, int>> pairs;
   UniformGrid broad_phase;
-  const int threads = w.thread_count();
   broad_phase.find_pairs(
-      lo, hi, [](int, int) { return true; }, pairs, threads);
+      lo, hi, [](int, int) { return true; }, pairs, w.thread_count());
   const std::int64_t n = static_cast<std::int64_t>(pairs.size());
   std::int64_t first = n;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const Block& a = blocks[static_cast<std::size_t>(pairs[static_cast<std::size_t>(k)].first)];
-    const Block& b = blocks[static_cast<std::size_t>(pairs[static_cast<std::size_t>(k)].second)];
-    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-    const ContactGeometry g =
-        boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
-    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+  // The world keeps these results for its first step, which would solve the same pairs again.
+  w.prime_narrow_phase(pairs, [&](std::int64_t k, const ContactGeometry& g) {
     const auto [pi, pj] = pairs[static_cast<std::size_t>(k)];
+    const Block& a = blocks[static_cast<std::size_t>(pi)];
+    const Block& b = blocks[static_cast<std::size_t>(pj)];
+    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
     if (g.touching && (g.overlap > sc.settings.max_overlap_fraction * size ||
                        !(initial_stress(pi, pj, g.overlap) <= stress_limit))) {
 #pragma omp critical(blockdem_initial_overlap)
       first = std::min(first, k);
     }
-  }
+  });
   if (first < n) {
     const auto [i, j] = pairs[static_cast<std::size_t>(first)];
     const Block& a = blocks[static_cast<std::size_t>(i)];

@@ -251,6 +251,7 @@ void World::step() {
   const double dt = next_time_step();
   const int threads = thread_count();
   if (settings_.distribution) {
+    drop_primed();  // the distributed step solves its own pairs
     step_distributed(dt, threads);
     return;
   }

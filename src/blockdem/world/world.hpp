@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -138,6 +139,15 @@ class World {
   const std::vector<int>& face_laws(int block) const;
   /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
   void remove_blocks(const std::vector<int>& indices);
+
+  /// The narrow phase (boon2012_contact, cold) of `pairs`, sorted by (a, b), at the blocks'
+  /// present poses, on every thread: `visit(k, geometry)` sees the geometry of pairs[k], from
+  /// any thread and in any order. The results of the pairs that the next step evaluates are
+  /// kept, and that step takes them instead of solving the same pairs again (the same bits: a
+  /// pair with a block that moved or changed in between is solved again, and nothing is kept
+  /// after that step). The set-up's check of the initial overlaps is such a pass.
+  void prime_narrow_phase(const std::vector<std::pair<int, int>>& pairs,
+                          const std::function<void(std::int64_t, const ContactGeometry&)>& visit);
 
   /// The current contacts, sorted by (a, b).
   std::vector<const Contact*> contacts() const;
@@ -280,6 +290,17 @@ class World {
 
   void update_geometry(int threads);
   void compute_contacts(double dt, int threads);
+  /// A pair the step evaluates: at least one block can move (boxes of fixed blocks alone meet
+  /// no contact that matters).
+  bool steps_pair(int a, int b) const {
+    return (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
+           (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
+  }
+  // world_primed.cpp: the results of prime_narrow_phase, taken by the first step.
+  void take_primed_slots();
+  void drop_primed();
+  /// The pair's narrow phase with its warm start, or its primed result.
+  ContactGeometry narrow_phase(PairSlot& slot, const Block& a, const Block& b, double extent) const;
   void keep_open_bonds();
   void merge_pairs();
   /// The contact a slot starts a step with when it has no state: no history, its bond.
@@ -370,6 +391,23 @@ class World {
   std::int64_t step_count_ = 0;
   double last_dt_ = 0.0;
   EnergyLedger energy_;
+
+  // prime_narrow_phase's results until the next step takes them: the slots that step would
+  // open, with their warm starts after the cold solve, and per slot the contact's slice area, 0
+  // where the narrow phase found no contact, or kNotPrimed (a contact's point is its warm
+  // start's last point; normal and overlap follow from it). The blocks' poses and shapes at the
+  // time, to see that none changed.
+  struct PrimedPose {
+    Eigen::Vector3d position;
+    Eigen::Quaterniond orientation;
+    Polyhedron shape;
+  };
+  static constexpr double kNotPrimed = -1.0;
+  std::vector<PairSlot> primed_slots_;
+  std::vector<double> primed_area_;  ///< per slot, while the step may take them
+  std::vector<PrimedPose> primed_poses_;
+  Boon2012Settings primed_settings_;
+  std::int64_t primed_step_ = 0;  ///< step_count_ when primed
 
   struct BlockState {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;

@@ -63,15 +63,12 @@ std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
 void World::compute_contacts(double dt, int threads) {
   // Broad phase: pairs where at least one block can move, sorted by (a, b).
   broad_phase_.find_pairs(
-      box_min_, box_max_,
-      [&](int a, int b) {
-        return (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
-               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
-      },
-      pairs_, threads);
+      box_min_, box_max_, [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
   keep_open_bonds();
+  take_primed_slots();  // the set-up's narrow phase, at the first step
   merge_pairs();
   evaluate_pairs(dt, true, threads);
+  drop_primed();
   scatter_loads();
 }
 
@@ -503,10 +500,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];
   const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-  Boon2012Cache cache = unpack_warm_start(slot.narrow_cache);
-  const ContactGeometry g =
-      boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
-  slot.narrow_cache = pack_warm_start(cache);
+  const ContactGeometry g = narrow_phase(slot, a, b, extent);
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
     if (!evaluate_open_bond(slot, ct, dt, advance_shear)) forget_history(ct);
     return;

@@ -258,6 +258,7 @@ void World::load_state(StateReader& r) {
   // Loaded alike on every process: the world is whole, and is partitioned again at its next step.
   replica_complete_ = true;
   owner_.clear();
+  drop_primed();
   settings_.gravity = r.vec();
   r.pod(settings_.damping);
   if (r.size() != laws_.size())

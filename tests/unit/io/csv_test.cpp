@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -88,6 +90,62 @@ TEST(CsvWriter, NumbersAreTheTextOfAStreamAtPrecision12) {
   }
   EXPECT_EQ(read_all(path), expected);
   std::filesystem::remove(path);
+}
+
+// The writer's own "%.12g" against printf's, on values that end on a tie at the 13th digit in
+// their shortest digits (the exact value decides), values whose rounding carries into a new
+// digit, random bit patterns of every exponent, and values where fixed and exponent notation
+// meet.
+TEST(CsvWriter, General12IsPrintfsText) {
+  std::vector<double> values;
+  std::mt19937_64 rng(20261126);
+  // 13-digit decimals ending in 5 (ties in their shortest digits) at many scales, and their
+  // neighbouring doubles.
+  std::uniform_int_distribution<long long> mantissa13(100000000000LL, 999999999999LL);
+  std::uniform_int_distribution<int> scale(-40, 40);
+  for (int i = 0; i < 20000; ++i) {
+    const std::string text = std::to_string(mantissa13(rng)) + "5e" + std::to_string(scale(rng));
+    const double v = std::strtod(text.c_str(), nullptr);
+    values.push_back(v);
+    values.push_back(std::nextafter(v, 0.0));
+    values.push_back(std::nextafter(v, 1e300));
+    values.push_back(-v);
+  }
+  // Carries: 12 nines and more, at the notation's boundaries 1e-5, 1e-4, 1e11, 1e12.
+  for (int e = -330; e <= 308; ++e) {
+    for (const char* m : {"9.999999999995", "9.9999999999949", "9.99999999999951",
+                          "9.99999999999999", "1", "1.00000000000049", "5", "4.99999999999950"}) {
+      const double v = std::strtod((std::string(m) + "e" + std::to_string(e)).c_str(), nullptr);
+      if (!std::isfinite(v)) continue;
+      values.push_back(v);
+      values.push_back(std::nextafter(v, 0.0));
+      values.push_back(std::nextafter(v, 1e300));
+    }
+  }
+  // Random bit patterns (every exponent, subnormals included) and random short decimals.
+  std::uniform_int_distribution<std::uint64_t> bits;
+  for (int i = 0; i < 200000; ++i) {
+    double v;
+    const std::uint64_t b = bits(rng);
+    std::memcpy(&v, &b, sizeof v);
+    if (std::isfinite(v)) values.push_back(v);
+  }
+  std::uniform_int_distribution<long long> short_mantissa(1, 99999999);
+  for (int i = 0; i < 50000; ++i) {
+    values.push_back(static_cast<double>(short_mantissa(rng)) * std::pow(10.0, scale(rng)));
+  }
+  values.push_back(std::numeric_limits<double>::denorm_min());
+  values.push_back(std::numeric_limits<double>::max());
+  values.push_back(-0.0);
+  values.push_back(0.0);
+  int differ = 0;
+  for (double v : values) {
+    char ours[40], theirs[64];
+    const std::string got(ours, write_general12(ours, v));
+    std::snprintf(theirs, sizeof theirs, "%.12g", v);
+    if (got != theirs && ++differ <= 10) ADD_FAILURE() << "ours " << got << ", printf " << theirs;
+  }
+  EXPECT_EQ(differ, 0) << "of " << values.size() << " values";
 }
 
 }  // namespace
