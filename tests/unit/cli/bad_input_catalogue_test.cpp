@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -51,7 +52,7 @@ struct ScenarioCase {
 };
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "blockdem_bad_input" / name;
+  const fs::path dir = test::temp_path("bad_input") / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -20,7 +21,7 @@ struct BadCommand {
 };
 
 fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("blockdem_cli_convention_" + name);
+  const fs::path dir = test::temp_path("cli_convention_" + name);
   fs::remove_all(dir);
   return dir;
 }

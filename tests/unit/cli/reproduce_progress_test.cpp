@@ -10,6 +10,7 @@
 #include <string>
 
 #include "support/cli_runner.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ReproduceProgress, ALineAsEachCaseStartsAndEnds) {
-  const fs::path out = fs::temp_directory_path() / "blockdem_reproduce_progress";
+  const fs::path out = test::temp_path("reproduce_progress");
   fs::remove_all(out);
   const test::CommandOutput r = test::run_cli(
       "reproduce boon2015 --case T2-1 --mode boon2012 "

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -73,7 +74,7 @@ TEST(CsvWriter, NumbersAreTheTextOfAStreamAtPrecision12) {
                                            std::numeric_limits<long long>::max(),
                                            std::numeric_limits<long long>::min()};
 
-  const auto path = std::filesystem::temp_directory_path() / "blockdem_csv_test.csv";
+  const auto path = test::temp_path("csv_test.csv");
   std::string expected = "x,n\n";
   {
     CsvWriter csv(path, {"x", "n"});

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../../validation/scenes.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -53,7 +54,7 @@ TEST(TimeHistory, RowsAtTheIntervalDescribeOneTimeLevel) {
   s.time_step = dt;
   World w = test::linear_world(1e10, 1e9, 40, s);
   w.add_block(test::box_block({0.1, 0.1, 0.1}, {0, 0, 10}, 1000.0, Motion::free, "stone"));
-  const auto dir = std::filesystem::temp_directory_path() / "blockdem_time_history_test";
+  const auto dir = test::temp_path("time_history_test");
   std::filesystem::create_directories(dir);
   {
     TimeHistoryWriter h(dir / "time_history.csv", w, {10, 0.0, 1000, {"stone"}});
@@ -91,7 +92,7 @@ TEST(TimeHistory, NeverExceedsMaxRowsAndCoarsens) {
   s.time_step = 1e-3;
   World w = test::linear_world(1e10, 1e9, 40, s);
   w.add_block(test::box_block({0.1, 0.1, 0.1}, {0, 0, 0}, 1000.0));
-  const auto path = std::filesystem::temp_directory_path() / "blockdem_time_history_cap.csv";
+  const auto path = test::temp_path("time_history_cap.csv");
   TimeHistoryWriter h(path, w, {1, 0.0, 8, {}});
   for (int k = 0; k < 200; ++k) {
     w.step();

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../../validation/stability_support.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -73,7 +74,7 @@ TEST(StabilityInput, BoundsNotBracketingSayWhichFactorsWereTried) {
   for (const std::string bounds : {"[1.1, 1.3]", "[1.6, 2.0]"}) {
     const std::string text = test::incline_scenario(
         30, 40, 0.1, 0.02, sr_stage("factor_bounds = " + bounds + "\nmax_steps = 60000\n"));
-    const auto dir = std::filesystem::temp_directory_path() / "blockdem_stab_input";
+    const auto dir = test::temp_path("stab_input");
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     const auto file = dir / "srm.toml";

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "blockdem/run/scene_builders.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -156,7 +157,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The CLI: non-zero exit, the message on stderr, and no output folder.
 TEST(ScenarioErrors, CliExitsNonZeroAndWritesNothing) {
-  const auto dir = std::filesystem::temp_directory_path() / "blockdem_scenario_errors";
+  const auto dir = test::temp_path("scenario_errors");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto file = dir / "bad.toml";
@@ -174,7 +175,7 @@ TEST(ScenarioErrors, CliExitsNonZeroAndWritesNothing) {
 }
 
 TEST(ScenarioErrors, ReproduceRejectsUnknownCase) {
-  const auto out = std::filesystem::temp_directory_path() / "blockdem_reproduce_bad_case";
+  const auto out = test::temp_path("reproduce_bad_case");
   std::filesystem::remove_all(out);
   const std::string cmd = std::string(BLOCKDEM_CLI_PATH) +
                           " reproduce boon2015 --case T9-9 --quiet --no-figures --out " +
