@@ -270,17 +270,24 @@ void World::step() {
   energy_.prepare(blocks_.size());
   EnergyStepSums sums = contact_energy_;
   const Eigen::Vector3d gravity = settings_.gravity;
-#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
-  {
-    EnergyStepSums part;
+  const auto advance = [&](std::int64_t i, EnergyStepSums& into) {
+    const auto k = static_cast<std::size_t>(i);
+    integrate_block(blocks_[k], dt, damping);
+    into.add_block(energy_.block_terms(k, blocks_[k], gravity, damping, dt));
+  };
+  if (threads <= 1 || n <= 256) {
+    // One thread: the terms go straight into the step's sums (exact: the same bits as the
+    // parallel split's, without a part per thread and its normalising +=).
+    for (std::int64_t i = 0; i < n; ++i) advance(i, sums);
+  } else {
+#pragma omp parallel num_threads(threads)
+    {
+      EnergyStepSums part;
 #pragma omp for schedule(static) nowait
-    for (std::int64_t i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      integrate_block(blocks_[k], dt, damping);
-      part.add_block(energy_.block_terms(k, blocks_[k], gravity, damping, dt));
-    }
+      for (std::int64_t i = 0; i < n; ++i) advance(i, part);
 #pragma omp critical(blockdem_energy_sums)
-    sums += part;
+      sums += part;
+    }
   }
   energy_.add_step(sums);
   time_ += dt;

@@ -50,8 +50,12 @@ template <class Pred>
 std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
   const auto m = static_cast<std::int64_t>(n);
   std::int64_t count = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count) \
-    if (threads > 1 && m > 4096)
+  if (threads < 2 || m <= 4096) {
+    // No parallel region at all: even a team of one costs the runtime a futex call at its end.
+    for (std::int64_t k = 0; k < m; ++k) count += pred(static_cast<std::size_t>(k)) ? 1 : 0;
+    return count;
+  }
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count)
   for (std::int64_t k = 0; k < m; ++k) {
     if (pred(static_cast<std::size_t>(k))) ++count;
   }
@@ -716,9 +720,11 @@ void World::scatter_loads() {
   };
   std::vector<RunTotals> totals;
   const std::int64_t big_enough = 256;
-#pragma omp parallel num_threads(threads) if (threads > 1 && \
-                                              static_cast <std::int64_t>(m) > big_enough)
-  {
+  // The body of the pass, run by each thread of a team, or alone outside any parallel region
+  // (its single and barrier constructs then bind to no team and cost nothing: a team of one
+  // would still wake the runtime's futex at each barrier, a fixed cost per step that small
+  // scenes of many steps feel).
+  const auto pass = [&] {
 #pragma omp single
     {
       const std::size_t runs = static_cast<std::size_t>(team_size());
@@ -792,17 +798,30 @@ void World::scatter_loads() {
           std::min(mine.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
     }
     totals[t] = std::move(mine);
+  };
+  if (threads > 1 && static_cast<std::int64_t>(m) > big_enough) {
+#pragma omp parallel num_threads(threads)
+    pass();
+  } else {
+    pass();
   }
   active_count_ = 0;
   overlap_violation_ = -1;
-  contact_energy_ = EnergyStepSums{};
   double dt_min = std::numeric_limits<double>::infinity();
   for (const RunTotals& r : totals) {
     broken_bonds_ += r.broken;
     active_count_ += r.active;
     if (overlap_violation_ < 0) overlap_violation_ = r.violation;
     dt_min = std::min(dt_min, r.dt_min);
-    contact_energy_ += r.energy;
+  }
+  // One run (one thread, or a small scene): its sums are taken as they are, without the
+  // normalisations of +=, a fixed cost per step that small scenes of many steps feel. The sums
+  // are exact, so their values are the same bits either way.
+  if (totals.size() == 1) {
+    contact_energy_ = std::move(totals.front().energy);
+  } else {
+    contact_energy_ = EnergyStepSums{};
+    for (const RunTotals& r : totals) contact_energy_ += r.energy;
   }
   contact_dt_ = 0.0;
   if (std::isfinite(dt_min)) contact_dt_ = settings_.safety_factor * dt_min;
