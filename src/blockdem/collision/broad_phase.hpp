@@ -63,10 +63,11 @@ void SweepAndPrune::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
   if (threads < 1) threads = 1;
   chunks_.resize(static_cast<std::size_t>(threads));
   for (auto& c : chunks_) c.clear();
-    // Each thread sweeps its share of box starts into its own list; the lists are joined and sorted
-    // afterwards, so that the result does not depend on how the work was shared.
-#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
-  {
+  // Each thread sweeps its share of box starts into its own list; the lists are joined and sorted
+  // afterwards, so that the result does not depend on how the work was shared. One thread runs
+  // the body outside any region (its work-sharing loop then runs every iteration; a team of one
+  // would still cost a futex call at its end).
+  const auto sweep = [&] {
 #ifdef _OPENMP
     std::vector<std::pair<int, int>>& out = chunks_[static_cast<std::size_t>(omp_get_thread_num())];
 #else
@@ -85,6 +86,12 @@ void SweepAndPrune::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
         if (want(a, b)) out.emplace_back(a, b);
       }
     }
+  };
+  if (threads > 1 && n > 256) {
+#pragma omp parallel num_threads(threads)
+    sweep();
+  } else {
+    sweep();
   }
   for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
   sorter_.sort(pairs, order_.size());

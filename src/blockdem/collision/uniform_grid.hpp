@@ -77,8 +77,10 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
              box_min[j].y() > box_max[i].y() || box_min[i].y() > box_max[j].y() ||
              box_min[j].z() > box_max[i].z() || box_min[i].z() > box_max[j].z());
   };
-#pragma omp parallel num_threads(threads) if (threads > 1 && n > 256)
-  {
+  // The region's body, run by each thread of a team, or alone outside any region for one thread
+  // (its work-sharing loops then run every iteration; a team of one would still cost a futex
+  // call at its end).
+  const auto sweep = [&] {
 #ifdef _OPENMP
     std::vector<std::pair<int, int>>& out =
         threads > 1 ? chunks_[static_cast<std::size_t>(omp_get_thread_num())] : pairs;
@@ -121,6 +123,12 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
         if (overlap(a, b) && want(a, b)) out.emplace_back(a, b);
       }
     }
+  };
+  if (threads > 1 && n > 256) {
+#pragma omp parallel num_threads(threads)
+    sweep();
+  } else {
+    sweep();
   }
   for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
   sorter_.sort(pairs, static_cast<std::size_t>(n));

@@ -132,8 +132,7 @@ void World::update_geometry(int threads) {
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   box_min_.resize(blocks_.size());
   box_max_.resize(blocks_.size());
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > 256)
-  for (std::int64_t i = 0; i < n; ++i) {
+  const auto refresh = [&](std::int64_t i) {
     Block& b = blocks_[static_cast<std::size_t>(i)];
     b.update_world_geometry();
     box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
@@ -142,6 +141,13 @@ void World::update_geometry(int threads) {
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
+  };
+  // No parallel region for one thread: a team of one still costs a futex call at its end.
+  if (threads > 1 && n > 256) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) refresh(i);
+  } else {
+    for (std::int64_t i = 0; i < n; ++i) refresh(i);
   }
 }
 

@@ -229,8 +229,7 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
   std::exception_ptr error;
   for (std::size_t first = 0; first < runs; first += wave) {
     const std::int64_t wave_end = static_cast<std::int64_t>(std::min(runs, first + wave));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && runs > 1)
-    for (std::int64_t r = static_cast<std::int64_t>(first); r < wave_end; ++r) {
+    const auto evaluate_run = [&](std::int64_t r) {
       const std::size_t begin = static_cast<std::size_t>(r) * pending_run_;
       const std::size_t end = std::min(n, begin + pending_run_);
       std::vector<PendingContact> formed;
@@ -265,6 +264,13 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
       }
       // Exactly the size needed.
       pending_[static_cast<std::size_t>(r)].assign(formed.begin(), formed.end());
+    };
+    // No parallel region for one thread: a team of one still costs a futex call at its end.
+    if (threads > 1 && runs > 1) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+      for (std::int64_t r = static_cast<std::int64_t>(first); r < wave_end; ++r) evaluate_run(r);
+    } else {
+      for (std::int64_t r = static_cast<std::int64_t>(first); r < wave_end; ++r) evaluate_run(r);
     }
     if (!all_new) continue;
     for (std::size_t r = first; r < static_cast<std::size_t>(wave_end); ++r) {
