@@ -5,12 +5,19 @@
 // result, the energy budget and the final state.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <bit>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <thread>
 #include <vector>
 
+#include "blockdem/io/run_recorder.hpp"
+#include "blockdem/io/time_history.hpp"
 #include "blockdem/world/stage.hpp"
 #include "brick_pile.hpp"
 #include "support/thread_distribution.hpp"
@@ -115,6 +122,95 @@ TEST(DistributedStage, ChecksFromReductionsBitIdenticalWithoutRefreshes) {
       EXPECT_LE(o.stats.replica_refreshes, 1) << parts << " parts, part " << r;
     }
   }
+}
+
+/// The files a steps stage writes as the scenario runner writes them: a time_history.csv row
+/// every 10 steps (with some blocks' columns, the resting base plate's among them), and at the
+/// stage's end history.csv, blocks.csv, contacts.csv and the last row, without a whole world.
+struct Files {
+  std::vector<std::string> text;  ///< the files (process 0's for a distributed world)
+  std::int64_t refreshes = 0;
+  std::int64_t merges = 0;
+};
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Files write_outputs(World w, const Stage& stage, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  {
+    TimeHistoryWriter history(dir / "time_history.csv", w,
+                              TimeHistoryOptions{10, 0.0, 20000, {"c0", "c150", "c361", "base"}});
+    RunRecorder recorder(dir, false);
+    StageSync sync;
+    sync.after_step_synchronizes = true;
+    sync.on_step_reads = [](const World&) { return false; };
+    sync.end_synchronizes = false;
+    std::optional<MotionMonitor> monitor;
+    const StageResult r = run_stage(
+        w, stage, {}, &monitor, {}, nullptr,
+        [&](const World& world, const Stage& s, std::int64_t) {
+          history.after_step(world, s.name);
+        },
+        &sync);
+    recorder.record(w, r, 0);
+    history.write(w, stage.name);
+    history.flush();
+  }
+  Files f;
+  for (const char* name : {"time_history.csv", "history.csv", "blocks.csv", "contacts.csv"})
+    f.text.push_back(read_text(dir / name));
+  f.refreshes = w.distribution_stats().replica_refreshes;
+  f.merges = w.distribution_stats().output_merges;
+  return f;
+}
+
+// The outputs of a stage over 2 and 3 parts, written by part 0 from reductions and merges of
+// every part's own blocks and contacts (World::merge_to_root), are one world's files byte for
+// byte, and no part made the world whole: not for the rows, nor at the stage's end.
+TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted: blocks slide across the boundaries
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  const BrickPile pile;
+  Stage stage;
+  stage.name = "slide";
+  stage.kind = Stage::Kind::steps;
+  stage.steps = 60;
+  const auto root = std::filesystem::temp_directory_path() /
+                    ("blockdem_merged_outputs_" + std::to_string(getpid()));
+  std::filesystem::remove_all(root);
+  const Files oracle = write_outputs(pile.world(s, 20.0), stage, root / "one");
+  for (int parts : {2, 3}) {
+    auto meeting = std::make_shared<Meeting>(parts);
+    std::vector<Files> files(static_cast<std::size_t>(parts));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < parts; ++r) {
+      WorldSettings sr = s;
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      const auto dir = root / (std::to_string(parts) + "_" + std::to_string(r));
+      threads.emplace_back([&, r, sr, dir] {
+        files[static_cast<std::size_t>(r)] = write_outputs(pile.world(sr, 20.0), stage, dir);
+      });
+    }
+    for (auto& t : threads) t.join();
+    for (std::size_t k = 0; k < oracle.text.size(); ++k) {
+      EXPECT_GT(oracle.text[k].size(), 200u) << "file " << k;
+      EXPECT_EQ(files[0].text[k], oracle.text[k]) << parts << " parts, file " << k;
+    }
+    for (const Files& f : files) {
+      EXPECT_EQ(f.refreshes, 0) << parts << " parts";
+      // 7 rows (levels 0, 10, ..., 50 and the stage's last, 2 merges each), the stage's end (3:
+      // the resting plate's contact force, blocks, contacts).
+      EXPECT_EQ(f.merges, 7 * 2 + 3) << parts << " parts";
+    }
+  }
+  std::filesystem::remove_all(root);
 }
 
 }  // namespace

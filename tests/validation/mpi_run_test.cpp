@@ -128,11 +128,15 @@ class MpiRun : public ::testing::Test {
 };
 
 // A 4-layer pile of 362 cubes with small initial velocities settling under gravity on a fixed
-// plate, two stages of 1000 steps: positions (blocks.csv), contacts and the energies in
-// summary.json (printed to 17 digits) as from one process.
+// plate, two stages of 1000 steps: positions (blocks.csv), contacts, time_history.csv and the
+// energies in summary.json (printed to 17 digits) as from one process, with the whole world
+// gathered only for the divergence checkpoints.
 TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
+  // time_history.csv with some blocks' columns (on every side of the subdomains, and the
+  // resting base plate).
   const fs::path scenario =
-      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 1000));
+      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 1000) +
+                             "[output]\nhistory_blocks = [\"c0\", \"c150\", \"c361\", \"base\"]\n");
   const auto summaries = expect_same_outputs(dir_, scenario.string());
   for (const auto& s : summaries) {
     // Each process evaluated a share of the pairs and saw other processes' blocks as ghosts.
@@ -152,6 +156,15 @@ TEST_F(MpiRun, SettlingPileSameOutputsOnOneTwoThreeRanks) {
       // stages of 1000 steps, against 2000 refreshes if it were gathered after every step.
       EXPECT_LE(rank.at("replica_refreshes").get<int>(),
                 2 * (1000 / 10 + 1000 / 100 + 1000 / 200 + 2));
+      // Exactly: only the divergence checkpoints (every 200 steps) and any new partition make
+      // the world whole. The time_history.csv rows (every 100 steps) come from reductions and
+      // merges to process 0 (20 more refreshes, one per row, if read from a whole world).
+      EXPECT_EQ(rank.at("replica_refreshes").get<int>(),
+                2000 / 200 + (rank.at("partitions").get<int>() - 1));
+      // The rows merged to process 0 (2 merges each: elastic energy terms, the blocks'
+      // columns); the stages end at steps 1000 and 2000, on divergence checkpoints, so their
+      // outputs are written from the whole world that those leave.
+      EXPECT_EQ(rank.at("output_merges").get<int>(), 2 * 10 * 2);
     }
   }
 }

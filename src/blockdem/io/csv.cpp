@@ -110,12 +110,33 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
   out_ << "\n" << std::flush;
 }
 
+CsvWriter::CsvWriter(std::size_t columns)
+    : memory_(true), buffer_(new char[kBuffer]), columns_(columns) {}
+
+std::string CsvWriter::take() {
+  text_.append(buffer_.get(), used_);
+  used_ = 0;
+  std::string out;
+  out.swap(text_);
+  return out;
+}
+
+void CsvWriter::raw(std::string_view rows) {
+  if (in_row_ != 0) throw std::logic_error(path_.string() + ": rows added inside a row");
+  append(rows.data(), rows.size());
+}
+
 CsvWriter::~CsvWriter() {
   // Rows not yet flushed go to the file (as the stream's own buffer would at its close).
-  if (used_ > 0 && out_) out_.write(buffer_.get(), static_cast<std::streamsize>(used_));
+  if (!memory_ && used_ > 0 && out_) out_.write(buffer_.get(), static_cast<std::streamsize>(used_));
 }
 
 void CsvWriter::write_buffer() {
+  if (memory_) {
+    text_.append(buffer_.get(), used_);
+    used_ = 0;
+    return;
+  }
   out_.write(buffer_.get(), static_cast<std::streamsize>(used_));
   used_ = 0;
   if (!out_) throw std::runtime_error("write failed: " + path_.string());
@@ -123,6 +144,7 @@ void CsvWriter::write_buffer() {
 
 void CsvWriter::flush() {
   write_buffer();
+  if (memory_) return;
   out_.flush();
   if (!out_) throw std::runtime_error("write failed: " + path_.string());
 }
@@ -130,6 +152,10 @@ void CsvWriter::flush() {
 void CsvWriter::append(const char* text, std::size_t size) {
   if (size > kBuffer / 2) {
     write_buffer();
+    if (memory_) {
+      text_.append(text, size);
+      return;
+    }
     out_.write(text, static_cast<std::streamsize>(size));
     return;
   }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace blockdem {
@@ -19,6 +20,9 @@ class CsvWriter {
   /// an existing file that has the header (a restarted run). Throws std::runtime_error on failure.
   CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
             bool append = false);
+  /// A writer into memory (no file, no header): take() returns the rows so far, formatted as
+  /// a file's writer formats them, for rows written elsewhere (raw()).
+  explicit CsvWriter(std::size_t columns);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
@@ -32,6 +36,10 @@ class CsvWriter {
   void end_row();
   /// Puts every row so far in the file.
   void flush();
+  /// A writer into memory: the rows so far, which it forgets.
+  std::string take();
+  /// Whole rows formatted by a writer into memory with the same columns, added as they are.
+  void raw(std::string_view rows);
 
  private:
   // Rows gather in a buffer of this size, passed to the file when it is nearly full.
@@ -50,6 +58,8 @@ class CsvWriter {
   void write_buffer();
   std::filesystem::path path_;
   std::ofstream out_;
+  bool memory_ = false;  ///< rows gather in text_, not in a file
+  std::string text_;
   std::unique_ptr<char[]> buffer_;
   std::size_t used_ = 0;
   std::size_t columns_ = 0;

@@ -2,6 +2,8 @@
 #include "blockdem/io/run_recorder.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -11,8 +13,6 @@
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
-
-namespace {}  // namespace
 
 RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables, bool append,
                          std::filesystem::path pieces)
@@ -89,12 +89,99 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                           append);
 }
 
-void RunRecorder::record(const World& world, const StageResult& stage, int level) {
-  const auto contacts = world.contacts();
-  double max_overlap = 0.0;
-  for (const Contact* c : contacts) max_overlap = std::max(max_overlap, c->geometry.overlap);
-  const Eigen::Vector3d& g = world.settings().gravity;
+namespace {
+
+// The columns of blocks.csv and contacts.csv (the headers in RunRecorder's constructor).
+constexpr std::size_t kBlockColumns = 20;
+constexpr std::size_t kContactColumns = 27;
+
+// One row of blocks.csv: block b at the world's level state, with the contact force on it (N).
+void block_row(CsvWriter& csv, const World& world, const Block& b, int level,
+               const std::string& stage, const Eigen::Vector3d& contact_force) {
   const Eigen::Vector3d& origin = world.settings().origin;  // positions out in user coordinates
+  // One instant per row: the level state at which the contact forces were evaluated.
+  const World::LevelState st = world.level_state(b.index);
+  const Eigen::Vector3d u = 1e3 * (st.position - b.initial_position);
+  const Eigen::AngleAxisd turn(st.orientation * b.initial_orientation.conjugate());
+  const double angle = turn.angle() > kPi ? turn.angle() - 2 * kPi : turn.angle();
+  const Eigen::Vector3d r = rad_to_deg(angle) * turn.axis();
+  csv.cell(level)
+      .cell(stage)
+      .cell(b.name)
+      .cell(b.group)
+      .cell(st.position.x() + origin.x())
+      .cell(st.position.y() + origin.y())
+      .cell(st.position.z() + origin.z())
+      .cell(u.x())
+      .cell(u.y())
+      .cell(u.z())
+      .cell(r.norm())
+      .cell(r.x())
+      .cell(r.y())
+      .cell(r.z())
+      .cell(st.velocity.x())
+      .cell(st.velocity.y())
+      .cell(st.velocity.z())
+      .cell(contact_force.x())
+      .cell(contact_force.y())
+      .cell(contact_force.z());
+  csv.end_row();
+}
+
+// One row of contacts.csv.
+void contact_row(CsvWriter& csv, const World& world, const Contact& c, int level,
+                 const std::string& stage) {
+  const Eigen::Vector3d& origin = world.settings().origin;
+  const auto& gm = c.geometry;
+  csv.cell(level)
+      .cell(stage)
+      .cell(world.blocks()[c.a].name)
+      .cell(world.blocks()[c.b].name)
+      .cell(gm.point.x() + origin.x())
+      .cell(gm.point.y() + origin.y())
+      .cell(gm.point.z() + origin.z())
+      .cell(gm.normal.x())
+      .cell(gm.normal.y())
+      .cell(gm.normal.z())
+      .cell(1e3 * gm.overlap)
+      .cell(1e6 * gm.area)
+      .cell(1e-6 * c.normal_stress)
+      .cell(c.normal_force)
+      .cell(c.shear.force.norm())
+      .cell(c.shear.force.x())
+      .cell(c.shear.force.y())
+      .cell(c.shear.force.z())
+      .cell(1e3 * c.shear.plastic_slip)
+      .cell(c.sliding ? 1 : 0)
+      .cell(c.integrated ? 1 : 0)
+      .cell(c.force_point.x() + origin.x())
+      .cell(c.force_point.y() + origin.y())
+      .cell(c.force_point.z() + origin.z())
+      .cell(1e6 * c.compressed_area)
+      .cell(1e-6 * c.peak_stress)
+      .cell(1e3 * c.peak_closure);
+  csv.end_row();
+}
+
+std::uint64_t pair_key(const Contact& c) {
+  return (static_cast<std::uint64_t>(c.a) << 32) | static_cast<std::uint32_t>(c.b);
+}
+
+}  // namespace
+
+void RunRecorder::record(const World& world, const StageResult& stage, int level) {
+  // A distributed world that is not whole: each process its own blocks and the contacts it
+  // owns, exact; the counts and the largest overlap reduced exactly, and the rows merged to
+  // process 0 (which writes the files) in one process's order, by block index and by (a, b)
+  // (World::merge_to_root). The files are the same bytes as one process's, and no process
+  // holds the whole world.
+  const auto contacts = world.counted_contacts();
+  std::array<double, 1> max_overlap{0.0};
+  for (const Contact* c : contacts) max_overlap[0] = std::max(max_overlap[0], c->geometry.overlap);
+  std::array<std::int64_t, 1> contact_count{static_cast<std::int64_t>(contacts.size())};
+  world.reduce_partials({}, max_overlap, contact_count);
+  const Eigen::Vector3d& g = world.settings().gravity;
+  const bool whole = world.replica_complete();
   if (history_) {
     history_->cell(level)
         .cell(stage.name)
@@ -109,74 +196,49 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(stage.measures.unbalanced_force_ratio)
         .cell(stage.measures.kinetic_energy)
         .cell(stage.measures.kinetic_energy_ratio)
-        .cell(static_cast<long long>(contacts.size()))
+        .cell(static_cast<long long>(contact_count[0]))
         .cell(stage.measures.mean_contact_force)
-        .cell(1e3 * max_overlap);
+        .cell(1e3 * max_overlap[0]);
     history_->end_row();
     history_->flush();
 
-    for (const auto& b : world.blocks()) {
-      // One instant per row: the level state at which the contact forces were evaluated.
-      const World::LevelState st = world.level_state(b.index);
-      const Eigen::Vector3d u = 1e3 * (st.position - b.initial_position);
-      const Eigen::AngleAxisd turn(st.orientation * b.initial_orientation.conjugate());
-      const double angle = turn.angle() > kPi ? turn.angle() - 2 * kPi : turn.angle();
-      const Eigen::Vector3d r = rad_to_deg(angle) * turn.axis();
-      blocks_->cell(level)
-          .cell(stage.name)
-          .cell(b.name)
-          .cell(b.group)
-          .cell(st.position.x() + origin.x())
-          .cell(st.position.y() + origin.y())
-          .cell(st.position.z() + origin.z())
-          .cell(u.x())
-          .cell(u.y())
-          .cell(u.z())
-          .cell(r.norm())
-          .cell(r.x())
-          .cell(r.y())
-          .cell(r.z())
-          .cell(st.velocity.x())
-          .cell(st.velocity.y())
-          .cell(st.velocity.z())
-          .cell(b.contact_force.x())
-          .cell(b.contact_force.y())
-          .cell(b.contact_force.z());
-      blocks_->end_row();
+    if (whole) {
+      for (const auto& b : world.blocks())
+        block_row(*blocks_, world, b, level, stage.name, b.contact_force);
+    } else {
+      const auto resting = world.resting_contact_forces();
+      std::vector<const Block*> mine;
+      for (const auto& b : world.blocks()) {
+        if (world.counts_block(static_cast<std::size_t>(b.index))) mine.push_back(&b);
+      }
+      CsvWriter rows(kBlockColumns);
+      world.merge_to_root(
+          mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]->index); },
+          [&](std::size_t k, std::string& text) {
+            const Block& b = *mine[k];
+            const auto it = std::lower_bound(
+                resting.begin(), resting.end(), b.index,
+                [](const std::pair<int, Eigen::Vector3d>& x, int i) { return x.first < i; });
+            const bool rests = it != resting.end() && it->first == b.index;
+            block_row(rows, world, b, level, stage.name, rests ? it->second : b.contact_force);
+            text += rows.take();
+          },
+          [&](std::string_view text) { blocks_->raw(text); });
     }
     blocks_->flush();
   }
 
-  for (const Contact* c : contacts) {
-    const auto& gm = c->geometry;
-    contacts_->cell(level)
-        .cell(stage.name)
-        .cell(world.blocks()[c->a].name)
-        .cell(world.blocks()[c->b].name)
-        .cell(gm.point.x() + origin.x())
-        .cell(gm.point.y() + origin.y())
-        .cell(gm.point.z() + origin.z())
-        .cell(gm.normal.x())
-        .cell(gm.normal.y())
-        .cell(gm.normal.z())
-        .cell(1e3 * gm.overlap)
-        .cell(1e6 * gm.area)
-        .cell(1e-6 * c->normal_stress)
-        .cell(c->normal_force)
-        .cell(c->shear.force.norm())
-        .cell(c->shear.force.x())
-        .cell(c->shear.force.y())
-        .cell(c->shear.force.z())
-        .cell(1e3 * c->shear.plastic_slip)
-        .cell(c->sliding ? 1 : 0)
-        .cell(c->integrated ? 1 : 0)
-        .cell(c->force_point.x() + origin.x())
-        .cell(c->force_point.y() + origin.y())
-        .cell(c->force_point.z() + origin.z())
-        .cell(1e6 * c->compressed_area)
-        .cell(1e-6 * c->peak_stress)
-        .cell(1e3 * c->peak_closure);
-    contacts_->end_row();
+  if (whole) {
+    for (const Contact* c : contacts) contact_row(*contacts_, world, *c, level, stage.name);
+  } else {
+    CsvWriter rows(kContactColumns);
+    world.merge_to_root(
+        contacts.size(), [&](std::size_t k) { return pair_key(*contacts[k]); },
+        [&](std::size_t k, std::string& text) {
+          contact_row(rows, world, *contacts[k], level, stage.name);
+          text += rows.take();
+        },
+        [&](std::string_view text) { contacts_->raw(text); });
   }
   contacts_->flush();
 

@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <stdexcept>
 
 #include "blockdem/numerics/units.hpp"
@@ -93,18 +95,66 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
     while (next_time_ <= t) next_time_ += interval_time_;
   }
   // Everything below is at level n: the budget, the contacts and the blocks' level states.
+  // A distributed world that is not whole gives each process its own blocks and contacts
+  // exact: the counts and the largest speed are reduced exactly, the elastic energy's terms and
+  // the chosen blocks' columns are merged to process 0 (which writes the file) in one process's
+  // order, so the row is the same bytes without a whole-world refresh.
   const EnergyBudget& e = world.energy_budget();
-  const auto contacts = world.contacts();
+  const auto contacts = world.counted_contacts();
   double normal_energy = 0.0;
-  long long sliding = 0;
-  for (const Contact* c : contacts) {
-    normal_energy += 0.5 * c->normal_force * c->geometry.overlap;
-    sliding += c->sliding ? 1 : 0;
-  }
-  double max_speed = 0.0;
+  std::array<std::int64_t, 2> counts{static_cast<std::int64_t>(contacts.size()), 0};
+  for (const Contact* c : contacts) counts[1] += c->sliding ? 1 : 0;
+  std::array<double, 1> max_speed{0.0};
   for (const auto& b : world.blocks()) {
-    if (b.is_dynamic()) max_speed = std::max(max_speed, world.level_state(b.index).velocity.norm());
+    if (b.is_dynamic() && world.counts_block(static_cast<std::size_t>(b.index)))
+      max_speed[0] = std::max(max_speed[0], world.level_state(b.index).velocity.norm());
   }
+  world.reduce_partials({}, max_speed, counts);
+  world.merge_to_root(
+      contacts.size(),
+      [&](std::size_t k) {
+        return (static_cast<std::uint64_t>(contacts[k]->a) << 32) |
+               static_cast<std::uint32_t>(contacts[k]->b);
+      },
+      [&](std::size_t k, std::string& out) {
+        const double term = 0.5 * contacts[k]->normal_force * contacts[k]->geometry.overlap;
+        out.append(reinterpret_cast<const char*>(&term), sizeof term);
+      },
+      [&](std::string_view term) {
+        double x = 0.0;
+        std::memcpy(&x, term.data(), sizeof x);
+        normal_energy += x;
+      });
+  // The chosen blocks' columns: u (3), v (3), the rotation from the initial orientation.
+  constexpr std::size_t kColumns = 7;
+  std::vector<std::size_t> mine;
+  for (std::size_t j = 0; j < blocks_.size(); ++j) {
+    if (world.counts_block(static_cast<std::size_t>(blocks_[j]))) mine.push_back(j);
+  }
+  std::vector<std::array<double, kColumns>> columns(blocks_.size());
+  std::size_t merged = 0;
+  world.merge_to_root(
+      mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
+      [&](std::size_t k, std::string& out) {
+        const int i = blocks_[mine[k]];
+        const Block& b = world.blocks()[static_cast<std::size_t>(i)];
+        const World::LevelState s = world.level_state(i);
+        const Eigen::Vector3d u = s.position - b.initial_position;
+        const double turn =
+            Eigen::AngleAxisd(s.orientation * b.initial_orientation.conjugate()).angle();
+        const std::array<double, kColumns> row{u.x(),
+                                               u.y(),
+                                               u.z(),
+                                               s.velocity.x(),
+                                               s.velocity.y(),
+                                               s.velocity.z(),
+                                               rad_to_deg(std::min(turn, 2 * kPi - turn))};
+        out.append(reinterpret_cast<const char*>(row.data()), sizeof row);
+      },
+      [&](std::string_view row) {
+        if (merged < columns.size()) std::memcpy(columns[merged].data(), row.data(), row.size());
+        ++merged;
+      });
   const double scale = e.scale();
   csv_->cell(t)
       .cell(static_cast<long long>(level))
@@ -121,24 +171,12 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
       .cell(scale > 0.0 ? e.residual() / scale : 0.0)
       .cell(world.equilibrium().unbalanced_force_ratio)
       .cell(normal_energy > 0.0 ? e.kinetic / normal_energy : 0.0)
-      .cell(max_speed)
-      .cell(static_cast<long long>(contacts.size()))
-      .cell(sliding)
+      .cell(max_speed[0])
+      .cell(static_cast<long long>(counts[0]))
+      .cell(static_cast<long long>(counts[1]))
       .cell(static_cast<long long>(world.broken_bond_count()));
-  for (int i : blocks_) {
-    const Block& b = world.blocks()[static_cast<std::size_t>(i)];
-    const World::LevelState s = world.level_state(i);
-    const Eigen::Vector3d u = s.position - b.initial_position;
-    const double turn =
-        Eigen::AngleAxisd(s.orientation * b.initial_orientation.conjugate()).angle();
-    const double angle = std::min(turn, 2 * kPi - turn);
-    csv_->cell(u.x())
-        .cell(u.y())
-        .cell(u.z())
-        .cell(s.velocity.x())
-        .cell(s.velocity.y())
-        .cell(s.velocity.z())
-        .cell(rad_to_deg(angle));
+  for (const auto& row : columns) {
+    for (const double x : row) csv_->cell(x);
   }
   csv_->end_row();
   ++rows_;

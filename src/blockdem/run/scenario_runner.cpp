@@ -232,6 +232,9 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     const bool search_collapse = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
     const bool reduce = stage.kind == Stage::Kind::strength_reduction;
     const bool resuming = resume && level == first && resume->in_stage;
+    // A stage starts from the whole world (the previous stage left each process its own part:
+    // the refresh that ended a stage now comes at the next one's start, and none after the last).
+    world.synchronize();
     if (!resuming) {
       // A stage boundary (the end of the previous stage): checkpoint, and stop if asked.
       const bool stop = poll().stop;
@@ -356,12 +359,16 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       if (due && !beam) checkpoint(level, &at, &*monitor, before ? &*before : nullptr);
       return now.stop;
     };
-    // What the step callback reads through the whole world: the history, only when a row is
-    // due. A VTK frame of a distributed world is written in pieces, each process its own blocks
-    // and contacts, and needs no whole world.
+    // The step callback reads no whole world: a time_history.csv row of a distributed world
+    // comes from reductions and a merge to process 0 (TimeHistoryWriter::write), and a VTK frame
+    // is written in pieces, each process its own blocks and contacts.
     StageSync sync;
     sync.after_step_synchronizes = true;
-    sync.on_step_reads = [&](const World& w) { return history->due(w); };
+    sync.on_step_reads = [](const World&) { return false; };
+    // Nor the stage's end, unless an excavation's key blocks, a voussoir beam's measures or a
+    // failure's explanation read it (below): blocks.csv, contacts.csv and the stage's rows are
+    // merged to process 0 from each process's own blocks and contacts (RunRecorder::record).
+    sync.end_synchronizes = false;
     const auto start_positions =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
     try {
@@ -393,6 +400,8 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       break;
     }
     const bool failed = diverged || !result.converged;
+    // Collective, on every process alike (a no-op on a whole world).
+    if (failed || !stage.remove.empty() || beam) world.synchronize();
     const FailureKind kind =
         failed ? classify_failure(*monitor, diverged) : FailureKind::not_converged;
     if (failed) result.message += ". " + explain_failure(kind, result.motion, world);

@@ -65,6 +65,11 @@ struct DistributionStats {
   std::int64_t replica_refreshes = 0;
   std::int64_t replica_bytes_sent = 0;
   std::int64_t replica_bytes_received = 0;
+  /// Outputs merged to process 0 instead of read from a whole world (World::merge_to_root):
+  /// the merges, and the bytes this process sent and (process 0) received in them (B).
+  std::int64_t output_merges = 0;
+  std::int64_t output_bytes_sent = 0;
+  std::int64_t output_bytes_received = 0;
   double pair_seconds = 0.0;      ///< time in its own pair work (s)
   double exchange_seconds = 0.0;  ///< time in the per-step exchanges, waiting included (s)
   double replica_seconds = 0.0;   ///< time in the replica refreshes, waiting included (s)

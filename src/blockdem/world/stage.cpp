@@ -183,7 +183,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       break;
     }
   }
-  world.synchronize();
+  if (!deferred || sync->end_synchronizes) world.synchronize();
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.servo.hold = true;

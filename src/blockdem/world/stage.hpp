@@ -112,6 +112,10 @@ struct StageSync {
   std::function<bool(const World&)> on_step_reads;
   /// after_step calls World::synchronize itself, on every process alike, before it reads the world.
   bool after_step_synchronizes = false;
+  /// Whether the stage's caller reads the whole world after the stage (off: the stage ends with
+  /// the world as its last step left it, its results taken through reductions; the caller
+  /// calls World::synchronize on every process alike where it needs the whole world).
+  bool end_synchronizes = true;
 };
 
 /// Applies the stage's settings and steps the world. Throws DivergenceError from World::step.

@@ -13,6 +13,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -240,6 +241,22 @@ class World {
                        std::span<std::int64_t> counts) const;
   /// Collective like reduce_partials: every process's indices, merged in increasing order.
   std::vector<int> gather_indices(const std::vector<int>& mine) const;
+  /// Collective like reduce_partials: process 0 receives every process's records (`count` of
+  /// them here: `record(k, text)` appends record k, whose key `key(k)` increases with k) in
+  /// chunks of about kMergeChunkBytes, and calls `emit` for each record of every process in
+  /// increasing key order (a K-way merge), ties in rank order; the other processes call nothing.
+  /// Outputs written from rows keyed by block index or by (a, b) come out in one process's order
+  /// without the whole world on any process. On a whole world: this process's records, in order.
+  void merge_to_root(std::size_t count, const std::function<std::uint64_t(std::size_t)>& key,
+                     const std::function<void(std::size_t, std::string&)>& record,
+                     const std::function<void(std::string_view)>& emit) const;
+  /// Collective like reduce_partials. On a distributed world that is not whole: each resting
+  /// block's contact force (N) as one process sums it (World::sum_resting_loads' order), on
+  /// every process, by block index (no process keeps it between refreshes). Empty otherwise:
+  /// every block's Block::contact_force is exact.
+  std::vector<std::pair<int, Eigen::Vector3d>> resting_contact_forces() const;
+  /// The bound on a process's part of one round of merge_to_root (B).
+  static constexpr std::size_t kMergeChunkBytes = std::size_t{1} << 20;
 
  private:
   /// The narrow phase's warm start (Boon2012Cache) as a pair slot keeps it: the same values in

@@ -222,6 +222,156 @@ std::vector<int> World::gather_indices(const std::vector<int>& mine) const {
   return out;
 }
 
+void World::merge_to_root(std::size_t count, const std::function<std::uint64_t(std::size_t)>& key,
+                          const std::function<void(std::size_t, std::string&)>& record,
+                          const std::function<void(std::string_view)>& emit) const {
+  std::string text;
+  if (replica_complete_ || !settings_.distribution) {
+    for (std::size_t k = 0; k < count; ++k) {
+      text.clear();
+      record(k, text);
+      emit(text);
+    }
+    return;
+  }
+  // Rounds of one broadcast (which processes send their next chunk, and whether to go on) and
+  // one gather to process 0. Process 0 asks only the processes whose records it has used up, so
+  // it holds at most one chunk per process; it emits a record once no process that still has
+  // records can send a smaller key. A chunk: a flag (1: this process's last), then records as
+  // key, length, bytes.
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto procs = static_cast<std::size_t>(dist.size());
+  struct Queue {
+    std::vector<char> bytes;
+    std::size_t at = 0;
+    bool done = false;
+  };
+  std::vector<Queue> queues(rank == 0 ? procs : 0);
+  std::vector<char> ask(procs + 1, 1);  // [r]: process r sends a chunk; [procs]: another round
+  std::size_t next = 0;
+  dist_stats_.output_merges += 1;
+  for (;;) {
+    dist.broadcast(ask);
+    if (ask.size() != procs + 1) throw std::logic_error("merge_to_root: a malformed request");
+    if (ask[procs] == 0) break;
+    std::vector<char> chunk;
+    if (ask[static_cast<std::size_t>(rank)] != 0) {
+      chunk.push_back(0);
+      while (next < count && chunk.size() < kMergeChunkBytes) {
+        text.clear();
+        record(next, text);
+        put(chunk, key(next));
+        put(chunk, static_cast<std::uint64_t>(text.size()));
+        put_bytes(chunk, text.data(), text.size());
+        ++next;
+      }
+      chunk[0] = next == count ? 1 : 0;
+    }
+    std::vector<std::size_t> counts;
+    std::vector<char> all = dist.gather(chunk, counts);
+    if (rank != 0) {
+      dist_stats_.output_bytes_sent += static_cast<std::int64_t>(chunk.size());
+      continue;
+    }
+    dist_stats_.output_bytes_received += static_cast<std::int64_t>(all.size() - chunk.size());
+    std::size_t begin = 0;
+    for (std::size_t r = 0; r < procs; begin += counts[r], ++r) {
+      if (counts[r] == 0) continue;
+      Queue& q = queues[r];
+      q.bytes.assign(all.begin() + static_cast<std::ptrdiff_t>(begin + 1),
+                     all.begin() + static_cast<std::ptrdiff_t>(begin + counts[r]));
+      q.at = 0;
+      q.done = all[begin] != 0;
+    }
+    std::vector<char>().swap(all);
+    for (;;) {
+      std::size_t best = procs;
+      std::uint64_t best_key = 0;
+      bool stalled = false;
+      for (std::size_t r = 0; r < procs && !stalled; ++r) {
+        const Queue& q = queues[r];
+        if (q.at == q.bytes.size()) {
+          stalled = !q.done;
+          continue;
+        }
+        const auto k = get<std::uint64_t>(q.bytes, q.at);
+        if (best == procs || k < best_key) best = r, best_key = k;
+      }
+      if (stalled || best == procs) break;
+      Queue& q = queues[best];
+      const auto size = get<std::uint64_t>(q.bytes, q.at + 8);
+      if (q.at + 16 + size > q.bytes.size())
+        throw std::logic_error("merge_to_root: a process sent a malformed chunk");
+      emit(std::string_view(q.bytes.data() + q.at + 16, size));
+      q.at += 16 + size;
+    }
+    bool more = false;
+    for (std::size_t r = 0; r < procs; ++r) {
+      const Queue& q = queues[r];
+      ask[r] = q.at == q.bytes.size() && !q.done ? 1 : 0;
+      more = more || ask[r] != 0 || q.at != q.bytes.size();
+    }
+    ask[procs] = more ? 1 : 0;
+  }
+}
+
+std::vector<std::pair<int, Eigen::Vector3d>> World::resting_contact_forces() const {
+  std::vector<std::pair<int, Eigen::Vector3d>> out;
+  if (replica_complete_ || !settings_.distribution || resting_.size() != blocks_.size()) return out;
+  // Every process marks the same resting blocks (on a whole world), so all take this path alike.
+  std::vector<std::size_t> at(blocks_.size(), blocks_.size());
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (resting_[i] == 0) continue;
+    at[i] = out.size();
+    out.emplace_back(static_cast<int>(i), Eigen::Vector3d::Zero());
+  }
+  if (out.empty()) return out;
+  // The owned contacts with a resting block, merged to process 0 in (a, b) order and summed
+  // there as sum_resting_loads sums them; then the sums to every process.
+  const int rank = settings_.distribution->rank();
+  std::vector<const PairSlot*> mine;
+  for (const PairSlot& s : slots_) {
+    if (s.active && (resting_[s.a] != 0 || resting_[s.b] != 0) && pair_owner(s) == rank)
+      mine.push_back(&s);
+  }
+  struct Term {
+    std::int32_t a, b;
+    double f[3];
+  };
+  merge_to_root(
+      mine.size(),
+      [&](std::size_t k) {
+        return (static_cast<std::uint64_t>(mine[k]->a) << 32) |
+               static_cast<std::uint32_t>(mine[k]->b);
+      },
+      [&](std::size_t k, std::string& text) {
+        const Eigen::Vector3d f = contact_of(*mine[k]).force_on_b();
+        const Term t{mine[k]->a, mine[k]->b, {f.x(), f.y(), f.z()}};
+        text.append(reinterpret_cast<const char*>(&t), sizeof t);
+      },
+      [&](std::string_view text) {
+        Term t;
+        std::memcpy(static_cast<void*>(&t), text.data(), sizeof t);
+        const Eigen::Vector3d f(t.f[0], t.f[1], t.f[2]);
+        for (const int i : {t.a, t.b}) {
+          const std::size_t j = at[static_cast<std::size_t>(i)];
+          if (j == blocks_.size()) continue;
+          if (i == t.b)
+            out[j].second += f;
+          else
+            out[j].second -= f;
+        }
+      });
+  std::vector<char> bytes;
+  for (const auto& [i, f] : out) put3(bytes, f);
+  settings_.distribution->broadcast(bytes);
+  if (bytes.size() != out.size() * 24)
+    throw std::logic_error("resting contact forces: a malformed broadcast");
+  for (std::size_t k = 0; k < out.size(); ++k) out[k].second = get3(bytes, 24 * k);
+  return out;
+}
+
 void World::mark_resting() {
   require_replica("mark_resting");
   // A fixed block keeps its pose, and its zero velocities, until a caller changes it on a whole
