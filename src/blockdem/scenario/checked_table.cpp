@@ -1,6 +1,7 @@
 // Checked access to TOML values for scenario files.
 #include "blockdem/scenario/checked_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -37,6 +38,24 @@ std::optional<double> as_number(const toml::node& n) {
   return std::nullopt;
 }
 
+// Reads `want` finite numbers from `row` into `out`; errors name `key` and `where` in the row.
+void read_row(const CheckedTable& t, const std::string& key, const toml::array& row,
+              std::size_t want, const std::string& where, double* out) {
+  if (row.size() != want) {
+    t.fail(key, where + "must have " + std::to_string(want) + " numbers, got " +
+                    std::to_string(row.size()));
+  }
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    const auto v = as_number(*row.get(i));
+    if (!v)
+      t.fail(key, where + "entry " + std::to_string(i + 1) + " must be a number, got " +
+                      type_name(*row.get(i)));
+    if (!std::isfinite(*v))
+      t.fail(key, where + "entry " + std::to_string(i + 1) + " must be finite");
+    out[i] = *v;
+  }
+}
+
 }  // namespace
 
 CheckedTable::CheckedTable(const toml::table& table, std::string file, std::string path)
@@ -67,8 +86,9 @@ void CheckedTable::check_length(const std::string& key, std::size_t entries) con
 }
 
 const toml::node* CheckedTable::get(const std::string& key) const {
-  used_.insert(key);
-  return table_->get(key);
+  const toml::node* n = table_->get(key);
+  if (n != nullptr) used_.push_back(n);
+  return n;
 }
 
 double CheckedTable::number(const std::string& key) const {
@@ -81,7 +101,7 @@ double CheckedTable::number(const std::string& key) const {
 }
 
 double CheckedTable::number(const std::string& key, double fallback) const {
-  return has(key) ? number(key) : (used_.insert(key), fallback);
+  return has(key) ? number(key) : fallback;
 }
 
 double CheckedTable::positive(const std::string& key, double fallback, bool allow_zero) const {
@@ -116,7 +136,7 @@ std::string CheckedTable::string(const std::string& key) const {
 }
 
 std::string CheckedTable::string(const std::string& key, const std::string& fallback) const {
-  return has(key) ? string(key) : (used_.insert(key), fallback);
+  return has(key) ? string(key) : fallback;
 }
 
 std::string CheckedTable::choice(const std::string& key, const std::string& fallback,
@@ -131,12 +151,18 @@ std::string CheckedTable::choice(const std::string& key, const std::string& fall
 }
 
 Eigen::Vector3d CheckedTable::vec3(const std::string& key) const {
-  const auto r = rows(key, 0).front();
-  return Eigen::Vector3d(r[0], r[1], r[2]);
+  const toml::node* n = get(key);
+  if (n == nullptr) fail(key, "is required");
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
+  check_length(key, a->size());
+  Eigen::Vector3d v;
+  read_row(*this, key, *a, 3, "", v.data());
+  return v;
 }
 
 Eigen::Vector3d CheckedTable::vec3(const std::string& key, const Eigen::Vector3d& fallback) const {
-  return has(key) ? vec3(key) : (used_.insert(key), fallback);
+  return has(key) ? vec3(key) : fallback;
 }
 
 std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
@@ -146,27 +172,11 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
   check_length(key, a->size());
-  // width 0: the value itself is one row of three numbers (vec3).
-  auto read_row = [&](const toml::array& row, std::size_t want, const std::string& where) {
-    if (row.size() != want) {
-      fail(key, where + "must have " + std::to_string(want) + " numbers, got " +
-                    std::to_string(row.size()));
-    }
-    std::vector<double> out;
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      const auto v = as_number(*row.get(i));
-      if (!v)
-        fail(key, where + "entry " + std::to_string(i + 1) + " must be a number, got " +
-                      type_name(*row.get(i)));
-      if (!std::isfinite(*v))
-        fail(key, where + "entry " + std::to_string(i + 1) + " must be finite");
-      out.push_back(*v);
-    }
-    return out;
-  };
+  // width 0: the value itself is one row of three numbers (as vec3 reads it).
   std::vector<std::vector<double>> out;
   if (width == 0) {
-    out.push_back(read_row(*a, 3, ""));
+    out.emplace_back(3);
+    read_row(*this, key, *a, 3, "", out.back().data());
     return out;
   }
   for (std::size_t r = 0; r < a->size(); ++r) {
@@ -174,7 +184,8 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
     const std::string where = "row " + std::to_string(r + 1) + " ";
     if (row == nullptr)
       fail(key, where + "must be an array of " + std::to_string(width) + " numbers");
-    out.push_back(read_row(*row, width, where));
+    out.emplace_back(width);
+    read_row(*this, key, *row, width, where, out.back().data());
   }
   return out;
 }
@@ -261,8 +272,8 @@ std::map<std::string, double> CheckedTable::numbers_except(
 
 void CheckedTable::finish() const {
   for (const auto& [k, v] : *table_) {
-    const std::string key(k.str());
-    if (!used_.count(key)) fail(key, "unknown key (misspelt, or not a setting of this table)");
+    if (std::find(used_.begin(), used_.end(), &v) == used_.end())
+      fail(std::string(k.str()), "unknown key (misspelt, or not a setting of this table)");
   }
 }
 

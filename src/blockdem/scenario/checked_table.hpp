@@ -87,7 +87,9 @@ class CheckedTable {
   void check_length(const std::string& key, std::size_t entries) const;
   const toml::table* table_;
   std::string file_, path_;
-  mutable std::set<std::string> used_;
+  /// The values read (a key read with a fallback but absent from the table is not one): finish()
+  /// fails for the table's other keys.
+  mutable std::vector<const toml::node*> used_;
 };
 
 }  // namespace blockdem

@@ -12,8 +12,10 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
@@ -209,6 +211,35 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     t.fail("servo", "only a block with motion = \"servo\" takes a servo table");
   t.finish();
   return b;
+}
+
+/// The blocks of a file's [[blocks]] list, with their names and groups.
+struct ListedBlocks {
+  std::vector<Block> blocks;
+  std::set<std::string> names, groups;
+};
+
+/// Reads one [[blocks]] table and appends its block, without world planes (see the end of
+/// read_scenario).
+void read_listed_block(const CheckedTable& bt, const std::map<std::string, double>& materials,
+                       BoxCache& boxes, ListedBlocks& listed) {
+  Block b = read_block(bt, materials, boxes);
+  if (listed.names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
+  listed.names.insert(b.name);
+  listed.groups.insert(b.group);
+  std::vector<Halfspace>().swap(b.world_planes);
+  listed.blocks.push_back(std::move(b));
+}
+
+std::map<std::string, double> read_materials(const CheckedTable& t) {
+  std::map<std::string, double> materials;
+  for (const auto& m : t.tables("materials")) {
+    const std::string name = m.string("name");
+    if (materials.count(name)) m.fail("name", "material \"" + name + "\" is defined twice");
+    materials[name] = m.positive("density", 0.0);
+    m.finish();
+  }
+  return materials;
 }
 
 }  // namespace
@@ -408,17 +439,12 @@ void check_block_scales(Scenario& sc) {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& file,
-                        const SceneBuilders& builders) {
-  toml::table root;
-  try {
-    root = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream where;
-    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
-    throw ScenarioError(
-        file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
-  }
+namespace {
+
+/// Reads a scenario from the TOML tree of its file. `listed`: the blocks of its [[blocks]] list,
+/// read already (the tree holds an empty list in their place), or null to read them from the tree.
+Scenario read_scenario(const toml::table& root, const std::string& file,
+                       const SceneBuilders& builders, ListedBlocks* listed) {
   const CheckedTable t(root, file, "");
   Scenario sc;
   sc.file = file;
@@ -442,13 +468,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
     }
   }
 
-  std::map<std::string, double>& materials = sc.materials;
-  for (const auto& m : t.tables("materials")) {
-    const std::string name = m.string("name");
-    if (materials.count(name)) m.fail("name", "material \"" + name + "\" is defined twice");
-    materials[name] = m.positive("density", 0.0);
-    m.finish();
-  }
+  sc.materials = read_materials(t);
 
   std::map<std::string, int> law_index;
   for (const auto& l : t.tables("joint_laws")) {
@@ -459,19 +479,21 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
     sc.joint_laws.push_back(std::move(law));
   }
 
-  std::set<std::string> names, groups;
-  BoxCache boxes;
   // One block's reader at a time, and without world planes (see the end): the set-up of a long
-  // list holds its TOML tree and its blocks, not a reader and six planes per block as well.
-  sc.blocks.reserve(t.table_count("blocks"));
-  t.for_each_table("blocks", [&](const CheckedTable& bt) {
-    Block b = read_block(bt, materials, boxes);
-    if (names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
-    names.insert(b.name);
-    groups.insert(b.group);
-    std::vector<Halfspace>().swap(b.world_planes);
-    sc.blocks.push_back(std::move(b));
-  });
+  // list holds its blocks, not a reader and six planes per block as well.
+  ListedBlocks from_tree;
+  if (!listed) {
+    listed = &from_tree;
+    BoxCache boxes;
+    listed->blocks.reserve(t.table_count("blocks"));
+    t.for_each_table("blocks", [&](const CheckedTable& bt) {
+      read_listed_block(bt, sc.materials, boxes, *listed);
+    });
+  } else {
+    t.for_each_table("blocks", [](const CheckedTable&) {});  // the empty list in their place
+  }
+  sc.blocks = std::move(listed->blocks);
+  std::set<std::string> names = std::move(listed->names), groups = std::move(listed->groups);
   if (builder) {
     builder->build_from_root(t, sc);
     for (std::size_t i = 0; i < sc.blocks.size(); ++i) {
@@ -562,6 +584,92 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
   return sc;
 }
 
+/// The offsets of the lines of `text` that are exactly "[[blocks]]" (a header of the list of
+/// blocks, or a line inside a multi-line string or array: see read_listed_blocks_apart).
+std::vector<std::size_t> block_header_lines(std::string_view text) {
+  constexpr std::string_view header = "[[blocks]]";
+  std::vector<std::size_t> lines;
+  for (std::size_t at = text.find(header); at != std::string_view::npos;
+       at = text.find(header, at + header.size())) {
+    const std::size_t end = at + header.size();
+    const bool line_start = at == 0 || text[at - 1] == '\n';
+    const bool line_end = end == text.size() || text[end] == '\n' ||
+                          (text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n');
+    if (line_start && line_end) lines.push_back(at);
+  }
+  return lines;
+}
+
+/// The [[blocks]] tables parsed into one TOML tree at a time: enough that a tree costs little
+/// per table, few enough that the tree (~1.2 KB per table) is small beside the blocks.
+constexpr std::size_t kBlocksPerTree = 1024;
+
+/// Reads a file with a [[blocks]] list without holding the TOML tree of the whole list (~1.2 KB
+/// per block, twice the block read from it): the text is parsed in pieces, the part before the
+/// first "[[blocks]]" line and then a run of [[blocks]] tables at a time, each piece's blocks
+/// read and its tree freed before the next is parsed. Keys other than `blocks` at a piece's top
+/// level (a table after the list) are moved into the first piece's tree.
+///
+/// Each piece starts at a "[[blocks]]" line, which is a header of the list when no multi-line
+/// string is open there (the text holds no three quotes in a row) and no multi-line array (the
+/// piece before would not parse). A piece's keys are then its own tables', so when every piece
+/// parses and no top-level key but `blocks` is in two pieces, the pieces' trees are the whole
+/// file's tree cut apart. Returns nothing when the file does not qualify, and throws whatever
+/// reading the pieces throws: the caller then reads the whole tree, which gives every error
+/// exactly as before (its message, its line numbers, and which of several comes first).
+std::optional<Scenario> read_listed_blocks_apart(std::string_view text, const std::string& file,
+                                                 const SceneBuilders& builders) {
+  const std::vector<std::size_t> headers = block_header_lines(text);
+  if (headers.empty() || text.find("\"\"\"") != std::string_view::npos ||
+      text.find("'''") != std::string_view::npos)
+    return std::nullopt;
+  toml::table root = toml::parse(text.substr(0, headers[0]), file);
+  if (root.contains("blocks")) return std::nullopt;
+  // The blocks need the [[materials]]. A later piece that brings some has a key of the first
+  // piece when that holds materials; when it holds none, every block naming one fails here.
+  const std::map<std::string, double> materials = read_materials(CheckedTable(root, file, ""));
+  ListedBlocks listed;
+  listed.blocks.reserve(headers.size());
+  BoxCache boxes;
+  for (std::size_t first = 0; first < headers.size(); first += kBlocksPerTree) {
+    const std::size_t begin = headers[first];
+    const std::size_t end =
+        first + kBlocksPerTree < headers.size() ? headers[first + kBlocksPerTree] : text.size();
+    toml::table piece = toml::parse(text.substr(begin, end - begin), file);
+    for (auto&& [key, node] : piece) {
+      if (key == "blocks") continue;
+      if (root.contains(key.str())) return std::nullopt;
+      root.insert(key, std::move(node));
+    }
+    CheckedTable(piece, file, "").for_each_table("blocks", [&](const CheckedTable& bt) {
+      read_listed_block(bt, materials, boxes, listed);
+    });
+  }
+  root.insert("blocks", toml::array{});
+  return read_scenario(root, file, builders, &listed);
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file,
+                        const SceneBuilders& builders) {
+  try {
+    if (auto sc = read_listed_blocks_apart(text, file, builders)) return std::move(*sc);
+  } catch (...) {
+    // The whole tree is read below: its error is the file's.
+  }
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw ScenarioError(
+        file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+  }
+  return read_scenario(root, file, builders, nullptr);
+}
+
 Scenario load_scenario(const std::string& path, const SceneBuilders& builders) {
   std::ifstream in(path);
   if (!in) throw ScenarioError(path, "", "cannot open the file");
@@ -617,6 +725,9 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
       w.add_block(std::move(b));
     }
   }
+  // The world holds the blocks now: their moved-from array (~0.6 KB per block) is freed before
+  // the initial-overlap check, whose narrow phase keeps the first step's contact states.
+  if constexpr (!std::is_const_v<Blocks>) Blocks().swap(scenario_blocks);
   for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
     if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
   }
