@@ -130,12 +130,12 @@ void bind_state(py::class_<Simulation>& sim) {
               const Contact& c = *cs[i];
               ab.mutable_at(i, 0) = c.a;
               ab.mutable_at(i, 1) = c.b;
-              put3(point.mutable_data(i, 0), c.force_point);
+              put3(point.mutable_data(i, 0), c.force_point());
               put3(normal.mutable_data(i, 0), c.geometry.normal);
               put3(shear.mutable_data(i, 0), c.shear.force);
               fn.mutable_at(i) = c.normal_force;
               closure.mutable_at(i) = c.geometry.overlap;
-              area.mutable_at(i) = c.compressed_area;
+              area.mutable_at(i) = c.compressed_area();
               stress.mutable_at(i) = c.normal_stress;
               sliding.mutable_at(i) = c.sliding ? 1 : 0;
               broken.mutable_at(i) = c.shear.broken() ? 1 : 0;

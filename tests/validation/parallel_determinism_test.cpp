@@ -67,7 +67,7 @@ PileRun run_pile(int threads, ContactMode mode, int steps) {
       rec.add(c->geometry.overlap);
       rec.add(c->geometry.area);
       rec.add(c->normal_force);
-      rec.add(c->force_point);
+      rec.add(c->force_point());
       rec.add(c->shear.force);
       rec.add(c->shear.elastic_displacement);
       rec.add(c->shear.plastic_slip);

@@ -96,12 +96,12 @@ TEST(ShearTwistInWorld, CombinedSlipIsTheInstantaneousCentreSolution) {
     const Block& cube = w.blocks()[1];
     ASSERT_TRUE(c.integrated);
     const Eigen::Vector3d& n = c.geometry.normal;
-    const Eigen::Vector3d v = cube.point_velocity(c.force_point);
+    const Eigen::Vector3d v = cube.point_velocity(c.force_point());
     const double omega = cube.angular_velocity.dot(n);
     ASSERT_GT(v.norm(), 1e-3) << "the cube slides";
     ASSERT_GT(omega, 1e-2) << "and turns";
-    const Eigen::Vector3d p = c.force_point + n.cross(v) / omega;
-    const Resultants o = instantaneous_centre_solution(c.force_point, p, 1.0);
+    const Eigen::Vector3d p = c.force_point() + n.cross(v) / omega;
+    const Resultants o = instantaneous_centre_solution(c.force_point(), p, 1.0);
     force_error += c.shear.force - o.force;
     moment_error += c.twist.moment - o.moment;
     largest_force = std::max(largest_force, c.shear.force.norm());
@@ -142,7 +142,7 @@ TEST(ShearTwistInWorld, ShearWithoutTwistIsUnchanged) {
     const double scale = off.shear.force.norm();
     ASSERT_GT(scale, 0.0);
     EXPECT_LT((on.shear.force - off.shear.force).norm(), 1e-9 * scale) << push;
-    EXPECT_LT((on.force_point - off.force_point).norm(), 1e-9 * kSide) << push;
+    EXPECT_LT((on.force_point() - off.force_point()).norm(), 1e-9 * kSide) << push;
     EXPECT_NEAR(on.normal_force, off.normal_force, 1e-9 * off.normal_force) << push;
     const Block& b_off = worlds[0].blocks()[1];
     const Block& b_on = worlds[1].blocks()[1];

@@ -289,7 +289,7 @@ TEST(TwistInWorld, ShearWithoutTwistIsUnchanged) {
   const Contact& b = *without.contacts()[0];
   ASSERT_GT(b.shear.force.norm(), 0.1);
   EXPECT_LT((a.shear.force - b.shear.force).norm(), 1e-9 * b.shear.force.norm());
-  EXPECT_LT((a.force_point - b.force_point).norm(), 1e-9 * kSide);
+  EXPECT_LT((a.force_point() - b.force_point()).norm(), 1e-9 * kSide);
   EXPECT_LT((with.blocks()[1].position - without.blocks()[1].position).norm(), 1e-9 * kSide);
 }
 

@@ -154,12 +154,12 @@ void contact_row(CsvWriter& csv, const World& world, const Contact& c, int level
       .cell(1e3 * c.shear.plastic_slip)
       .cell(c.sliding ? 1 : 0)
       .cell(c.integrated ? 1 : 0)
-      .cell(c.force_point.x() + origin.x())
-      .cell(c.force_point.y() + origin.y())
-      .cell(c.force_point.z() + origin.z())
-      .cell(1e6 * c.compressed_area)
-      .cell(1e-6 * c.peak_stress)
-      .cell(1e3 * c.peak_closure);
+      .cell(c.force_point().x() + origin.x())
+      .cell(c.force_point().y() + origin.y())
+      .cell(c.force_point().z() + origin.z())
+      .cell(1e6 * c.compressed_area())
+      .cell(1e-6 * c.peak_stress())
+      .cell(1e3 * c.peak_closure());
   csv.end_row();
 }
 

@@ -207,7 +207,7 @@ Grid contact_grid(const World& world, const std::vector<const Contact*>& contact
     connectivity.push_back(static_cast<std::int64_t>(points.size()));
     offsets.push_back(static_cast<std::int64_t>(points.size()) + 1);
     types.push_back(kVtkVertex);
-    points.push_back(c->force_point + origin);
+    points.push_back(c->force_point() + origin);
     a.push_back(c->a);
     b.push_back(c->b);
     normal.push_back(c->geometry.normal);

@@ -64,8 +64,8 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec,
     if (it != by_pair.end()) {
       const Contact& c = *it->second;
       j.in_contact = true;
-      j.x = c.force_point.x();
-      j.z = c.force_point.z();
+      j.x = c.force_point().x();
+      j.z = c.force_point().z();
       j.normal_force = c.normal_force;
       // Force on the left block from the right one is -f if the left block is c.b, ... orient:
       const Eigen::Vector3d on_b = c.force_on_b();
@@ -73,13 +73,13 @@ VoussoirLevel measure_voussoir(const World& world, const VoussoirSpec& spec,
       j.horizontal_force = on_right.x();  // compression pushes the right block to +x
       j.shear_force = c.shear.force.norm();
       j.normal_stress = c.normal_stress;
-      j.closure = c.peak_closure;
-      j.area = c.compressed_area;
-      j.peak_stress = c.peak_stress;
-      j.compressed_depth = c.compressed_area / spec.block_width;
+      j.closure = c.peak_closure();
+      j.area = c.compressed_area();
+      j.peak_stress = c.peak_stress();
+      j.compressed_depth = c.compressed_area() / spec.block_width;
       j.plastic_slip = c.shear.plastic_slip;
       j.sliding = c.sliding;
-      lv.max_normal_stress = std::max(lv.max_normal_stress, c.peak_stress);
+      lv.max_normal_stress = std::max(lv.max_normal_stress, c.peak_stress());
     }
     lv.joints.push_back(j);
   }

@@ -1,6 +1,11 @@
 // A persistent contact between two blocks: geometry of this step, joint law, shear history.
 #pragma once
 
+#include <cstddef>
+#include <cstring>
+#include <memory>
+#include <type_traits>
+
 #include <Eigen/Core>
 
 #include "blockdem/collision/boon2012.hpp"
@@ -25,7 +30,22 @@ struct ContactGeometryRecord {
       : point(g.point), normal(g.normal), overlap(g.overlap), area(g.area) {}
 };
 
-struct Contact {
+/// What a contact holds beyond the values a point contact takes from its geometry: the force
+/// point, compressed area, peak stress and peak closure of a face-integrated contact (a point
+/// contact's are x_c, A_c, σ_n and δ), and the previous step's normal where it is not this
+/// step's (after a restore re-derived the geometry without a shear update).
+struct ContactDetail {
+  Eigen::Vector3d force_point = Eigen::Vector3d::Zero();       ///< (m)
+  Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();  ///< (-)
+  double compressed_area = 0.0;                                ///< (m^2)
+  double peak_stress = 0.0;                                    ///< (Pa)
+  double peak_closure = 0.0;                                   ///< (m)
+  bool has_force_values = false;     ///< the four values above are the contact's own
+  bool has_previous_normal = false;  ///< previous_normal is the contact's own
+};
+
+/// A contact's fixed-size state (plain data: it travels between processes as bytes).
+struct ContactValues {
   int a = -1;    ///< first block (the normal points from a to b)
   int b = -1;    ///< second block
   int law = -1;  ///< index into World::joint_laws()
@@ -38,21 +58,138 @@ struct Contact {
   ContactGeometryRecord geometry;  ///< this step's geometry
   ShearState shear;                ///< shear history (force on b, plastic slip)
   TwistState twist;                ///< twisting moment about the normal (on b)
-  Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();
 
-  double normal_stress = 0.0;  ///< σ_n (Pa); face-integrated: mean over the compressed area
-  /// Where the normal and shear forces act (m): x_c in mode boon2012, the centre of pressure
-  /// of an integrated face contact.
-  Eigen::Vector3d force_point = Eigen::Vector3d::Zero();
-  double compressed_area = 0.0;  ///< area carrying stress (m^2); boon2012: the slice area
-  double peak_stress = 0.0;      ///< largest normal stress over the contact (Pa)
-  double peak_closure = 0.0;     ///< largest closure over the contact (m)
+  double normal_stress = 0.0;    ///< σ_n (Pa); face-integrated: mean over the compressed area
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
   double shear_stiffness = 0.0;  ///< k_s A of the last shear update, for its energy (N/m)
+  // This step's terms of the pair (zero unless a force acts), for the time step and the energy
+  // budget.
+  double stiffness = 0.0;        ///< k_n A + k_s A (N/m)
+  double twist_stiffness = 0.0;  ///< k_s J (N m/rad)
+  double slip_work = 0.0;        ///< energy dissipated by slip (J)
+};
+
+struct Contact : ContactValues {
+  Contact() = default;
+  Contact(const Contact& other) : ContactValues(other) { copy_detail(other); }
+  Contact(Contact&&) noexcept = default;
+  Contact& operator=(const Contact& other) {
+    if (this != &other) {
+      static_cast<ContactValues&>(*this) = other;
+      copy_detail(other);
+    }
+    return *this;
+  }
+  Contact& operator=(Contact&&) noexcept = default;
+  ~Contact() = default;
+
+  /// Where the normal and shear forces act (m): x_c for a point contact, the centre of pressure
+  /// of an integrated face contact.
+  const Eigen::Vector3d& force_point() const {
+    return force_values() ? detail_->force_point : geometry.point;
+  }
+  /// Area carrying stress (m^2); a point contact's slice area.
+  double compressed_area() const {
+    return force_values() ? detail_->compressed_area : geometry.area;
+  }
+  /// Largest normal stress over the contact (Pa); a point contact's σ_n.
+  double peak_stress() const { return force_values() ? detail_->peak_stress : normal_stress; }
+  /// Largest closure over the contact (m); a point contact's δ.
+  double peak_closure() const { return force_values() ? detail_->peak_closure : geometry.overlap; }
+  /// The normal of the last shear update (-): this step's normal but after a restore.
+  const Eigen::Vector3d& previous_normal() const {
+    return detail_ && detail_->has_previous_normal ? detail_->previous_normal : geometry.normal;
+  }
+
+  /// The force values are the point contact's (they follow the geometry and σ_n).
+  void take_point_values() {
+    if (!detail_) return;
+    detail_->has_force_values = false;
+    drop_empty_detail();
+  }
+  /// A face-integrated contact's own force values.
+  void set_force_values(const Eigen::Vector3d& point, double area, double stress, double closure) {
+    ContactDetail& d = detail();
+    d.force_point = point;
+    d.compressed_area = area;
+    d.peak_stress = stress;
+    d.peak_closure = closure;
+    d.has_force_values = true;
+  }
+  /// The previous normal is this step's geometry.normal from now on.
+  void take_normal_as_previous() {
+    if (!detail_) return;
+    detail_->has_previous_normal = false;
+    drop_empty_detail();
+  }
+  /// The previous normal is `n`: kept apart only if its bits differ from geometry.normal's (set
+  /// the geometry first).
+  void set_previous_normal(const Eigen::Vector3d& n) {
+    if (std::memcmp(n.data(), geometry.normal.data(), 3 * sizeof(double)) == 0) {
+      take_normal_as_previous();
+      return;
+    }
+    ContactDetail& d = detail();
+    d.previous_normal = n;
+    d.has_previous_normal = true;
+  }
+  /// The record kept apart, or null (a point contact in the common case).
+  const ContactDetail* detail_record() const { return detail_.get(); }
 
   /// Total force on b (N); the force on a is its negative.
   Eigen::Vector3d force_on_b() const { return normal_force * geometry.normal + shear.force; }
+
+ private:
+  bool force_values() const { return detail_ && detail_->has_force_values; }
+  ContactDetail& detail() {
+    if (!detail_) detail_ = std::make_unique<ContactDetail>();
+    return *detail_;
+  }
+  void drop_empty_detail() {
+    if (!detail_->has_force_values && !detail_->has_previous_normal) detail_.reset();
+  }
+  void copy_detail(const Contact& other) {
+    if (!other.detail_) {
+      detail_.reset();
+    } else if (detail_) {
+      *detail_ = *other.detail_;
+    } else {
+      detail_ = std::make_unique<ContactDetail>(*other.detail_);
+    }
+  }
+
+  /// Held out of line: mode boon2012 needs it only for contacts restored from a checkpoint, and
+  /// each contact of a large scene costs 8 bytes instead of 72.
+  std::unique_ptr<ContactDetail> detail_;
 };
+
+// A change of either record must be deliberate: the contact store is the largest array of a
+// large scene with the pair store (bench/README.md, "Memory at 1e5 blocks").
+static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 200,
+              "ContactValues changed size");
+static_assert(sizeof(Contact) == 208, "Contact changed size");
+static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 80,
+              "ContactDetail changed size");
+
+/// A contact as bytes between processes of the same program: its values, then its detail (all
+/// zero bytes and both flags false when it has none).
+constexpr std::size_t kContactBytes = sizeof(ContactValues) + sizeof(ContactDetail);
+inline void contact_to_bytes(const Contact& c, char* out) {
+  std::memcpy(out, static_cast<const ContactValues*>(&c), sizeof(ContactValues));
+  const ContactDetail none{};
+  const ContactDetail* d = c.detail_record();
+  std::memcpy(out + sizeof(ContactValues), d != nullptr ? d : &none, sizeof(ContactDetail));
+}
+inline Contact contact_from_bytes(const char* in) {
+  Contact c;
+  std::memcpy(static_cast<void*>(static_cast<ContactValues*>(&c)), in, sizeof(ContactValues));
+  ContactDetail d;
+  std::memcpy(static_cast<void*>(&d), in + sizeof(ContactValues), sizeof(ContactDetail));
+  if (d.has_force_values)
+    c.set_force_values(d.force_point, d.compressed_area, d.peak_stress, d.peak_closure);
+  if (d.has_previous_normal) c.set_previous_normal(d.previous_normal);
+  return c;
+}
 
 /// Back to a fresh contact (no history, no forces), keeping the pair and its bond state: a bond
 /// that broke stays broken, and an intact one stays intact, while the pair remains a candidate.
@@ -63,7 +200,7 @@ inline void forget_history(Contact& c) {
   fresh.b = c.b;
   fresh.law = c.law;
   fresh.shear.bond = c.shear.bond;
-  c = fresh;
+  c = std::move(fresh);
 }
 
 }  // namespace blockdem

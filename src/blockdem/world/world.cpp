@@ -389,8 +389,8 @@ void World::save_checkpoint() {
     const Contact& c = contact_of(s);
     if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
     checkpoint_.contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist,
-                                    c.previous_normal, c.force_point, c.geometry.overlap,
-                                    c.compressed_area});
+                                    c.previous_normal(), c.force_point(), c.geometry.overlap,
+                                    c.compressed_area()});
   }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
@@ -433,12 +433,13 @@ void World::restore_checkpoint() {
       c.law = h.law;
       c.shear = h.shear;
       c.twist = h.twist;
-      c.previous_normal = h.previous_normal;
       c.has_history = true;
-      c.force_point = h.point;
       c.geometry.point = h.point;
       c.geometry.overlap = h.closure;
-      c.compressed_area = h.area;
+      // The geometry is re-derived before anything reads these, but an open bond, which goes
+      // on from its point and area.
+      c.set_force_values(h.point, h.area, 0.0, 0.0);
+      c.set_previous_normal(h.previous_normal);
       s.contact = static_cast<std::int32_t>(contacts_.size());
       contacts_.push_back(c);
     }

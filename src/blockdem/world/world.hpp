@@ -280,10 +280,10 @@ class World {
   static NarrowWarmStart pack_warm_start(const Boon2012Cache& cache);
   static Boon2012Cache unpack_warm_start(const NarrowWarmStart& warm);
 
-  /// One candidate pair: the pair, its laws and flags, this step's stiffness terms and the
-  /// narrow-phase warm start (kept for near pairs too). The state of a contact lives apart, in
-  /// contacts_, for the pairs that have one: the pair store of a large scene holds ~1.5 candidate
-  /// pairs per contact, and a near pair needs no contact state.
+  /// One candidate pair: the pair, its laws and flags and the narrow-phase warm start (kept for
+  /// near pairs too). The state of a contact lives apart, in contacts_, for the pairs that have
+  /// one, with this step's stiffness terms and slip work: the pair store of a large scene holds
+  /// ~1.5 candidate pairs per contact (a rock mass ~15), and a near pair needs no contact state.
   struct PairSlot {
     int a = -1;                 ///< first block
     int b = -1;                 ///< second block
@@ -294,11 +294,12 @@ class World {
     bool broke = false;            ///< the pair's bond broke in this step
     bool active = false;           ///< a force acts (the contact is in contacts())
     bool pending = false;          ///< this step's new contact state waits in pending_
-    double slip_work = 0.0;        ///< energy dissipated by slip in this step (J)
-    double stiffness = 0.0;        ///< k_n A + k_s A of this step, for the time step (N/m)
-    double twist_stiffness = 0.0;  ///< k_s J of this step, for the time step (N m/rad)
     NarrowWarmStart narrow_cache;  ///< warm start of the narrow phase between steps
   };
+  // The pair store is the largest array of a large scene with the contact store: a change of
+  // size must be deliberate (bench/README.md, "Memory at 1e5 blocks").
+  static_assert(sizeof(NarrowWarmStart) == 104 && sizeof(PairSlot) == 128,
+                "the pair slot changed size");
   /// A contact state formed during the per-pair pass, waiting for settle_contacts().
   struct PendingContact {
     std::size_t slot = 0;
@@ -330,7 +331,15 @@ class World {
     return contacts_[static_cast<std::size_t>(slot.contact)];
   }
   void evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const;
-  bool evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const;
+  /// Last step's force point, normal and compressed area of a contact, which an open bond starts
+  /// from: taken before this step's geometry replaces them, or (null) the contact's own.
+  struct OpenBondStart {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double area = 0.0;
+  };
+  bool evaluate_open_bond(PairSlot& slot, Contact& ct, const OpenBondStart* start, double dt,
+                          bool advance_shear) const;
   /// The per-pair pass over every slot (or those with nonzero `only`), in parallel; new contact
   /// states go to pending_. Returns the exception of the first failing slot in order, if any.
   std::exception_ptr evaluate_slots(double dt, bool advance_shear, int threads,

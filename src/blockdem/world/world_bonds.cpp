@@ -11,12 +11,20 @@
 
 namespace blockdem {
 
-bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
+bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, const OpenBondStart* start, double dt,
+                               bool advance_shear) const {
   if (ct.shear.bond != BondState::intact) return false;
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];
   bool fresh = false;
-  if (!ct.has_history) {
+  // The joint's point, normal and area (closure: the geometry's overlap, see below).
+  Eigen::Vector3d x, n;
+  double area = 0.0;
+  if (ct.has_history) {
+    x = start != nullptr ? start->point : ct.force_point();
+    n = start != nullptr ? start->normal : ct.previous_normal();
+    area = start != nullptr ? start->area : ct.compressed_area();
+  } else {
     // A bond starts only where the blocks share a face at the start of the run.
     if (step_count_ != 0 || !advance_shear) return false;
     // No law the face could take can break: no bond, and no shared face to look for.
@@ -41,10 +49,10 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
     if (law < 0 || !strength_of(laws_[static_cast<std::size_t>(law)].shear).can_break())
       return false;
     ct.law = law;
-    ct.force_point = face->centroid;
-    ct.previous_normal = face->normal;
+    x = face->centroid;
+    n = face->normal;
     ct.geometry.overlap = 0.0;
-    ct.compressed_area = face->area;
+    area = face->area;
     fresh = true;
   }
   if (ct.law < 0) return false;
@@ -54,8 +62,6 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
 
   // The joint's point and normal move with block A; its closure changes by the relative normal
   // velocity of the material points there (compression positive).
-  Eigen::Vector3d x = ct.force_point;
-  Eigen::Vector3d n = ct.previous_normal;
   double closure = ct.geometry.overlap;
   Eigen::Vector3d v_rel = Eigen::Vector3d::Zero();
   if (advance_shear && !fresh) {
@@ -66,7 +72,6 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
     rotate_into_plane(ct.shear, n, turned);
     n = turned;
   }
-  const double area = ct.compressed_area;
   // Zero closure is not tension: a joint with sigma_t = 0 breaks only once it opens.
   const double sigma = closure >= 0.0
                            ? normal_stress(law.normal, closure)
@@ -85,18 +90,16 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
   ct.integrated = false;
   ct.normal_stress = sigma;
   ct.normal_force = sigma * area;
-  ct.force_point = x;
-  ct.compressed_area = area;
-  ct.peak_stress = sigma;
-  ct.peak_closure = closure;
-  ct.previous_normal = n;
+  // Force point, compressed area, peak stress and closure: x, the area, sigma and the closure.
+  ct.take_point_values();
+  ct.take_normal_as_previous();
   ct.has_history = true;
   slot.active = true;
   const double kn = normal_tangent_stiffness(law.normal, std::max(closure, 0.0)) * area;
   // At exactly zero stress (the step a shared face is found) there is nothing to update: the
   // tension cut-off sigma_n <= -sigma_t must not fire at sigma_n = 0 for sigma_t = 0.
   if (!advance_shear || sigma == 0.0) {
-    slot.stiffness = kn;
+    ct.stiffness = kn;
     return true;
   }
   ShearIncrement inc;
@@ -114,7 +117,7 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, double dt, bool adva
     forget_history(ct);
     return true;
   }
-  slot.stiffness = kn + sr.stiffness;
+  ct.stiffness = kn + sr.stiffness;
   return true;
 }
 

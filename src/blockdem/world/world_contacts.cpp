@@ -247,7 +247,7 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
             evaluate_pair(slot, ct, dt, advance_shear);
             slot.pending = slot.active;
             if (slot.active) {
-              formed.push_back({i, ct});
+              formed.push_back({i, std::move(ct)});
             } else {
               slot.bond = ct.shear.bond;
             }
@@ -263,7 +263,8 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
         }
       }
       // Exactly the size needed.
-      pending_[static_cast<std::size_t>(r)].assign(formed.begin(), formed.end());
+      pending_[static_cast<std::size_t>(r)].assign(std::make_move_iterator(formed.begin()),
+                                                   std::make_move_iterator(formed.end()));
     };
     // No parallel region for one thread: a team of one still costs a futex call at its end.
     if (threads > 1 && runs > 1) {
@@ -274,11 +275,11 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
     }
     if (!all_new) continue;
     for (std::size_t r = first; r < static_cast<std::size_t>(wave_end); ++r) {
-      for (const PendingContact& p : pending_[r]) {
+      for (PendingContact& p : pending_[r]) {
         PairSlot& s = slots_[p.slot];
         s.pending = false;
         s.contact = static_cast<std::int32_t>(contacts_.size());
-        contacts_.push_back(p.contact);
+        contacts_.push_back(std::move(p.contact));
       }
       std::vector<PendingContact>().swap(pending_[r]);
     }
@@ -360,7 +361,8 @@ bool World::settle_contacts_parallel(int threads) {
         if (s.pending) {
           ++w;
         } else if (s.contact >= 0 && s.active) {
-          if (!inside(w)) aside[t].emplace_back(w, contacts_[static_cast<std::size_t>(s.contact)]);
+          if (!inside(w))
+            aside[t].emplace_back(w, std::move(contacts_[static_cast<std::size_t>(s.contact)]));
           ++w;
         }
       }
@@ -373,7 +375,7 @@ bool World::settle_contacts_parallel(int threads) {
           ++w;
         } else if (s.contact >= 0 && s.active) {
           const auto o = static_cast<std::size_t>(s.contact);
-          if (inside(w) && w < o) contacts_[w] = contacts_[o];
+          if (inside(w) && w < o) contacts_[w] = std::move(contacts_[o]);
           ++w;
         }
       }
@@ -384,7 +386,7 @@ bool World::settle_contacts_parallel(int threads) {
         } else if (s.contact >= 0 && s.active) {
           const auto o = static_cast<std::size_t>(s.contact);
           --w;
-          if (inside(w) && w > o) contacts_[w] = contacts_[o];
+          if (inside(w) && w > o) contacts_[w] = std::move(contacts_[o]);
           s.contact = static_cast<std::int32_t>(w);
         } else {
           s.contact = -1;
@@ -392,12 +394,12 @@ bool World::settle_contacts_parallel(int threads) {
       }
 #pragma omp barrier
       // 4. The states set aside and the new states.
-      for (const auto& [place, state] : aside[t]) contacts_[place] = state;
+      for (auto& [place, state] : aside[t]) contacts_[place] = std::move(state);
       w = places[t];
       for (std::size_t k = begin; k < end; ++k) {
         PairSlot& s = slots_[k];
         if (s.pending) {
-          const std::vector<PendingContact>& list = pending_[k / pending_run_];
+          std::vector<PendingContact>& list = pending_[k / pending_run_];
           const auto it = std::lower_bound(
               list.begin(), list.end(), k,
               [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
@@ -405,7 +407,7 @@ bool World::settle_contacts_parallel(int threads) {
 #pragma omp atomic write
             missing = true;
           } else {
-            contacts_[w] = it->contact;
+            contacts_[w] = std::move(it->contact);
           }
           s.pending = false;
           s.contact = static_cast<std::int32_t>(w);
@@ -446,11 +448,11 @@ void World::settle_contacts_serial() {
     // list freed once taken.
     contacts_.clear();
     for (std::vector<PendingContact>& list : pending_) {
-      for (const PendingContact& p : list) {
+      for (PendingContact& p : list) {
         PairSlot& s = slots_[p.slot];
         s.pending = false;
         s.contact = static_cast<std::int32_t>(contacts_.size());
-        contacts_.push_back(p.contact);
+        contacts_.push_back(std::move(p.contact));
       }
       std::vector<PendingContact>().swap(list);
     }
@@ -469,14 +471,14 @@ void World::settle_contacts_serial() {
       std::vector<PendingContact>& list = pending_[k / pending_run_];
       if (list.empty() || list.back().slot != k)
         throw std::logic_error("contact merge: a new contact state is missing");
-      contacts_[--w] = list.back().contact;
+      contacts_[--w] = std::move(list.back().contact);
       list.pop_back();
       if (list.empty()) std::vector<PendingContact>().swap(list);
       s.pending = false;
       s.contact = static_cast<std::int32_t>(w);
     } else if (s.contact >= 0) {
       if (static_cast<std::size_t>(s.contact) != --w)
-        contacts_[w] = contacts_[static_cast<std::size_t>(s.contact)];
+        contacts_[w] = std::move(contacts_[static_cast<std::size_t>(s.contact)]);
       s.contact = static_cast<std::int32_t>(w);
     }
   }
@@ -489,7 +491,7 @@ void World::compact_contacts() {
   for (PairSlot& s : slots_) {
     if (s.contact < 0) continue;
     if (static_cast<std::size_t>(s.contact) != kept)
-      contacts_[kept] = contacts_[static_cast<std::size_t>(s.contact)];
+      contacts_[kept] = std::move(contacts_[static_cast<std::size_t>(s.contact)]);
     s.contact = static_cast<std::int32_t>(kept++);
   }
   contacts_.resize(kept);
@@ -498,9 +500,9 @@ void World::compact_contacts() {
 void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
   slot.active = false;
   slot.broke = false;
-  slot.slip_work = 0.0;
-  slot.stiffness = 0.0;
-  slot.twist_stiffness = 0.0;
+  ct.slip_work = 0.0;
+  ct.stiffness = 0.0;
+  ct.twist_stiffness = 0.0;
   const std::vector<int>& face_laws_a = face_laws(ct.a);
   const std::vector<int>& face_laws_b = face_laws(ct.b);
   if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) {
@@ -512,15 +514,21 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
   const ContactGeometry g = narrow_phase(slot, a, b, extent);
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
-    if (!evaluate_open_bond(slot, ct, dt, advance_shear)) forget_history(ct);
+    if (!evaluate_open_bond(slot, ct, nullptr, dt, advance_shear)) forget_history(ct);
     return;
   }
+  // Last step's normal, before this step's geometry replaces it (the shear force turns from it).
+  const Eigen::Vector3d previous = ct.previous_normal();
   // The joint law of the faces in contact (a joint set's), else the group rules'.
   ct.law = face_law_for_contact(a, face_laws_a, b, face_laws_b, g, slot.group_law);
   if (ct.law < 0) {
     forget_history(ct);
     return;
   }
+  // An open bond met below starts from last step's values, which the new geometry replaces.
+  const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
+  const OpenBondStart start =
+      face_mode ? OpenBondStart{ct.force_point(), previous, ct.compressed_area()} : OpenBondStart{};
   ct.geometry = ContactGeometryRecord(g);
   ct.touching = g.touching;
   const JointLaw& law = laws_[ct.law];
@@ -538,13 +546,12 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
                                  auto&& exact_radial) {
     spin = ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
     const double before = ct.twist.moment;
-    slot.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress,
-                                                 tg, spin, better_bound, exact_radial);
-    twist_work = twist_slip_work(before - slot.twist_stiffness * spin, ct.twist.moment,
-                                 slot.twist_stiffness);
+    ct.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress, tg,
+                                               spin, better_bound, exact_radial);
+    twist_work =
+        twist_slip_work(before - ct.twist_stiffness * spin, ct.twist.moment, ct.twist_stiffness);
   };
   // A face contact's cells and the area terms of its twist, for the shear-twist interaction.
-  const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
   const FaceContactGeometry fc =
       face_mode ? face_contact_geometry(a.world_planes, b.world_planes, ct.geometry.point, n,
                                         extent, settings_.face_contact)
@@ -566,18 +573,15 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
       if (!(force > 0.0)) {
         // Touching, but no closure anywhere to integrate: no force this step, unless a bond
         // holds the faces together.
-        if (!evaluate_open_bond(slot, ct, dt, advance_shear)) forget_history(ct);
+        if (!evaluate_open_bond(slot, ct, &start, dt, advance_shear)) forget_history(ct);
         return;
       }
       ct.integrated = true;
       ct.normal_force = force;
-      ct.compressed_area = compressed;
       ct.normal_stress = force / compressed;
-      ct.peak_stress = peak;
-      ct.peak_closure = closure;
-      ct.force_point = moment / force;
+      ct.set_force_values(moment / force, compressed, peak, closure);
       if (twist) {
-        face_twist = face_twist_geometry(fc.cells, n, force, ct.force_point);
+        face_twist = face_twist_geometry(fc.cells, n, force, ct.force_point());
         TwistGeometry& tg = *face_twist;
         // The spring's cap sharpens the radial moment only as far as it needs; keep the value.
         advance_twist(
@@ -596,10 +600,8 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   if (!ct.integrated) {
     ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
     ct.normal_force = ct.normal_stress * ct.geometry.area;
-    ct.force_point = ct.geometry.point;
-    ct.compressed_area = ct.geometry.area;
-    ct.peak_stress = ct.normal_stress;
-    ct.peak_closure = ct.geometry.overlap;
+    // Force point, compressed area, peak stress and closure: x_c, A_c, σ_n and δ.
+    ct.take_point_values();
     if (twist) {
       const TwistGeometry tg = slice_twist_geometry(g.slice, ct.normal_stress);
       const auto known = [&] { return tg.radial_normal_moment; };
@@ -607,17 +609,19 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
     }
   }
   slot.active = true;
-  const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure) * ct.compressed_area;
-  // A restore re-derives geometry and normal force only; the shear history stays as saved.
+  const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure()) * ct.compressed_area();
+  // A restore re-derives geometry and normal force only; the shear history stays as saved, and
+  // so does the normal it was last turned to.
   if (!advance_shear) {
-    slot.stiffness = kn;
+    ct.stiffness = kn;
+    ct.set_previous_normal(previous);
     return;
   }
-  const Eigen::Vector3d& xf = ct.force_point;
+  const Eigen::Vector3d& xf = ct.force_point();
 
   // Shear: carry the stored force into the new tangent plane, then add the increment from the
   // relative velocity of the material points at x_c over the step.
-  if (ct.has_history) rotate_into_plane(ct.shear, ct.previous_normal, n);
+  if (ct.has_history) rotate_into_plane(ct.shear, previous, n);
   // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
   if (twist && ct.has_history)
     spin_shear_state(ct.shear, n, 0.5 * (a.angular_velocity + b.angular_velocity).dot(n) * dt);
@@ -627,17 +631,17 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
       ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt) : Eigen::Vector3d::Zero();
   inc.normal_force = ct.normal_force;
   inc.normal_stress = ct.normal_stress;
-  inc.contact_area = ct.compressed_area;
+  inc.contact_area = ct.compressed_area();
   inc.normal = n;
   const ShearResult sr = update_shear(law.shear, ct.shear, inc);
   ct.sliding = sr.sliding;
   slot.broke = sr.broke;
-  slot.slip_work = sr.plastic_work + twist_work;
+  ct.slip_work = sr.plastic_work + twist_work;
   // Force and moment together against Coulomb's law at every point of a face contact.
   if (face_twist) {
     const double stored = ct.shear.force.squaredNorm(), twisted = ct.twist.moment;
     const ShearTwistResult st = interact_shear_twist(
-        ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area,
+        ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area(),
         *face_twist, xf, n, inc.displacement, spin,
         [&] {
           return face_pressure_radial_bound(fc.cells, law.normal, *face_twist, ct.normal_force, xf);
@@ -649,16 +653,16 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
       ct.sliding = true;
       // The shear spring's energy released by the return (the ledger's elastic term).
       if (sr.stiffness > 0.0)
-        slot.slip_work += 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
-      slot.slip_work += twist_elastic_energy(twisted, slot.twist_stiffness) -
-                        twist_elastic_energy(ct.twist.moment, slot.twist_stiffness);
+        ct.slip_work += 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
+      ct.slip_work += twist_elastic_energy(twisted, ct.twist_stiffness) -
+                      twist_elastic_energy(ct.twist.moment, ct.twist_stiffness);
     }
   }
   ct.shear_stiffness = sr.stiffness;
-  ct.previous_normal = n;
+  ct.take_normal_as_previous();
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).
-  slot.stiffness = kn + sr.stiffness;
+  ct.stiffness = kn + sr.stiffness;
 }
 
 void World::scatter_loads() {
@@ -680,7 +684,7 @@ void World::scatter_loads() {
   const auto load_b = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
     Block& b = blocks_[ct.b];
-    const Eigen::Vector3d& xf = ct.force_point;
+    const Eigen::Vector3d& xf = ct.force_point();
     const Eigen::Vector3d f = ct.force_on_b();
     b.force += f;
     b.contact_force += f;
@@ -692,16 +696,16 @@ void World::scatter_loads() {
     }
     // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
     // the rocking stiffness of a spread face.
-    const double k = s.stiffness;
-    const double spread = ct.compressed_area / 12.0;
+    const double k = ct.stiffness;
+    const double spread = ct.compressed_area() / 12.0;
     stiffness_[ct.b] += k;
     rotational_stiffness_[ct.b] += k * ((xf - b.position).squaredNorm() + spread);
-    rotational_stiffness_[ct.b] += s.twist_stiffness;
+    rotational_stiffness_[ct.b] += ct.twist_stiffness;
   };
   const auto load_a = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
     Block& a = blocks_[ct.a];
-    const Eigen::Vector3d& xf = ct.force_point;
+    const Eigen::Vector3d& xf = ct.force_point();
     const Eigen::Vector3d f = ct.force_on_b();
     a.force -= f;
     a.contact_force -= f;
@@ -710,11 +714,11 @@ void World::scatter_loads() {
       const Eigen::Vector3d moment = ct.twist.moment * ct.geometry.normal;
       a.torque -= moment;
     }
-    const double k = s.stiffness;
-    const double spread = ct.compressed_area / 12.0;
+    const double k = ct.stiffness;
+    const double spread = ct.compressed_area() / 12.0;
     stiffness_[ct.a] += k;
     rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
-    rotational_stiffness_[ct.a] += s.twist_stiffness;
+    rotational_stiffness_[ct.a] += ct.twist_stiffness;
   };
 
   struct RunTotals {
@@ -787,7 +791,7 @@ void World::scatter_loads() {
       load_a(s);
       if (static_cast<std::size_t>(s.b) < last) load_b(s);
       const Contact& ct = contact_of(s);
-      mine.energy.add_contact(ct, s.twist_stiffness, s.slip_work);
+      mine.energy.add_contact(ct, ct.twist_stiffness, ct.slip_work);
       if (mine.violation < 0) {
         const double size =
             std::min(blocks_[ct.a].shape.bounding_radius(), blocks_[ct.b].shape.bounding_radius());

@@ -115,14 +115,16 @@ void set_ghost(Block& b, const GhostState& g) {
 }
 
 /// A pair slot on the wire: its bytes, then its contact's when a force acts (`contact`, non-null
-/// exactly then). Slot and Contact hold fixed-size data only (no pointers, no heap storage), and
-/// every process runs the same program.
+/// exactly then; contact_to_bytes). A slot holds fixed-size data only (no pointers, no heap
+/// storage), and every process runs the same program.
 template <class Slot>
 void put_slot(std::vector<char>& out, const Slot& s, const Contact* contact) {
   static_assert(std::is_trivially_destructible_v<Slot>, "a pair slot must be plain data");
-  static_assert(std::is_trivially_destructible_v<Contact>, "a contact must be plain data");
   put_bytes(out, &s, sizeof(Slot));
-  if (s.active) put_bytes(out, contact, sizeof(Contact));
+  if (!s.active) return;
+  char bytes[kContactBytes];
+  contact_to_bytes(*contact, bytes);
+  put_bytes(out, bytes, kContactBytes);
 }
 
 /// Reads put_slot's record at `at` (advanced past it), not beyond `end`; false when malformed.
@@ -133,9 +135,9 @@ bool get_slot(const std::vector<char>& in, std::size_t& at, std::size_t end, Slo
   std::memcpy(static_cast<void*>(&s), in.data() + at, sizeof(Slot));
   at += sizeof(Slot);
   if (!s.active) return true;
-  if (at + sizeof(Contact) > end) return false;
-  std::memcpy(static_cast<void*>(&contact), in.data() + at, sizeof(Contact));
-  at += sizeof(Contact);
+  if (at + kContactBytes > end) return false;
+  contact = contact_from_bytes(in.data() + at);
+  at += kContactBytes;
   return true;
 }
 
@@ -409,9 +411,9 @@ void World::sum_resting_loads() {
   for (const PairSlot& s : slots_) {
     if (!s.active) continue;
     const Contact& ct = contact_of(s);
-    const Eigen::Vector3d& xf = ct.force_point;
+    const Eigen::Vector3d& xf = ct.force_point();
     const Eigen::Vector3d f = ct.force_on_b();
-    const double spread = ct.compressed_area / 12.0;
+    const double spread = ct.compressed_area() / 12.0;
     for (const int i : {ct.a, ct.b}) {
       const auto k = static_cast<std::size_t>(i);
       if (resting_[k] == 0) continue;
@@ -427,9 +429,9 @@ void World::sum_resting_loads() {
         b.torque -= (xf - b.position).cross(f);
         if (ct.twist.moment != 0.0) b.torque -= ct.twist.moment * ct.geometry.normal;
       }
-      stiffness_[k] += s.stiffness;
-      rotational_stiffness_[k] += s.stiffness * ((xf - b.position).squaredNorm() + spread);
-      rotational_stiffness_[k] += s.twist_stiffness;
+      stiffness_[k] += ct.stiffness;
+      rotational_stiffness_[k] += ct.stiffness * ((xf - b.position).squaredNorm() + spread);
+      rotational_stiffness_[k] += ct.twist_stiffness;
     }
   }
   if (step_count_ == 0) return;
@@ -581,7 +583,7 @@ void World::synchronize() {
       s.contact = -1;
       if (s.active) {
         s.contact = static_cast<std::int32_t>(states.size());
-        states.push_back(at - sizeof(Contact));
+        states.push_back(at - kContactBytes);
       }
       slots.push_back(s);
     }
@@ -597,7 +599,8 @@ void World::synchronize() {
   contacts_.reserve(states.size());
   for (PairSlot& s : slots_) {
     if (s.contact < 0) continue;
-    contacts_.push_back(get<Contact>(all, states[static_cast<std::size_t>(s.contact)]));
+    contacts_.push_back(
+        contact_from_bytes(all.data() + states[static_cast<std::size_t>(s.contact)]));
     s.contact = static_cast<std::int32_t>(contacts_.size() - 1);
   }
   std::vector<char>().swap(all);
@@ -913,7 +916,10 @@ void World::step_distributed(double dt, int threads) {
   }
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    if (s.active) step_sums.add_contact(contact_of(s), s.twist_stiffness, s.slip_work);
+    if (s.active) {
+      const Contact& ct = contact_of(s);
+      step_sums.add_contact(ct, ct.twist_stiffness, ct.slip_work);
+    }
   }
   tw = Clock::now();
   const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());

@@ -2,6 +2,7 @@
 // the scenario does not give, so that a world built from the scenario and loaded with this state
 // continues bit-identically. Unlike the compact divergence checkpoint, nothing is re-derived.
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "blockdem/world/world.hpp"
@@ -107,13 +108,13 @@ void write_contact(StateWriter& w, const Contact& c, const Boon2012Cache& cache)
   w.vec(cache.ball.center);
   write_shear(w, c.shear);
   w.pod(static_cast<std::uint8_t>(c.has_history));
-  w.vec(c.previous_normal);
+  w.vec(c.previous_normal());
   w.pod(c.normal_stress);
-  w.vec(c.force_point);
+  w.vec(c.force_point());
   w.pod(static_cast<std::uint8_t>(c.integrated));
-  w.pod(c.compressed_area);
-  w.pod(c.peak_stress);
-  w.pod(c.peak_closure);
+  w.pod(c.compressed_area());
+  w.pod(c.peak_stress());
+  w.pod(c.peak_closure());
   w.pod(c.normal_force);
   w.pod(static_cast<std::uint8_t>(c.sliding));
   w.pod(c.twist.moment);
@@ -136,17 +137,27 @@ Contact read_contact(StateReader& r, Boon2012Cache& cache) {
   r.vec();
   c.shear = read_shear(r);
   c.has_history = r.pod<std::uint8_t>() != 0;
-  c.previous_normal = r.vec();
+  const Eigen::Vector3d previous_normal = r.vec();
   r.pod(c.normal_stress);
-  c.force_point = r.vec();
+  const Eigen::Vector3d force_point = r.vec();
   c.integrated = r.pod<std::uint8_t>() != 0;
-  r.pod(c.compressed_area);
-  r.pod(c.peak_stress);
-  r.pod(c.peak_closure);
+  const double compressed_area = r.pod<double>();
+  const double peak_stress = r.pod<double>();
+  const double peak_closure = r.pod<double>();
   r.pod(c.normal_force);
   c.sliding = r.pod<std::uint8_t>() != 0;
   r.pod(c.twist.moment);
   r.pod(c.shear_stiffness);
+  // Kept apart only where they are not the point contact's (the same bits either way).
+  c.set_previous_normal(previous_normal);
+  c.set_force_values(force_point, compressed_area, peak_stress, peak_closure);
+  const auto same = [](const auto& x, const auto& y) {
+    static_assert(sizeof(x) == sizeof(y));
+    return std::memcmp(&x, &y, sizeof(x)) == 0;
+  };
+  if (same(force_point, c.geometry.point) && same(compressed_area, c.geometry.area) &&
+      same(peak_stress, c.normal_stress) && same(peak_closure, c.geometry.overlap))
+    c.take_point_values();
   cache = read_cache(r);
   return c;
 }
@@ -208,13 +219,15 @@ void World::save_state(StateWriter& w) const {
   }
   w.size(slots_.size());
   for (const PairSlot& s : slots_) {
-    write_contact(w, s.contact >= 0 ? contact_of(s) : fresh_contact(s),
-                  unpack_warm_start(s.narrow_cache));
+    const Contact& c = s.contact >= 0 ? contact_of(s) : fresh_contact(s);
+    write_contact(w, c, unpack_warm_start(s.narrow_cache));
     w.pod(static_cast<std::int32_t>(s.group_law));
     w.pod(static_cast<std::uint8_t>(s.broke));
-    w.pod(s.slip_work);
-    w.pod(s.stiffness);
-    w.pod(s.twist_stiffness);
+    // The step's terms of a pair: its contact's where a force acts, else zero (as the per-pair
+    // pass leaves them).
+    w.pod(s.active ? c.slip_work : 0.0);
+    w.pod(s.active ? c.stiffness : 0.0);
+    w.pod(s.active ? c.twist_stiffness : 0.0);
     w.pod(static_cast<std::uint8_t>(s.active));
   }
   // The divergence checkpoint, so that a blow-up after a restart rolls back to the same state.
@@ -350,7 +363,7 @@ void World::load_state(StateReader& r) {
   active_count_ = 0;
   for (PairSlot& s : slots_) {
     Boon2012Cache cache;
-    const Contact c = read_contact(r, cache);
+    Contact c = read_contact(r, cache);
     s.narrow_cache = pack_warm_start(cache);
     check_pair(c.a, c.b);
     if (c.law < -1 || c.law >= law_count) throw StateError("saved contact is corrupt");
@@ -360,14 +373,14 @@ void World::load_state(StateReader& r) {
     s.group_law = r.pod<std::int32_t>();
     if (s.group_law < -1 || s.group_law >= law_count) throw StateError("saved contact is corrupt");
     s.broke = r.pod<std::uint8_t>() != 0;
-    r.pod(s.slip_work);
-    r.pod(s.stiffness);
-    r.pod(s.twist_stiffness);
+    r.pod(c.slip_work);
+    r.pod(c.stiffness);
+    r.pod(c.twist_stiffness);
     s.active = r.pod<std::uint8_t>() != 0;
     active_count_ += s.active ? 1 : 0;
     if (s.active || c.has_history) {
       s.contact = static_cast<std::int32_t>(contacts_.size());
-      contacts_.push_back(c);
+      contacts_.push_back(std::move(c));
     }
   }
   checkpoint_.valid = r.pod<std::uint8_t>() != 0;
