@@ -67,7 +67,7 @@ std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
 void World::compute_contacts(double dt, int threads) {
   // Broad phase: pairs where at least one block can move, sorted by (a, b).
   broad_phase_.find_pairs(
-      box_min_, box_max_, [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
+      block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
   keep_open_bonds();
   take_primed_slots();  // the set-up's narrow phase, at the first step
   merge_pairs();

@@ -231,7 +231,7 @@ void World::save_state(StateWriter& w) const {
     w.vec(s.angular_velocity);
     w.vec(s.angular_momentum);
     w.quat(s.orientation);
-    write_motion(w, s.motion);
+    write_motion(w, checkpoint_.motions[i]);
     const auto& servos = checkpoint_.servos;
     write_servo(
         w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{});
@@ -375,6 +375,7 @@ void World::load_state(StateReader& r) {
   r.pod(checkpoint_.step_count);
   r.pod(checkpoint_.broken_bonds);
   checkpoint_.blocks.resize(r.size());
+  checkpoint_.motions.resize(checkpoint_.blocks.size());
   checkpoint_.servos.clear();
   for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
     BlockState& s = checkpoint_.blocks[i];
@@ -383,7 +384,7 @@ void World::load_state(StateReader& r) {
     s.angular_velocity = r.vec();
     s.angular_momentum = r.vec();
     s.orientation = r.quat();
-    s.motion = read_motion(r);
+    checkpoint_.motions[i] = read_motion(r);
     const Servo servo = read_servo(r);
     if (!same_bits(servo, Servo{})) checkpoint_.servos.emplace_back(i, servo);
   }
