@@ -201,10 +201,12 @@ void World::save_state(StateWriter& w) const {
   w.pod(broken_bonds_);
   w.pod(overlap_violation_);
   w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
-  w.size(pairs_.size());
-  for (const auto& [a, b] : pairs_) {
-    w.pod(static_cast<std::int32_t>(a));
-    w.pod(static_cast<std::int32_t>(b));
+  // The broad phase's pairs of the last step, which its merge made the slots' pairs (a restart
+  // reads them and leaves them to the next broad phase; the step frees its own list).
+  w.size(slots_.size());
+  for (const PairSlot& s : slots_) {
+    w.pod(static_cast<std::int32_t>(s.a));
+    w.pod(static_cast<std::int32_t>(s.b));
   }
   w.size(slots_.size());
   for (const PairSlot& s : slots_) {
@@ -338,10 +340,11 @@ void World::load_state(StateReader& r) {
   auto check_pair = [&](int a, int b) {
     if (a < 0 || b <= a || b >= block_count) throw StateError("saved contact is corrupt");
   };
-  pairs_.resize(r.size());
-  for (auto& [a, b] : pairs_) {
-    a = r.pod<std::int32_t>();
-    b = r.pod<std::int32_t>();
+  // The last step's pairs, which the next broad phase finds again: checked, not kept.
+  std::vector<std::pair<int, int>>().swap(pairs_);
+  for (std::size_t k = r.size(); k-- > 0;) {
+    const int a = r.pod<std::int32_t>();
+    const int b = r.pod<std::int32_t>();
     check_pair(a, b);
   }
   slots_.clear();
