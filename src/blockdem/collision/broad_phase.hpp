@@ -12,11 +12,56 @@
 
 namespace blockdem {
 
+/// Axis-aligned boxes read in place: box i's min and max corners are three doubles each, at
+/// byte offset i * stride from `min` and `max`. The boxes of a vector of corners (stride 24
+/// bytes), or those kept in larger records such as Block::aabb_min/aabb_max (stride
+/// sizeof(Block)), without a copy of every box.
+struct BoxView {
+  const unsigned char* min = nullptr;
+  const unsigned char* max = nullptr;
+  std::size_t stride = 0;  ///< (bytes)
+  std::size_t count = 0;
+
+  BoxView() = default;
+  /// The boxes of two vectors of corners, one box per entry.
+  BoxView(const std::vector<Eigen::Vector3d>& box_min, const std::vector<Eigen::Vector3d>& box_max)
+      : min(reinterpret_cast<const unsigned char*>(box_min.data())),
+        max(reinterpret_cast<const unsigned char*>(box_max.data())),
+        stride(sizeof(Eigen::Vector3d)),
+        count(box_min.size()) {}
+  /// The boxes of `n` records of `Record` at `first`, whose corners are the members `lo`, `hi`.
+  template <class Record>
+  static BoxView of(const Record* first, std::size_t n, Eigen::Vector3d Record::*lo,
+                    Eigen::Vector3d Record::*hi) {
+    BoxView v;
+    if (n == 0) return v;
+    v.min = reinterpret_cast<const unsigned char*>((first->*lo).data());
+    v.max = reinterpret_cast<const unsigned char*>((first->*hi).data());
+    v.stride = sizeof(Record);
+    v.count = n;
+    return v;
+  }
+
+  std::size_t size() const { return count; }
+  Eigen::Map<const Eigen::Vector3d> lo(std::size_t i) const {
+    return Eigen::Map<const Eigen::Vector3d>(reinterpret_cast<const double*>(min + i * stride));
+  }
+  Eigen::Map<const Eigen::Vector3d> hi(std::size_t i) const {
+    return Eigen::Map<const Eigen::Vector3d>(reinterpret_cast<const double*>(max + i * stride));
+  }
+};
+
 /// Sorts candidate pairs (i < j) by (i, j) in O(pairs + bodies): a counting sort on i, then each
-/// i's few j (a body with many pairs, such as a base plate, by std::sort). Keeps its buffers.
+/// i's few j (a body with many pairs, such as a base plate, by std::sort). Keeps its buffers
+/// until release().
 class PairSorter {
  public:
   void sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
+  /// Frees the buffers (a large scene's scratch list is as long as its list of pairs).
+  void release() {
+    std::vector<std::pair<int, int>>().swap(scratch_);
+    std::vector<std::size_t>().swap(starts_);
+  }
 
  private:
   std::vector<std::pair<int, int>> scratch_;

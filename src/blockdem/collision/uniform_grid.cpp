@@ -8,12 +8,11 @@
 
 namespace blockdem {
 
-void UniformGrid::build(const std::vector<Eigen::Vector3d>& box_min,
-                        const std::vector<Eigen::Vector3d>& box_max) {
-  const std::size_t n = box_min.size();
+void UniformGrid::build(const BoxView& boxes) {
+  const std::size_t n = boxes.size();
   // Ordinary boxes: largest edge at most twice the median largest edge.
   std::vector<double> edge(n);
-  for (std::size_t i = 0; i < n; ++i) edge[i] = (box_max[i] - box_min[i]).maxCoeff();
+  for (std::size_t i = 0; i < n; ++i) edge[i] = (boxes.hi(i) - boxes.lo(i)).maxCoeff();
   std::vector<double> sorted = edge;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
                    sorted.end());
@@ -25,11 +24,11 @@ void UniformGrid::build(const std::vector<Eigen::Vector3d>& box_min,
   Eigen::Vector3d top = -origin_;
   for (std::size_t i = 0; i < n; ++i) {
     // Non-finite boxes go to the large list, where they are compared (and rejected) directly.
-    if (edge[i] <= limit && box_min[i].allFinite() && box_max[i].allFinite()) {
+    if (edge[i] <= limit && boxes.lo(i).allFinite() && boxes.hi(i).allFinite()) {
       ordinary_[i] = 1;
       cell_ = std::max(cell_, edge[i]);
-      origin_ = origin_.cwiseMin(box_min[i]);
-      top = top.cwiseMax(box_min[i]);
+      origin_ = origin_.cwiseMin(boxes.lo(i));
+      top = top.cwiseMax(boxes.lo(i));
     } else {
       large_.push_back(static_cast<int>(i));
     }
@@ -58,7 +57,7 @@ void UniformGrid::build(const std::vector<Eigen::Vector3d>& box_min,
     std::int64_t c[3];
     for (int a = 0; a < 3; ++a) {
       c[a] = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>((box_min[i][a] - origin_[a]) / cell_), 0, dims_[a] - 1);
+          static_cast<std::int64_t>((boxes.lo(i)[a] - origin_[a]) / cell_), 0, dims_[a] - 1);
       coords_[3 * i + static_cast<std::size_t>(a)] = c[a];
     }
     body_key[i] = key(c[0], c[1], c[2]);
@@ -89,6 +88,16 @@ void UniformGrid::build(const std::vector<Eigen::Vector3d>& box_min,
     for (std::size_t k = 0; k < bodies_.size(); ++k)
       keys_[k] = body_key[static_cast<std::size_t>(bodies_[k])];
   }
+}
+
+void UniformGrid::release() {
+  std::vector<std::int64_t>().swap(coords_);
+  std::vector<std::uint8_t>().swap(ordinary_);
+  std::vector<std::size_t>().swap(cell_start_);
+  std::vector<std::uint64_t>().swap(keys_);
+  std::vector<int>().swap(bodies_);
+  chunks_.clear();
+  sorter_.release();
 }
 
 std::pair<std::size_t, std::size_t> UniformGrid::cell_range(std::uint64_t k) const {

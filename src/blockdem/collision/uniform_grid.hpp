@@ -26,10 +26,17 @@ class UniformGrid {
  public:
   /// Pairs (i < j) whose boxes overlap on all three axes (touching counts), for which
   /// `want(i, j)` is true, sorted by (i, j). `want` must be safe to call from several threads.
+  /// The grid's buffers live only for the call: at the size of a large scene they would
+  /// otherwise stay allocated through the rest of a step (about 80 bytes per box).
+  template <class Want>
+  void find_pairs(const BoxView& boxes, Want&& want, std::vector<std::pair<int, int>>& pairs,
+                  int threads = 1);
   template <class Want>
   void find_pairs(const std::vector<Eigen::Vector3d>& box_min,
                   const std::vector<Eigen::Vector3d>& box_max, Want&& want,
-                  std::vector<std::pair<int, int>>& pairs, int threads = 1);
+                  std::vector<std::pair<int, int>>& pairs, int threads = 1) {
+    find_pairs(BoxView(box_min, box_max), std::forward<Want>(want), pairs, threads);
+  }
 
   double cell_size() const { return cell_; }                 ///< (m)
   std::size_t large_count() const { return large_.size(); }  ///< boxes tested against all
@@ -37,8 +44,9 @@ class UniformGrid {
 
  private:
   /// Files the ordinary boxes in cells; returns false when there are no boxes.
-  void build(const std::vector<Eigen::Vector3d>& box_min,
-             const std::vector<Eigen::Vector3d>& box_max);
+  void build(const BoxView& boxes);
+  /// Frees the buffers filled by build() and the pair lists.
+  void release();
   std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return static_cast<std::uint64_t>(x + dims_[0] * (y + dims_[1] * z));
   }
@@ -60,22 +68,24 @@ class UniformGrid {
 };
 
 template <class Want>
-void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
-                             const std::vector<Eigen::Vector3d>& box_max, Want&& want,
+void UniformGrid::find_pairs(const BoxView& boxes, Want&& want,
                              std::vector<std::pair<int, int>>& pairs, int threads) {
   pairs.clear();
-  const std::int64_t n = static_cast<std::int64_t>(box_min.size());
+  const std::int64_t n = static_cast<std::int64_t>(boxes.size());
   if (n == 0) return;
-  build(box_min, box_max);
+  build(boxes);
   if (threads < 1) threads = 1;
   // One thread writes straight into `pairs` (no second list of every pair to keep between
   // calls); several write their own lists, joined in thread order.
   chunks_.resize(threads > 1 ? static_cast<std::size_t>(threads) : 0);
   for (auto& c : chunks_) c.clear();
   auto overlap = [&](int i, int j) {
-    return !(box_min[j].x() > box_max[i].x() || box_min[i].x() > box_max[j].x() ||
-             box_min[j].y() > box_max[i].y() || box_min[i].y() > box_max[j].y() ||
-             box_min[j].z() > box_max[i].z() || box_min[i].z() > box_max[j].z());
+    const auto ilo = boxes.lo(static_cast<std::size_t>(i)),
+               ihi = boxes.hi(static_cast<std::size_t>(i));
+    const auto jlo = boxes.lo(static_cast<std::size_t>(j)),
+               jhi = boxes.hi(static_cast<std::size_t>(j));
+    return !(jlo.x() > ihi.x() || ilo.x() > jhi.x() || jlo.y() > ihi.y() || ilo.y() > jhi.y() ||
+             jlo.z() > ihi.z() || ilo.z() > jhi.z());
   };
   // The region's body, run by each thread of a team, or alone outside any region for one thread
   // (its work-sharing loops then run every iteration; a team of one would still cost a futex
@@ -97,7 +107,7 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
       for (int a = 0; a < 3; ++a) {
         hi[a] = std::min<std::int64_t>(
             dims_[a] - 1, static_cast<std::int64_t>(
-                              (box_max[static_cast<std::size_t>(i)][a] - origin_[a]) / cell_));
+                              (boxes.hi(static_cast<std::size_t>(i))[a] - origin_[a]) / cell_));
       }
       for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1); z <= hi[2]; ++z) {
         for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1); y <= hi[1]; ++y) {
@@ -132,6 +142,7 @@ void UniformGrid::find_pairs(const std::vector<Eigen::Vector3d>& box_min,
   }
   for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
   sorter_.sort(pairs, static_cast<std::size_t>(n));
+  release();
 }
 
 }  // namespace blockdem

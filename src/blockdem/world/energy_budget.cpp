@@ -2,6 +2,7 @@
 #include "blockdem/world/energy_budget.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "blockdem/dynamics/integrator.hpp"
@@ -79,15 +80,77 @@ EnergyStepSums EnergyStepSums::from_limbs(std::span<const std::int64_t> limbs) {
 }
 
 void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
-  if (started_ && previous_.size() == blocks.size()) return;
+  if (started_ && previous_.size() == blocks.size()) {
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      if (free_[i] != static_cast<std::uint8_t>(blocks[i].is_dynamic())) swap_kind(i);
+    }
+    return;
+  }
   // The accounting starts (or starts again) at this level: no previous step to pair with.
   previous_.assign(blocks.size(), Previous{});
+  free_.resize(blocks.size());
+  dormant_.clear();
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     previous_[i].velocity = blocks[i].velocity;
     previous_[i].angular_velocity = blocks[i].angular_velocity;
     previous_[i].angular_momentum = blocks[i].angular_momentum;
+    free_[i] = static_cast<std::uint8_t>(blocks[i].is_dynamic());
   }
   started_ = false;
+}
+
+bool EnergyLedger::zero_bits(const Impulses& v) {
+  for (const Eigen::Vector3d& x : v) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::bit_cast<std::uint64_t>(x[k]) != 0) return false;
+    }
+  }
+  return true;
+}
+
+void EnergyLedger::swap_kind(std::size_t i) {
+  Impulses& own = previous_[i].impulse;
+  const auto it = dormant_.find(i);
+  Impulses other = it == dormant_.end() ? zero_impulses() : it->second;
+  if (zero_bits(own)) {
+    if (it != dormant_.end()) dormant_.erase(it);
+  } else {
+    dormant_[i] = own;
+  }
+  own = other;
+  free_[i] ^= 1;
+}
+
+void EnergyLedger::full_record(std::size_t i, Eigen::Vector3d* out) const {
+  const Previous& p = previous_[i];
+  out[0] = p.velocity;
+  out[1] = p.angular_velocity;
+  out[2] = p.angular_momentum;
+  const auto it = dormant_.find(i);
+  const Impulses other = it == dormant_.end() ? zero_impulses() : it->second;
+  const Impulses& free = free_[i] != 0 ? p.impulse : other;
+  const Impulses& fixed = free_[i] != 0 ? other : p.impulse;
+  for (std::size_t k = 0; k < 5; ++k) out[3 + k] = free[k];
+  out[8] = fixed[kContact];
+  out[9] = fixed[kContactTorque];
+}
+
+void EnergyLedger::set_full_record(std::size_t i, const Eigen::Vector3d* in) {
+  Previous& p = previous_[i];
+  p.velocity = in[0];
+  p.angular_velocity = in[1];
+  p.angular_momentum = in[2];
+  Impulses free = zero_impulses(), fixed = zero_impulses();
+  for (std::size_t k = 0; k < 5; ++k) free[k] = in[3 + k];
+  fixed[kContact] = in[8];
+  fixed[kContactTorque] = in[9];
+  p.impulse = free_[i] != 0 ? free : fixed;
+  const Impulses& other = free_[i] != 0 ? fixed : free;
+  if (zero_bits(other)) {
+    dormant_.erase(i);
+  } else {
+    dormant_[i] = other;
+  }
 }
 
 void EnergyLedger::after_integration(const std::vector<Block>& blocks,
@@ -120,24 +183,27 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
     const Eigen::Vector3d tl = dt * b.external_torque;
     const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
     const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
+    // before_integration gave the record a free block's impulses.
+    Impulses& q = p.impulse;
     t.dynamic = 1.0;
-    t.gravity = 0.5 * u.dot(ig + p.gravity);
-    t.load = 0.5 * (u.dot(il + p.load) + w.dot(tl + p.load_torque));
-    t.damping = 0.5 * (u.dot(id + p.damping) + w.dot(td + p.damping_torque));
+    t.gravity = 0.5 * u.dot(ig + q[kGravity]);
+    t.load = 0.5 * (u.dot(il + q[kLoad]) + w.dot(tl + q[kLoadTorque]));
+    t.damping = 0.5 * (u.dot(id + q[kDamping]) + w.dot(td + q[kDampingTorque]));
     t.kinetic = 0.5 * b.mass * u.dot(b.velocity) +
                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
-    p.gravity = ig;
-    p.load = il;
-    p.load_torque = tl;
-    p.damping = id;
-    p.damping_torque = td;
+    q[kGravity] = ig;
+    q[kLoad] = il;
+    q[kLoadTorque] = tl;
+    q[kDamping] = id;
+    q[kDampingTorque] = td;
   } else {
     // A moving boundary does work -F·dx on the model through the contact force F it feels.
+    Impulses& q = p.impulse;
     const Eigen::Vector3d ic = dt * b.contact_force;
     const Eigen::Vector3d tc = dt * b.torque;
-    t.boundary = 0.5 * (u.dot(ic + p.contact) + w.dot(tc + p.contact_torque));
-    p.contact = ic;
-    p.contact_torque = tc;
+    t.boundary = 0.5 * (u.dot(ic + q[kContact]) + w.dot(tc + q[kContactTorque]));
+    q[kContact] = ic;
+    q[kContactTorque] = tc;
   }
   p.velocity = b.velocity;
   p.angular_velocity = b.angular_velocity;
@@ -168,21 +234,24 @@ void EnergyLedger::add_step(const EnergyStepSums& sums) {
 }
 
 void EnergyLedger::block_record(std::size_t i, double* out) const {
-  const Previous& p = previous_[i];
-  for (const Eigen::Vector3d* v :
-       {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load, &p.load_torque,
-        &p.damping, &p.damping_torque, &p.contact, &p.contact_torque, &level_velocity_[i],
-        &level_angular_velocity_[i]}) {
-    for (int k = 0; k < 3; ++k) *out++ = (*v)[k];
+  Eigen::Vector3d v[10];
+  full_record(i, v);
+  for (const Eigen::Vector3d& x : v) {
+    for (int k = 0; k < 3; ++k) *out++ = x[k];
+  }
+  for (const Eigen::Vector3d* x : {&level_velocity_[i], &level_angular_velocity_[i]}) {
+    for (int k = 0; k < 3; ++k) *out++ = (*x)[k];
   }
 }
 
 void EnergyLedger::set_block_record(std::size_t i, const double* in) {
-  Previous& p = previous_[i];
-  for (Eigen::Vector3d* v : {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity,
-                             &p.load, &p.load_torque, &p.damping, &p.damping_torque, &p.contact,
-                             &p.contact_torque, &level_velocity_[i], &level_angular_velocity_[i]}) {
-    for (int k = 0; k < 3; ++k) (*v)[k] = *in++;
+  Eigen::Vector3d v[10];
+  for (Eigen::Vector3d& x : v) {
+    for (int k = 0; k < 3; ++k) x[k] = *in++;
+  }
+  set_full_record(i, v);
+  for (Eigen::Vector3d* x : {&level_velocity_[i], &level_angular_velocity_[i]}) {
+    for (int k = 0; k < 3; ++k) (*x)[k] = *in++;
   }
 }
 
@@ -202,11 +271,10 @@ void EnergyLedger::save_state(StateWriter& w) const {
                    e.friction_dissipation, e.damping_dissipation, e.initial})
     w.pod(v);
   w.size(previous_.size());
-  for (const Previous& p : previous_) {
-    for (const Eigen::Vector3d* v :
-         {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load,
-          &p.load_torque, &p.damping, &p.damping_torque, &p.contact, &p.contact_torque})
-      w.vec(*v);
+  for (std::size_t i = 0; i < previous_.size(); ++i) {
+    Eigen::Vector3d v[10];
+    full_record(i, v);
+    for (const Eigen::Vector3d& x : v) w.vec(x);
   }
   for (const auto* list : {&level_velocity_, &level_angular_velocity_}) {
     w.size(list->size());
@@ -221,11 +289,14 @@ void EnergyLedger::load_state(StateReader& r) {
                     &e.friction_dissipation, &e.damping_dissipation, &e.initial})
     r.pod(*v);
   previous_.resize(r.size());
-  for (Previous& p : previous_) {
-    for (Eigen::Vector3d* v :
-         {&p.velocity, &p.angular_velocity, &p.angular_momentum, &p.gravity, &p.load,
-          &p.load_torque, &p.damping, &p.damping_torque, &p.contact, &p.contact_torque})
-      *v = r.vec();
+  // Taken as free blocks' records; the next step's before_integration turns those of the other
+  // blocks.
+  free_.assign(previous_.size(), 1);
+  dormant_.clear();
+  for (std::size_t i = 0; i < previous_.size(); ++i) {
+    Eigen::Vector3d v[10];
+    for (Eigen::Vector3d& x : v) x = r.vec();
+    set_full_record(i, v);
   }
   for (auto* list : {&level_velocity_, &level_angular_velocity_}) {
     list->resize(r.size());

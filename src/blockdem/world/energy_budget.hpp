@@ -3,7 +3,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
+#include <map>
 #include <span>
 #include <vector>
 
@@ -120,19 +122,40 @@ class EnergyLedger {
   Eigen::Vector3d level_angular_velocity(int i, const Block& b) const;
 
  private:
+  /// A block's impulses of the previous step: a free block's Δt m g, Δt F_ext, Δt T_ext and
+  /// the damping's Δt F_d, Δt T_d (N s, N m s); any other block's contact Δt F, Δt T in the
+  /// first two, the rest zero. A block reads only the impulses of its own kind of motion.
+  using Impulses = std::array<Eigen::Vector3d, 5>;
+  static constexpr std::size_t kGravity = 0, kLoad = 1, kLoadTorque = 2, kDamping = 3,
+                               kDampingTorque = 4, kContact = 0, kContactTorque = 1;
+  static Impulses zero_impulses() {
+    const Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    return {z, z, z, z, z};
+  }
   /// What a block brings from the previous step.
   struct Previous {
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          ///< v_{n-1/2} (m/s)
     Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< ω_{n-1/2} (rad/s)
     Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  ///< L_{n-1/2} (kg m²/s)
-    // Impulses Δt F of the previous step (N s) and angular impulses Δt T (N m s).
-    Eigen::Vector3d gravity = Eigen::Vector3d::Zero(), load = Eigen::Vector3d::Zero();
-    Eigen::Vector3d load_torque = Eigen::Vector3d::Zero();
-    Eigen::Vector3d damping = Eigen::Vector3d::Zero(), damping_torque = Eigen::Vector3d::Zero();
-    Eigen::Vector3d contact = Eigen::Vector3d::Zero(), contact_torque = Eigen::Vector3d::Zero();
+    Impulses impulse = zero_impulses();  ///< those of the kind in free_ (192 bytes in all)
   };
+  /// The ten vectors of block i's record in the order of block_record (velocity, angular
+  /// velocity and momentum, then the free kind's five impulses and the other kind's two).
+  void full_record(std::size_t i, Eigen::Vector3d* out) const;
+  void set_full_record(std::size_t i, const Eigen::Vector3d* in);
+  /// Block i changed its kind of motion: its impulses and those kept for the other kind trade
+  /// places.
+  void swap_kind(std::size_t i);
+  /// Whether every impulse is +0.0 (the bits of an absent dormant_ entry).
+  static bool zero_bits(const Impulses& v);
+
   EnergyBudget budget_;
   std::vector<Previous> previous_;
+  /// Per block: 1 when previous_[i].impulse holds a free block's impulses, 0 another block's.
+  std::vector<std::uint8_t> free_;
+  /// The impulses of the other kind for the few blocks whose motion changed while they were not
+  /// all zero bits (a block read only its own kind's before: absent means zero).
+  std::map<std::size_t, Impulses> dormant_;
   std::vector<Eigen::Vector3d> level_velocity_, level_angular_velocity_;
   bool started_ = false;
 };

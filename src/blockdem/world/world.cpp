@@ -130,13 +130,9 @@ std::vector<const Contact*> World::contacts() const {
 
 void World::update_geometry(int threads) {
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
-  box_min_.resize(blocks_.size());
-  box_max_.resize(blocks_.size());
   const auto refresh = [&](std::int64_t i) {
     Block& b = blocks_[static_cast<std::size_t>(i)];
     b.update_world_geometry();
-    box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
-    box_max_[static_cast<std::size_t>(i)] = b.aabb_max;
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
@@ -354,11 +350,13 @@ EquilibriumMeasures World::equilibrium() const {
 void World::save_checkpoint() {
   require_replica("save_checkpoint");
   checkpoint_.blocks.resize(blocks_.size());
+  checkpoint_.motions.resize(blocks_.size());
   checkpoint_.servos.clear();
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& b = blocks_[i];
-    checkpoint_.blocks[i] = {b.position,         b.velocity,    b.angular_velocity,
-                             b.angular_momentum, b.orientation, b.motion};
+    checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
+                             b.orientation};
+    checkpoint_.motions[i] = b.motion;
     if (!same_bits(b.servo, Servo{})) checkpoint_.servos.emplace_back(i, b.servo);
   }
   // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
@@ -410,7 +408,7 @@ void World::restore_checkpoint() {
     b.angular_velocity = s.angular_velocity;
     b.angular_momentum = s.angular_momentum;
     b.orientation = s.orientation;
-    b.motion = s.motion;
+    b.motion = checkpoint_.motions[i];
     const auto& servos = checkpoint_.servos;
     b.servo = servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{};
     b.update_world_geometry();

@@ -307,6 +307,11 @@ class World {
   };
 
   void update_geometry(int threads);
+  /// The blocks' boxes for the broad phase, read in place (Block::aabb_min, aabb_max): no copy
+  /// of every box (48 bytes per block).
+  BoxView block_boxes() const {
+    return BoxView::of(blocks_.data(), blocks_.size(), &Block::aabb_min, &Block::aabb_max);
+  }
   void compute_contacts(double dt, int threads);
   /// A pair the step evaluates: at least one block can move (boxes of fixed blocks alone meet
   /// no contact that matters).
@@ -387,7 +392,6 @@ class World {
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
   std::vector<std::pair<int, int>> pairs_;
-  std::vector<Eigen::Vector3d> box_min_, box_max_;
 
   // Per-block stiffness sums of this step, for the automatic time step.
   std::vector<double> stiffness_, rotational_stiffness_;
@@ -435,10 +439,11 @@ class World {
   Boon2012Settings primed_settings_;
   std::int64_t primed_step_ = 0;  ///< step_count_ when primed
 
+  /// A block's state in the checkpoint; its motion is kept apart (Checkpoint::motions): here it
+  /// would take 16 bytes of a 144-byte record, the quaternion's alignment padding the rest.
   struct BlockState {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;
     Eigen::Quaterniond orientation;
-    Motion motion;
   };
   /// What a contact needs to go on after a restore (its geometry is re-derived).
   struct ContactHistory {
@@ -455,6 +460,7 @@ class World {
   };
   struct Checkpoint {
     std::vector<BlockState> blocks;
+    std::vector<Motion> motions;  ///< per block, as blocks
     /// The servos that are not Servo{} bit for bit, by block index in increasing order; every
     /// other block's is Servo{} (a servo in each BlockState would add 64 bytes per block).
     std::vector<std::pair<std::size_t, Servo>> servos;

@@ -67,8 +67,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
   }
   slots_.resize(kept_slots);
   compact_contacts();
-  pairs_.clear();
-  for (const auto& slot : slots_) pairs_.emplace_back(slot.a, slot.b);
+  std::vector<std::pair<int, int>>().swap(pairs_);  // the next broad phase refills it
   active_count_ = 0;
   for (const auto& slot : slots_) active_count_ += slot.active ? 1 : 0;
   overlap_violation_ = -1;

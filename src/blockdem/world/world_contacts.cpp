@@ -65,12 +65,17 @@ std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
 }  // namespace
 
 void World::compute_contacts(double dt, int threads) {
-  // Broad phase: pairs where at least one block can move, sorted by (a, b).
+  // Broad phase: pairs where at least one block can move, sorted by (a, b). The list was freed
+  // after the last merge: room for as many pairs as then, in one allocation.
+  pairs_.reserve(slots_.size());
   broad_phase_.find_pairs(
-      box_min_, box_max_, [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
+      block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
   keep_open_bonds();
   take_primed_slots();  // the set-up's narrow phase, at the first step
   merge_pairs();
+  // The slots now hold these pairs, in order: the list is not read again before the next broad
+  // phase refills it, and freed it is not held through the step's peak (8 bytes per pair).
+  std::vector<std::pair<int, int>>().swap(pairs_);
   evaluate_pairs(dt, true, threads);
   drop_primed();
   scatter_loads();

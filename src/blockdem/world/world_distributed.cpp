@@ -742,14 +742,10 @@ void World::step_distributed(double dt, int threads) {
   };
 
   // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts).
-  box_min_.resize(n);
-  box_max_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (local_[i] == 0) continue;
     Block& b = blocks_[i];
     b.update_world_geometry();
-    box_min_[i] = b.aabb_min;
-    box_max_[i] = b.aabb_max;
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
@@ -759,7 +755,7 @@ void World::step_distributed(double dt, int threads) {
   // resting block's pairs only where the other block is this process's.
   const auto keeps = [&](int i) { return own_[i] != 0 && resting_[i] == 0; };
   broad_phase_.find_pairs(
-      box_min_, box_max_,
+      block_boxes(),
       [&](int a, int b) {
         return local_[a] != 0 && local_[b] != 0 && (keeps(a) || keeps(b)) &&
                (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&

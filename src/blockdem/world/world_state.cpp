@@ -212,10 +212,12 @@ void World::save_state(StateWriter& w) const {
   w.pod(broken_bonds_);
   w.pod(overlap_violation_);
   w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
-  w.size(pairs_.size());
-  for (const auto& [a, b] : pairs_) {
-    w.pod(static_cast<std::int32_t>(a));
-    w.pod(static_cast<std::int32_t>(b));
+  // The broad phase's pairs of the last step, which its merge made the slots' pairs (a restart
+  // reads them and leaves them to the next broad phase; the step frees its own list).
+  w.size(slots_.size());
+  for (const PairSlot& s : slots_) {
+    w.pod(static_cast<std::int32_t>(s.a));
+    w.pod(static_cast<std::int32_t>(s.b));
   }
   w.size(slots_.size());
   for (const PairSlot& s : slots_) {
@@ -244,7 +246,7 @@ void World::save_state(StateWriter& w) const {
     w.vec(s.angular_velocity);
     w.vec(s.angular_momentum);
     w.quat(s.orientation);
-    write_motion(w, s.motion);
+    write_motion(w, checkpoint_.motions[i]);
     const auto& servos = checkpoint_.servos;
     write_servo(
         w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{});
@@ -351,10 +353,11 @@ void World::load_state(StateReader& r) {
   auto check_pair = [&](int a, int b) {
     if (a < 0 || b <= a || b >= block_count) throw StateError("saved contact is corrupt");
   };
-  pairs_.resize(r.size());
-  for (auto& [a, b] : pairs_) {
-    a = r.pod<std::int32_t>();
-    b = r.pod<std::int32_t>();
+  // The last step's pairs, which the next broad phase finds again: checked, not kept.
+  std::vector<std::pair<int, int>>().swap(pairs_);
+  for (std::size_t k = r.size(); k-- > 0;) {
+    const int a = r.pod<std::int32_t>();
+    const int b = r.pod<std::int32_t>();
     check_pair(a, b);
   }
   slots_.clear();
@@ -388,6 +391,7 @@ void World::load_state(StateReader& r) {
   r.pod(checkpoint_.step_count);
   r.pod(checkpoint_.broken_bonds);
   checkpoint_.blocks.resize(r.size());
+  checkpoint_.motions.resize(checkpoint_.blocks.size());
   checkpoint_.servos.clear();
   for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
     BlockState& s = checkpoint_.blocks[i];
@@ -396,7 +400,7 @@ void World::load_state(StateReader& r) {
     s.angular_velocity = r.vec();
     s.angular_momentum = r.vec();
     s.orientation = r.quat();
-    s.motion = read_motion(r);
+    checkpoint_.motions[i] = read_motion(r);
     const Servo servo = read_servo(r);
     if (!same_bits(servo, Servo{})) checkpoint_.servos.emplace_back(i, servo);
   }

@@ -133,5 +133,38 @@ TEST(BroadPhase, GridAndSweepGiveSortedBruteForcePairsForAnyThreadCount) {
   }
 }
 
+// The grid reads boxes in place from larger records (BoxView::of, as the world reads its blocks'
+// boxes): the same pairs as from the vectors of corners. Oracle: brute force over the vectors
+// (which keeps the pairs with (i + j) % 7 != 0, as `want` here).
+TEST(BroadPhase, GridReadsBoxesInPlaceFromRecords) {
+  struct Record {
+    int tag = 0;  // other members around the corners, as in a block
+    Eigen::Vector3d lo, hi;
+    double more[3] = {0, 0, 0};
+  };
+  Rng rng(5);
+  std::vector<Eigen::Vector3d> centres;
+  for (int i = 0; i < 500; ++i)
+    centres.emplace_back(uniform(rng, -3, 3), uniform(rng, -3, 3), uniform(rng, -1, 1));
+  std::vector<Eigen::Vector3d> lo, hi;
+  boxes(centres, rng, lo, hi);
+  std::vector<Record> records(lo.size());
+  for (std::size_t i = 0; i < lo.size(); ++i) {
+    records[i].tag = static_cast<int>(i);
+    records[i].lo = lo[i];
+    records[i].hi = hi[i];
+  }
+  const Pairs expected = brute_force(lo, hi);
+  ASSERT_FALSE(expected.empty());
+  UniformGrid grid;
+  for (int threads : {1, 2}) {
+    Pairs found;
+    grid.find_pairs(
+        BoxView::of(records.data(), records.size(), &Record::lo, &Record::hi),
+        [](int i, int j) { return (i + j) % 7 != 0; }, found, threads);
+    EXPECT_EQ(found, expected) << "threads " << threads;
+  }
+}
+
 }  // namespace
 }  // namespace blockdem

@@ -55,6 +55,33 @@ TEST(WorldState, AFreshWorldLoadedWithTheStateContinuesBitIdentically) {
   EXPECT_EQ(saved(restarted), saved(w));
 }
 
+// A block that stops (prescribed, at rest) and later moves freely again reads the impulses of
+// its last free step (the energy ledger keeps them aside while it is not free). Saved while it
+// is stopped, they must travel with the state: a restarted world whose ledger lost them would
+// count another gravity and damping work. Oracle: the world that was never saved, byte for byte
+// (its energy budget among the bytes).
+TEST(WorldState, ABlockThatStopsAndMovesAgainContinuesBitIdentically) {
+  World w = pushed_cubes();
+  for (int k = 0; k < 40; ++k) w.step();
+  Block& cube = w.blocks()[2];
+  cube.motion = Motion::prescribed;
+  cube.velocity.setZero();
+  cube.angular_velocity.setZero();
+  for (int k = 0; k < 20; ++k) w.step();
+  const auto state = saved(w);
+  World restarted = pushed_cubes();
+  load(restarted, state);
+  EXPECT_EQ(saved(restarted), state);
+  for (World* x : {&w, &restarted}) x->blocks()[2].motion = Motion::free;
+  for (int k = 0; k < 60; ++k) {
+    w.step();
+    restarted.step();
+  }
+  EXPECT_EQ(saved(restarted), saved(w));
+  EXPECT_EQ(restarted.energy_budget().gravity_work, w.energy_budget().gravity_work);
+  EXPECT_EQ(restarted.energy_budget().damping_dissipation, w.energy_budget().damping_dissipation);
+}
+
 // Three cubes turned 30 degrees about z on a fixed base, 62 mm apart: their boxes overlap, the
 // cubes do not (7.7 mm apart across their faces), so the pairs between them are candidates
 // without a contact. The outer cubes are pushed inwards, and contacts between the cubes form
