@@ -130,9 +130,13 @@ std::vector<const Contact*> World::contacts() const {
 
 void World::update_geometry(int threads) {
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
+  box_min_.resize(blocks_.size());
+  box_max_.resize(blocks_.size());
   const auto refresh = [&](std::int64_t i) {
     Block& b = blocks_[static_cast<std::size_t>(i)];
     b.update_world_geometry();
+    box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
+    box_max_[static_cast<std::size_t>(i)] = b.aabb_max;
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();

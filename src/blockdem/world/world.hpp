@@ -307,11 +307,10 @@ class World {
   };
 
   void update_geometry(int threads);
-  /// The blocks' boxes for the broad phase, read in place (Block::aabb_min, aabb_max): no copy
-  /// of every box (48 bytes per block).
-  BoxView block_boxes() const {
-    return BoxView::of(blocks_.data(), blocks_.size(), &Block::aabb_min, &Block::aabb_max);
-  }
+  /// The blocks' boxes for the broad phase: a compact copy (48 bytes per block) that the grid
+  /// reads many times per box; read in place from the blocks (576-byte records) the step at
+  /// 1e5 blocks was about 4 % slower (cache misses).
+  BoxView block_boxes() const { return BoxView(box_min_, box_max_); }
   void compute_contacts(double dt, int threads);
   /// A pair the step evaluates: at least one block can move (boxes of fixed blocks alone meet
   /// no contact that matters).
@@ -446,6 +445,7 @@ class World {
     Eigen::Quaterniond orientation;
   };
   /// What a contact needs to go on after a restore (its geometry is re-derived).
+  std::vector<Eigen::Vector3d> box_min_, box_max_;  ///< the blocks' boxes (see block_boxes)
   struct ContactHistory {
     int a = -1, b = -1;
     int law = -1;

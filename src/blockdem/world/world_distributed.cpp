@@ -742,10 +742,14 @@ void World::step_distributed(double dt, int threads) {
   };
 
   // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts).
+  box_min_.resize(n);
+  box_max_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (local_[i] == 0) continue;
     Block& b = blocks_[i];
     b.update_world_geometry();
+    box_min_[i] = b.aabb_min;
+    box_max_[i] = b.aabb_max;
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
