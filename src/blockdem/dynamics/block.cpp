@@ -49,6 +49,7 @@ void Block::update_world_geometry() {
   const Eigen::Matrix3d r = rotation();
   const auto& planes = shape.planes();
   world_planes.resize(planes.size());
+  bounding_radius = shape.bounding_radius();
   for (std::size_t i = 0; i < planes.size(); ++i) {
     const Eigen::Vector3d n = r * planes[i].normal;
     world_planes[i].normal = n;
