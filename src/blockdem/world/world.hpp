@@ -289,16 +289,21 @@ class World {
     int b = -1;                 ///< second block
     int group_law = -1;         ///< the group rules' law for the pair (-1: none)
     std::int32_t contact = -1;  ///< index of the pair's state in contacts_, or -1
-    /// The pair's bond while it has no contact state (a bond that broke stays broken).
-    BondState bond = BondState::intact;
-    bool broke = false;            ///< the pair's bond broke in this step
-    bool active = false;           ///< a force acts (the contact is in contacts())
-    bool pending = false;          ///< this step's new contact state waits in pending_
-    NarrowWarmStart narrow_cache;  ///< warm start of the narrow phase between steps
+    /// Warm start of the narrow phase between steps. Its last byte is padding, which the flags
+    /// below take (no_unique_address lets them into its tail): 120 bytes per slot, not 128.
+    [[no_unique_address]] NarrowWarmStart narrow_cache;
+    // One byte of bit-fields: a slot's flags are written by the one thread that has the slot.
+    /// The pair's bond while it has no contact state (a bond that broke stays broken). Three
+    /// bits: the field is signed (BondState's type is int) and its values run to 3.
+    BondState bond : 3 = BondState::intact;
+    bool broke : 1 = false;    ///< the pair's bond broke in this step
+    bool active : 1 = false;   ///< a force acts (the contact is in contacts())
+    bool pending : 1 = false;  ///< this step's new contact state waits in pending_
   };
   // The pair store is the largest array of a large scene with the contact store: a change of
-  // size must be deliberate (bench/README.md, "Memory at 1e5 blocks").
-  static_assert(sizeof(NarrowWarmStart) == 104 && sizeof(PairSlot) == 128,
+  // size must be deliberate (bench/README.md, "Memory at 1e5 blocks"; "The contact and pair
+  // stores at 1e5 blocks, slimmer").
+  static_assert(sizeof(NarrowWarmStart) == 104 && sizeof(PairSlot) == 120,
                 "the pair slot changed size");
   /// A contact state formed during the per-pair pass, waiting for settle_contacts().
   struct PendingContact {
