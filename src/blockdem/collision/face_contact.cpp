@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "blockdem/collision/slice_polygon.hpp"
@@ -30,7 +31,10 @@ struct Polygon {
 // result into `spare` (a buffer as large as poly's, not poly's own) and pointing poly there; a
 // polygon reduced below three vertices is emptied. A half-plane that keeps every vertex leaves
 // poly untouched.
-void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare, double* values) {
+// Inlined at each of its few call sites: a clip is a few dozen operations on a handful of
+// vertices, and the call itself cost a tenth of it.
+[[gnu::always_inline]] inline void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare,
+                                        double* values) {
   if (poly.n == 0) return;
   // Which side each vertex is on decides whether anything is cut at all.
   bool any_out = false, any_in = false;
@@ -69,7 +73,7 @@ struct Level {
     std::copy(from.v, from.v + from.n, first);
     return {first, from.n};
   }
-  void clip_by(Polygon& poly, const Linear& f) {
+  [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
     clip(poly, f, poly.v == first ? spare : first, values);
   }
 };
@@ -95,6 +99,8 @@ Box2 box_of(const Polygon& p) {
 // beyond.
 constexpr int kBuffers = 6;
 constexpr int kStackCapacity = 128;
+// Planes of both blocks held on the stack (a heap table beyond).
+constexpr std::size_t kStackPlanes = 32;
 
 }  // namespace
 
@@ -104,7 +110,13 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           const Eigen::Vector3d& normal, double extent,
                                           const FaceContactSettings& settings) {
   FaceContactGeometry out;
-  const double cos_face = std::cos(settings.face_angle);
+  // The angle is the same for every contact of a run: its cosine is kept per thread.
+  thread_local double cached_angle = std::numeric_limits<double>::quiet_NaN(), cached_cos = 1.0;
+  if (!(settings.face_angle == cached_angle)) {
+    cached_cos = std::cos(settings.face_angle);
+    cached_angle = settings.face_angle;
+  }
+  const double cos_face = cached_cos;
   bool face = false;
   for (const auto& p : planes_a) face |= p.normal.dot(normal) > cos_face;
   for (const auto& p : planes_b) face |= p.normal.dot(normal) < -cos_face;
@@ -116,27 +128,39 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // Every plane in plane coordinates: slack s(y) = s0 - (n·u) a - (n·v) b. Upper planes bound
   // the chord from above (t <= s/c), lower planes from below (t >= s/c), lateral ones the
   // plane region (-s <= 0).
-  SmallVector<Linear, 24> top, bottom, lateral;
+  // The three lists live in one stack table (each as long as all planes together) up to
+  // kStackPlanes planes, in a heap buffer beyond.
+  const std::size_t m = planes_a.size() + planes_b.size();
+  std::array<Linear, 3 * kStackPlanes> stack_lines;
+  std::vector<Linear> heap_lines;
+  Linear* lines = stack_lines.data();
+  if (m > kStackPlanes) {
+    heap_lines.resize(3 * m);
+    lines = heap_lines.data();
+  }
+  Linear* const top = lines;
+  Linear* const bottom = lines + m;
+  Linear* const lateral = lines + 2 * m;
+  int nt = 0, nb = 0, nl = 0;
   auto add = [&](const Halfspace& p) {
     const double c = p.normal.dot(normal);
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (std::abs(c) <= settings.lateral_tolerance) {
-      lateral.push_back({-slack.c0, -slack.c});
+      lateral[nl++] = {-slack.c0, -slack.c};
     } else if (c > 0.0) {
-      top.push_back({slack.c0 / c, slack.c / c});
+      top[nt++] = {slack.c0 / c, slack.c / c};
     } else {
-      bottom.push_back({slack.c0 / c, slack.c / c});
+      bottom[nb++] = {slack.c0 / c, slack.c / c};
     }
   };
   for (const auto& p : planes_a) add(p);
-  const int top_a = static_cast<int>(top.size()), bottom_a = static_cast<int>(bottom.size());
+  const int top_a = nt, bottom_a = nb;
   for (const auto& p : planes_b) add(p);
-  if (top.empty() || bottom.empty()) return out;
-  const int nt = static_cast<int>(top.size()), nb = static_cast<int>(bottom.size());
+  if (nt == 0 || nb == 0) return out;
 
   // A clip adds at most one vertex, and no polygon below sees more clips than this.
-  const int capacity = 4 + static_cast<int>(lateral.size()) + nt * nb + nt + nb;
+  const int capacity = 4 + nl + nt * nb + nt + nb;
   std::array<Eigen::Vector2d, kBuffers * kStackCapacity> stack_buffer;
   std::array<double, kStackCapacity> stack_values;
   std::vector<Eigen::Vector2d> heap_buffer;
@@ -166,7 +190,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   region.v[1] = {extent, -extent};
   region.v[2] = {extent, extent};
   region.v[3] = {-extent, extent};
-  for (const auto& l : lateral) outer.clip_by(region, l);
+  for (int l = 0; l < nl; ++l) outer.clip_by(region, lateral[l]);
   for (int i = 0; i < nt && region.n > 0; ++i) {
     for (int k = 0; k < nb && region.n > 0; ++k) {
       if ((i < top_a) != (k < bottom_a)) outer.clip_by(region, bottom[k] - top[i]);
@@ -178,9 +202,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // counted twice: plane i is the lowest upper plane where upper_i <= upper_j - tie for j < i
   // and upper_i <= upper_j for j > i (and likewise for the highest lower plane).
   const Linear tie{1e-12 * extent, Eigen::Vector2d::Zero()};
-  auto envelope_region = [&](const SmallVector<Linear, 24>& planes, int i, bool lowest,
-                             Polygon& poly) {
-    const int count = static_cast<int>(planes.size());
+  auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly) {
     for (int j = 0; j < count && poly.n > 0; ++j) {
       if (j == i) continue;
       const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
@@ -190,14 +212,25 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
 
   // Lower planes that are the highest somewhere in P', with the box of that region; the others
   // never bound a chord in P' and drop out of the cells' constraints.
-  SmallVector<int, 24> active_bottom;
-  SmallVector<Box2, 24> bottom_box;
+  std::array<int, kStackPlanes> stack_active;
+  std::array<Box2, kStackPlanes> stack_boxes;
+  std::vector<int> heap_active;
+  std::vector<Box2> heap_boxes;
+  int* active_bottom = stack_active.data();
+  Box2* bottom_box = stack_boxes.data();
+  if (m > kStackPlanes) {
+    heap_active.resize(m);
+    heap_boxes.resize(m);
+    active_bottom = heap_active.data();
+    bottom_box = heap_boxes.data();
+  }
+  int n_active = 0;
   for (int k = 0; k < nb; ++k) {
     Polygon poly = middle.copy_of(region);
-    envelope_region(bottom, k, false, poly);
+    envelope_region(bottom, nb, k, false, poly);
     if (poly.n == 0) continue;
-    active_bottom.push_back(k);
-    bottom_box.push_back(box_of(poly));
+    active_bottom[n_active] = k;
+    bottom_box[n_active++] = box_of(poly);
   }
 
   // For each upper plane that is the lowest somewhere in P', the cell of each active lower plane
@@ -205,29 +238,30 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // highest of the active ones.
   for (int i = 0; i < nt; ++i) {
     Polygon upper = middle.copy_of(region);
-    envelope_region(top, i, true, upper);
+    envelope_region(top, nt, i, true, upper);
     if (upper.n == 0) continue;
     const Box2 upper_box = box_of(upper);
-    for (std::size_t a = 0; a < active_bottom.size(); ++a) {
+    for (int a = 0; a < n_active; ++a) {
       if (!upper_box.meets(bottom_box[a])) continue;
       const int k = active_bottom[a];
       Polygon poly = inner.copy_of(upper);
       inner.clip_by(poly, bottom[k] - top[i]);
-      for (std::size_t b = 0; b < active_bottom.size() && poly.n > 0; ++b) {
+      for (int b = 0; b < n_active && poly.n > 0; ++b) {
         const int j = active_bottom[b];
         if (j == k) continue;
         const Linear below = bottom[j] - bottom[k];
         inner.clip_by(poly, j < k ? Linear{below.c0 + tie.c0, below.c} : below);
       }
       if (poly.n == 0) continue;
-      ClosureCell cell;
+      // Filled in place: a cell is a few hundred bytes, not worth a copy.
+      out.cells.push_back(ClosureCell{});
+      ClosureCell& cell = out.cells.back();
       const Linear g = top[i] - bottom[k];
-      for (int m = 0; m < poly.n; ++m) {
-        const Eigen::Vector2d& y = poly.v[m];
+      for (int q = 0; q < poly.n; ++q) {
+        const Eigen::Vector2d& y = poly.v[q];
         cell.vertices.push_back(origin + y.x() * u + y.y() * v);
         cell.closures.push_back(std::max(0.0, g(y)));
       }
-      out.cells.push_back(std::move(cell));
     }
   }
   return out;

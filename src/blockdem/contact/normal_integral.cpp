@@ -185,6 +185,21 @@ TriangleStressMoments integrate_normal_stress_over_triangle(const NormalLaw& law
   for (int i = 0; i < 3; ++i) require_finite("a vertex closure", closures[i]);
   TriangleStressMoments result;
   if (closures.maxCoeff() <= 0.0) return result;
+  if (closures.minCoeff() >= 0.0) {
+    // Compressed throughout (the usual case): the clip below would keep the three vertices and
+    // the fan one triangle of fraction exactly 1, so the same products and sums are formed
+    // directly, with the same values.
+    double mean = 0.0;
+    Eigen::Vector3d weights;
+    compressed_triangle_moments(law, closures, mean, weights);
+    const double fraction = 1.0;
+    result.mean_stress += fraction * mean;
+    result.vertex_weights +=
+        fraction * (weights[0] * Eigen::Vector3d::Unit(0) + weights[1] * Eigen::Vector3d::Unit(1) +
+                    weights[2] * Eigen::Vector3d::Unit(2));
+    result.compressed_fraction += fraction;
+    return result;
+  }
 
   // Clip the triangle at g = 0 in barycentric coordinates (Sutherland-Hodgman on one line):
   // at most four vertices, each with its barycentric point and closure (exactly 0 on the cut).

@@ -273,5 +273,28 @@ TEST(FaceContactCells, TriangleIntegralMatchesReference) {
   RecordProperty("worst_relative_difference", std::to_string(worst));
 }
 
+// A triangle compressed at every vertex (some exactly at zero closure) skips the clip at g = 0 and
+// the fan; for the linear law both routes form the same products and sums, so the result must be
+// the reference's clipped fan bit for bit.
+TEST(FaceContactCells, CompressedTriangleIsTheClippedFanBitForBit) {
+  Rng rng(13);
+  const NormalLaw& law = kLaws[0];
+  for (int trial = 0; trial < 5000; ++trial) {
+    const double scale = std::pow(10.0, uniform(rng, -9.0, -3.7));
+    Eigen::Vector3d g;
+    for (int i = 0; i < 3; ++i) g[i] = scale * uniform(rng, 0.0, 1.0);
+    if (trial % 7 == 0) g[1] = g[0];         // repeated nodes
+    if (trial % 5 == 0) g[trial % 3] = 0.0;  // a vertex on the contact's edge
+    const TriangleStressMoments f = integrate_normal_stress_over_triangle(law, g);
+    const TriangleStressMoments s = oracle::reference_stress_over_triangle(law, g);
+    ASSERT_EQ(f.compressed_fraction, 1.0);
+    ASSERT_EQ(f.compressed_fraction, s.compressed_fraction);
+    ASSERT_EQ(f.mean_stress, s.mean_stress) << "closures " << g.transpose();
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_EQ(f.vertex_weights[i], s.vertex_weights[i]) << "closures " << g.transpose();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace blockdem
