@@ -19,6 +19,7 @@
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/io/time_history.hpp"
 #include "blockdem/world/stage.hpp"
+#include "blockdem/world/state_stream.hpp"
 #include "brick_pile.hpp"
 #include "support/thread_distribution.hpp"
 
@@ -211,6 +212,138 @@ TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
     }
   }
   std::filesystem::remove_all(root);
+}
+
+/// A world's complete state (World::save_state: blocks, pair slots, counters and the divergence
+/// checkpoint), the bytes of a restart file's world.
+std::vector<std::uint8_t> state_bytes(const World& w) {
+  StateWriter out;
+  w.save_state(out);
+  return out.bytes();
+}
+
+/// Steps `w` to step `to` with the refresh deferred, as the runner steps it (no reader of the
+/// whole world in between), then makes it whole.
+void step_to(World& w, std::int64_t to) {
+  w.set_deferred_replica(true);
+  while (w.step_count() < to) w.step();
+  w.synchronize();
+  w.set_deferred_replica(false);
+}
+
+/// What a world goes through in the divergence checkpoint's test: its state at step 450 (the
+/// checkpoint of step 400 inside), then a run made to diverge after step 630 (max_speed lowered
+/// below every moving block's speed), its message and its state reset to the checkpoint of step
+/// 600.
+struct Diverged {
+  std::vector<std::uint8_t> at_450, reset;
+  std::string message;
+  std::int64_t reset_step = -1;
+  DistributionStats stats;
+};
+
+Diverged diverge(World w) {
+  Diverged d;
+  step_to(w, 450);
+  d.at_450 = state_bytes(w);
+  w.set_deferred_replica(true);
+  while (w.step_count() < 630) w.step();
+  w.settings().max_speed = 1e-9;
+  try {
+    w.step();
+  } catch (const DivergenceError& e) {
+    d.message = e.what();
+  }
+  w.set_deferred_replica(false);
+  d.reset_step = w.step_count();
+  d.reset = state_bytes(w);
+  d.stats = w.distribution_stats();
+  return d;
+}
+
+// The divergence checkpoint (every 200 steps) kept in parts: each part keeps its own blocks and
+// pairs, and the parts are gathered only when the world is made whole (here at step 450) or the
+// run diverges. The state with the gathered checkpoint, the divergence's message and the world
+// reset to the checkpoint are one world's bit for bit, on 2 and 3 parts, with 2 refreshes (one
+// at step 450, one at the divergence) where each checkpoint made one (3 more here).
+TEST(DistributedStage, CheckpointInPartsGatheredAndResetBitIdentical) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted: blocks slide across the boundaries
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  s.damping = 0.1;
+  const BrickPile pile;
+  const Diverged oracle = diverge(pile.world(s, 20.0));
+  ASSERT_NE(oracle.message.find("the run diverged at step 631"), std::string::npos)
+      << oracle.message;
+  ASSERT_EQ(oracle.reset_step, 600);
+  ASSERT_NE(oracle.at_450, oracle.reset);
+  for (int parts : {2, 3}) {
+    auto meeting = std::make_shared<Meeting>(parts);
+    std::vector<Diverged> runs(static_cast<std::size_t>(parts));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < parts; ++r) {
+      WorldSettings sr = s;
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      threads.emplace_back(
+          [&, r, sr] { runs[static_cast<std::size_t>(r)] = diverge(pile.world(sr, 20.0)); });
+    }
+    for (auto& t : threads) t.join();
+    for (int r = 0; r < parts; ++r) {
+      const Diverged& d = runs[static_cast<std::size_t>(r)];
+      EXPECT_TRUE(d.at_450 == oracle.at_450) << parts << " parts, part " << r;
+      EXPECT_EQ(d.message, oracle.message) << parts << " parts, part " << r;
+      EXPECT_EQ(d.reset_step, oracle.reset_step);
+      EXPECT_TRUE(d.reset == oracle.reset) << parts << " parts, part " << r;
+      EXPECT_EQ(d.stats.replica_refreshes, 2) << parts << " parts, part " << r;
+      EXPECT_EQ(d.stats.checkpoint_gathers, 2) << parts << " parts, part " << r;
+      EXPECT_GT(d.stats.checkpoint_bytes_received, 0);
+    }
+  }
+}
+
+// A restart file written from 2 parts (the state at step 450, its divergence checkpoint gathered
+// from parts) continues on one world and on 2 parts to the state of the run that never stopped
+// (step 650, whose checkpoint of step 600 was again kept in parts on 2).
+TEST(DistributedStage, RestartFromTwoPartsContinuesOnOneAndTwoBitIdentically) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  s.damping = 0.1;
+  const BrickPile pile;
+  World straight = pile.world(s, 20.0);
+  step_to(straight, 650);
+  const std::vector<std::uint8_t> oracle = state_bytes(straight);
+
+  const auto on_parts = [&](int parts, const std::vector<std::uint8_t>* from, std::int64_t to) {
+    auto meeting = std::make_shared<Meeting>(parts);
+    std::vector<std::vector<std::uint8_t>> out(static_cast<std::size_t>(parts));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < parts; ++r) {
+      WorldSettings sr = s;
+      sr.distribution = std::make_shared<ThreadDistribution>(meeting, r);
+      threads.emplace_back([&, r, sr] {
+        World w = pile.world(sr, 20.0);
+        if (from) {
+          StateReader in(from->data(), from->size());
+          w.load_state(in);
+        }
+        step_to(w, to);
+        out[static_cast<std::size_t>(r)] = state_bytes(w);
+      });
+    }
+    for (auto& t : threads) t.join();
+    for (int r = 1; r < parts; ++r) EXPECT_TRUE(out[static_cast<std::size_t>(r)] == out[0]);
+    return out[0];
+  };
+  const std::vector<std::uint8_t> written = on_parts(2, nullptr, 450);
+  World one = pile.world(s, 20.0);
+  StateReader in(written.data(), written.size());
+  one.load_state(in);
+  step_to(one, 650);
+  EXPECT_TRUE(state_bytes(one) == oracle) << "restarted on one world";
+  EXPECT_TRUE(on_parts(2, &written, 650) == oracle) << "restarted on 2 parts";
 }
 
 }  // namespace

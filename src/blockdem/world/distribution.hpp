@@ -70,6 +70,11 @@ struct DistributionStats {
   std::int64_t output_merges = 0;
   std::int64_t output_bytes_sent = 0;
   std::int64_t output_bytes_received = 0;
+  /// Divergence checkpoints kept in parts and gathered (World::gather_checkpoint, at the next
+  /// refresh): the gathers, and the bytes this process sent and received in them (B).
+  std::int64_t checkpoint_gathers = 0;
+  std::int64_t checkpoint_bytes_sent = 0;
+  std::int64_t checkpoint_bytes_received = 0;
   double pair_seconds = 0.0;      ///< time in its own pair work (s)
   double exchange_seconds = 0.0;  ///< time in the per-step exchanges, waiting included (s)
   double replica_seconds = 0.0;   ///< time in the replica refreshes, waiting included (s)

@@ -475,7 +475,14 @@ class World {
     std::int64_t broken_bonds = 0;
     EnergyLedger energy;
     bool valid = false;
+    /// A distributed part (world_distributed.cpp): `blocks` and `motions` hold this process's
+    /// blocks (indices in `part_blocks`), `servos` and `contacts` its own; synchronize() gathers.
+    std::vector<int> part_blocks;
+    std::vector<double> part_resting;  ///< the resting blocks' loads' terms (gather_checkpoint)
+    bool partial = false;
   } checkpoint_;
+  void save_checkpoint_part();  ///< the divergence checkpoint of a distributed step, its part
+  void gather_checkpoint();     ///< collective: the parts into the whole checkpoint
 };
 
 }  // namespace blockdem

@@ -7,6 +7,7 @@
 // exact block and slot is bit for bit what one process computes; synchronize() gathers the
 // whole world when a caller reads it.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -473,7 +474,262 @@ void World::partition_blocks() {
   ++dist_stats_.partitions;
 }
 
+void World::save_checkpoint_part() {
+  // What save_checkpoint takes from a whole world, taken from this process's exact part: its
+  // blocks (own_) and the pairs it owns, each by the same rule (docs/scaling.md, "Checkpoints in
+  // parts"). Every process saves at the same step, so the parts are alike in kind everywhere.
+  const int rank = settings_.distribution->rank();
+  const std::size_t n = blocks_.size();
+  std::vector<int> part;
+  for (std::size_t i = 0; i < n; ++i)
+    if (own_[i] != 0) part.push_back(static_cast<int>(i));
+  std::vector<BlockState> states;
+  std::vector<Motion> motions;
+  states.reserve(part.size());
+  motions.reserve(part.size());
+  checkpoint_.servos.clear();
+  for (const int i : part) {
+    const Block& b = blocks_[static_cast<std::size_t>(i)];
+    states.push_back(
+        {b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation});
+    motions.push_back(b.motion);
+    if (!same_bits(b.servo, Servo{}))
+      checkpoint_.servos.emplace_back(static_cast<std::size_t>(i), b.servo);
+  }
+  checkpoint_.blocks = std::move(states);
+  checkpoint_.motions = std::move(motions);
+  checkpoint_.part_blocks = std::move(part);
+  // The slots save_checkpoint keeps, of the pairs this process owns, in (a, b) order.
+  std::vector<ContactHistory> contacts;
+  for (const auto& s : slots_) {
+    if (pair_owner(s) != rank) continue;
+    if (s.contact < 0) {
+      if (s.bond == BondState::unbonded) continue;
+      ContactHistory h;
+      h.a = s.a;
+      h.b = s.b;
+      h.law = s.group_law;
+      h.shear.bond = s.bond;
+      contacts.push_back(h);
+      continue;
+    }
+    const Contact& c = contact_of(s);
+    if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
+    contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist, c.previous_normal(),
+                        c.force_point(), c.geometry.overlap, c.compressed_area()});
+  }
+  checkpoint_.contacts = std::move(contacts);
+  // A resting block's energy record holds the step's contact impulses, which a refresh sums
+  // from every process's contacts (sum_resting_loads): the terms of this process's contacts on
+  // resting blocks, in (a, b) order, summed when the parts are gathered. First (kept here, alike
+  // everywhere) the step and the resting blocks, then 12 values per contact.
+  std::vector<double> rest{last_dt_, 0.0};
+  if (resting_.size() == n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (resting_[i] != 0) rest.push_back(static_cast<double>(i));
+    rest[1] = static_cast<double>(rest.size() - 2);
+    for (const auto& s : slots_) {
+      if (!s.active || pair_owner(s) != rank) continue;
+      if (resting_[static_cast<std::size_t>(s.a)] == 0 &&
+          resting_[static_cast<std::size_t>(s.b)] == 0)
+        continue;
+      const Contact& ct = contact_of(s);
+      const Eigen::Vector3d xf = ct.force_point(), f = ct.force_on_b();
+      rest.insert(rest.end(), {static_cast<double>(ct.a), static_cast<double>(ct.b), f[0], f[1],
+                               f[2], xf[0], xf[1], xf[2], ct.twist.moment, ct.geometry.normal[0],
+                               ct.geometry.normal[1], ct.geometry.normal[2]});
+    }
+  }
+  checkpoint_.part_resting = std::move(rest);
+  checkpoint_.time = time_;
+  checkpoint_.step_count = step_count_;
+  checkpoint_.broken_bonds = broken_bonds_;
+  // The whole ledger: its budget is every process's; of its per-block records only the own
+  // blocks' are exact, the others are set when the parts are gathered (as synchronize sets them).
+  checkpoint_.energy = energy_;
+  checkpoint_.valid = true;
+  checkpoint_.partial = true;
+}
+
+void World::gather_checkpoint() {
+  if (!checkpoint_.partial) return;
+  static_assert(std::is_trivially_destructible_v<ContactHistory>);
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = blocks_.size();
+  Checkpoint& cp = checkpoint_;
+  cp.energy.prepare(n);
+  // This process's part: its blocks (index, state, motion, energy record), servos and contacts.
+  struct PartBlock {
+    std::int64_t index = 0;
+    double state[16];
+    std::int64_t motion = 0;
+    double energy[EnergyLedger::kBlockRecordDoubles];
+  };
+  static_assert(std::is_trivially_copyable_v<PartBlock>);
+  std::vector<char> out;
+  put(out, static_cast<std::uint64_t>(cp.part_blocks.size()));
+  put(out, static_cast<std::uint64_t>(cp.servos.size()));
+  put(out, static_cast<std::uint64_t>(cp.contacts.size()));
+  for (std::size_t k = 0; k < cp.part_blocks.size(); ++k) {
+    PartBlock p;
+    p.index = cp.part_blocks[k];
+    const BlockState& s = cp.blocks[k];
+    for (int c = 0; c < 3; ++c) {
+      p.state[c] = s.position[c];
+      p.state[3 + c] = s.velocity[c];
+      p.state[6 + c] = s.angular_velocity[c];
+      p.state[9 + c] = s.angular_momentum[c];
+    }
+    for (int c = 0; c < 4; ++c) p.state[12 + c] = s.orientation.coeffs()[c];
+    p.motion = static_cast<std::int64_t>(cp.motions[k]);
+    cp.energy.block_record(static_cast<std::size_t>(p.index), p.energy);
+    put(out, p);
+  }
+  for (const auto& [i, servo] : cp.servos) {
+    put(out, static_cast<std::uint64_t>(i));
+    put_bytes(out, &servo, sizeof(Servo));
+  }
+  for (const ContactHistory& h : cp.contacts) put_bytes(out, &h, sizeof(ContactHistory));
+  const std::vector<double>& rest = cp.part_resting;
+  const auto resting_count = static_cast<std::size_t>(rest.size() >= 2 ? rest[1] : 0.0);
+  const std::size_t terms_at = 2 + resting_count;
+  if (rest.size() < terms_at || (rest.size() - terms_at) % 12 != 0)
+    throw std::logic_error("checkpoint gather: a malformed part");
+  put(out, static_cast<std::uint64_t>((rest.size() - terms_at) / 12));
+  put_bytes(out, rest.data() + terms_at, (rest.size() - terms_at) * sizeof(double));
+  std::vector<std::size_t> counts;
+  const std::vector<char> all = dist.all_gather(out, counts);
+
+  // The whole checkpoint, as save_checkpoint takes it from the whole world that synchronize
+  // makes: blocks by index, servos by index, contacts by (a, b), the other processes' energy
+  // records set in process order.
+  std::vector<BlockState> states(n);
+  std::vector<Motion> motions(n, Motion::free);
+  std::vector<char> seen(n, 0);
+  std::vector<std::pair<std::size_t, Servo>> servos;
+  std::vector<ContactHistory> contacts;
+  std::vector<std::array<double, 12>> terms;  // the resting blocks' contacts' terms
+  std::size_t begin = 0;
+  for (std::size_t r = 0; r < counts.size(); begin += counts[r], ++r) {
+    const std::size_t end = begin + counts[r];
+    if (counts[r] < 24)
+      throw std::logic_error("checkpoint gather: a process sent a malformed part");
+    const auto blocks_in = get<std::uint64_t>(all, begin);
+    const auto servos_in = get<std::uint64_t>(all, begin + 8);
+    const auto contacts_in = get<std::uint64_t>(all, begin + 16);
+    const std::size_t fixed_part = 24 + blocks_in * sizeof(PartBlock) +
+                                   servos_in * (8 + sizeof(Servo)) +
+                                   contacts_in * sizeof(ContactHistory);
+    if (counts[r] < fixed_part + 8 ||
+        counts[r] != fixed_part + 8 + get<std::uint64_t>(all, begin + fixed_part) * 96)
+      throw std::logic_error("checkpoint gather: a process sent a malformed part");
+    std::size_t at = begin + 24;
+    for (std::uint64_t k = 0; k < blocks_in; ++k, at += sizeof(PartBlock)) {
+      const auto p = get<PartBlock>(all, at);
+      const auto i = static_cast<std::size_t>(p.index);
+      if (p.index < 0 || i >= n || seen[i] != 0)
+        throw std::logic_error("checkpoint gather: a process sent a malformed block");
+      seen[i] = 1;
+      BlockState& s = states[i];
+      for (int c = 0; c < 3; ++c) {
+        s.position[c] = p.state[c];
+        s.velocity[c] = p.state[3 + c];
+        s.angular_velocity[c] = p.state[6 + c];
+        s.angular_momentum[c] = p.state[9 + c];
+      }
+      for (int c = 0; c < 4; ++c) s.orientation.coeffs()[c] = p.state[12 + c];
+      motions[i] = static_cast<Motion>(p.motion);
+      if (static_cast<int>(r) != rank) cp.energy.set_block_record(i, p.energy);
+    }
+    for (std::uint64_t k = 0; k < servos_in; ++k, at += 8 + sizeof(Servo)) {
+      Servo servo;
+      std::memcpy(static_cast<void*>(&servo), all.data() + at + 8, sizeof(Servo));
+      servos.emplace_back(static_cast<std::size_t>(get<std::uint64_t>(all, at)), servo);
+    }
+    for (std::uint64_t k = 0; k < contacts_in; ++k, at += sizeof(ContactHistory)) {
+      ContactHistory h;
+      std::memcpy(static_cast<void*>(&h), all.data() + at, sizeof(ContactHistory));
+      contacts.push_back(h);
+    }
+    const auto terms_in = get<std::uint64_t>(all, at);
+    at += 8;
+    for (std::uint64_t k = 0; k < terms_in; ++k, at += 96) {
+      std::array<double, 12> t;
+      std::memcpy(t.data(), all.data() + at, 96);
+      terms.push_back(t);
+    }
+    if (at != end) throw std::logic_error("checkpoint gather: a process sent a malformed part");
+  }
+  if (std::count(seen.begin(), seen.end(), 0) != 0)
+    throw std::logic_error("checkpoint gather: a block is in no process's part");
+  std::sort(servos.begin(), servos.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(contacts.begin(), contacts.end(), [](const ContactHistory& x, const ContactHistory& y) {
+    return x.a < y.a || (x.a == y.a && x.b < y.b);
+  });
+  // The resting blocks' records as sum_resting_loads leaves them on the whole world of the
+  // checkpoint's step: the contact force and torque summed with its arithmetic in (a, b) order.
+  std::sort(terms.begin(), terms.end(), [](const auto& x, const auto& y) {
+    return x[0] < y[0] || (x[0] == y[0] && x[1] < y[1]);
+  });
+  const double dt = rest.empty() ? 0.0 : rest[0];
+  if (cp.step_count != 0) {
+    std::vector<Eigen::Vector3d> force(n, Eigen::Vector3d::Zero()), torque(n, force[0]);
+    std::vector<char> resting(n, 0);
+    for (std::size_t k = 0; k < resting_count; ++k)
+      resting[static_cast<std::size_t>(rest[2 + k])] = 1;
+    for (const auto& t : terms) {
+      const Eigen::Vector3d f(t[2], t[3], t[4]), xf(t[5], t[6], t[7]), normal(t[9], t[10], t[11]);
+      for (const double ab : {t[0], t[1]}) {
+        const auto k = static_cast<std::size_t>(ab);
+        if (k >= n) throw std::logic_error("checkpoint gather: a malformed contact");
+        if (resting[k] == 0) continue;
+        const Eigen::Vector3d& position = states[k].position;
+        if (ab == t[1]) {
+          force[k] += f;
+          torque[k] += (xf - position).cross(f);
+          if (t[8] != 0.0) torque[k] += t[8] * normal;
+        } else {
+          force[k] -= f;
+          torque[k] -= (xf - position).cross(f);
+          if (t[8] != 0.0) torque[k] -= t[8] * normal;
+        }
+      }
+    }
+    double record[EnergyLedger::kBlockRecordDoubles];
+    constexpr std::size_t kContact = 24;  // as sum_resting_loads
+    for (std::size_t i = 0; i < n; ++i) {
+      if (resting[i] == 0) continue;
+      cp.energy.block_record(i, record);
+      const Eigen::Vector3d impulse = dt * force[i];
+      const Eigen::Vector3d angular = dt * torque[i];
+      for (int k = 0; k < 3; ++k) {
+        record[kContact + static_cast<std::size_t>(k)] = impulse[k];
+        record[kContact + 3 + static_cast<std::size_t>(k)] = angular[k];
+      }
+      cp.energy.set_block_record(i, record);
+    }
+  }
+  cp.blocks = std::move(states);
+  cp.motions = std::move(motions);
+  cp.servos = std::move(servos);
+  cp.contacts = std::move(contacts);
+  std::vector<int>().swap(cp.part_blocks);
+  std::vector<double>().swap(cp.part_resting);
+  cp.partial = false;
+  dist_stats_.checkpoint_gathers += 1;
+  dist_stats_.checkpoint_bytes_sent += static_cast<std::int64_t>(out.size());
+  dist_stats_.checkpoint_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.replica_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 void World::synchronize() {
+  // A divergence checkpoint in parts is made whole with the world (its readers, the reset to it
+  // and the restart file, read a whole world).
+  if (settings_.distribution) gather_checkpoint();
   if (!settings_.distribution || replica_complete_) return;
   // A slot travels as raw bytes (put_slot).
   static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
@@ -963,9 +1219,15 @@ void World::step_distributed(double dt, int threads) {
     synchronize();
     check_divergence();
   }
+  // The divergence checkpoint: in parts when the caller defers the refresh (gathered by the next
+  // synchronize(), before anything reads it); otherwise from the whole world made anyway.
   if (step_count_ % 200 == 0) {
-    synchronize();
-    save_checkpoint();
+    if (deferred_replica_) {
+      save_checkpoint_part();
+    } else {
+      synchronize();
+      save_checkpoint();
+    }
   }
 
   // Rebalancing: every process sees the same measured figures, so all decide alike. The answers

@@ -3,6 +3,7 @@
 // continues bit-identically. Unlike the compact divergence checkpoint, nothing is re-derived.
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "blockdem/world/world.hpp"
@@ -177,6 +178,8 @@ std::vector<double> read_doubles(StateReader& r) {
 
 void World::save_state(StateWriter& w) const {
   require_replica("save_state");
+  if (checkpoint_.partial)
+    throw std::logic_error("save_state: the divergence checkpoint is in parts; call synchronize()");
   // Settings a stage changes.
   w.vec(settings_.gravity);
   w.pod(settings_.damping);
@@ -387,6 +390,8 @@ void World::load_state(StateReader& r) {
     }
   }
   checkpoint_.valid = r.pod<std::uint8_t>() != 0;
+  checkpoint_.partial = false;  // a restart file holds the whole checkpoint
+  std::vector<int>().swap(checkpoint_.part_blocks);
   r.pod(checkpoint_.time);
   r.pod(checkpoint_.step_count);
   r.pod(checkpoint_.broken_bonds);
