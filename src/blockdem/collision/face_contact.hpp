@@ -44,7 +44,8 @@ struct FaceContactSettings {
 /// Cost: the projection of A∩B is clipped once against every (upper, lower) pair; the region
 /// where each upper plane is the lowest (and each lower plane the highest) is then clipped within
 /// it, and only pairs of non-empty regions whose boxes meet form cells. Polygons live in a stack
-/// buffer for up to 24 planes in all (a heap buffer beyond).
+/// buffer while no polygon can see more than 128 clips, and the planes in a stack table for up to
+/// 32 planes in all (heap buffers beyond).
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
                                           const Eigen::Vector3d& origin,
