@@ -367,38 +367,43 @@ void World::save_checkpoint() {
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
   // Counted first and reserved exactly: near pairs with an intact bond count too, and a vector
   // grown by doubling would briefly hold three times the records.
-  const auto kept = [&](const PairSlot& s) {
-    if (s.contact < 0) return s.bond != BondState::unbonded;
-    const Contact& c = contact_of(s);
-    return s.active || c.has_history || c.shear.bond != BondState::unbonded;
-  };
+  const auto kept = [&](const PairSlot& s) { return checkpoint_history(s).has_value(); };
   checkpoint_.contacts.clear();
   checkpoint_.contacts.shrink_to_fit();
   checkpoint_.contacts.reserve(
       static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), kept)));
-  for (const auto& s : slots_) {
-    if (s.contact < 0) {
-      // No contact state: only the bond of the pair.
-      if (s.bond == BondState::unbonded) continue;
-      ContactHistory h;
-      h.a = s.a;
-      h.b = s.b;
-      h.law = s.group_law;
-      h.shear.bond = s.bond;
-      checkpoint_.contacts.push_back(h);
-      continue;
-    }
-    const Contact& c = contact_of(s);
-    if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
-    checkpoint_.contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist,
-                                    c.previous_normal(), c.force_point(), c.geometry.overlap,
-                                    c.compressed_area()});
-  }
+  for (const auto& s : slots_)
+    if (const auto h = checkpoint_history(s)) checkpoint_.contacts.push_back(*h);
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
   checkpoint_.energy = energy_;
   checkpoint_.valid = true;
+}
+
+std::optional<World::ContactHistory> World::checkpoint_history(const PairSlot& s) const {
+  if (s.contact < 0) {
+    // No contact state: only the bond of the pair.
+    if (s.bond == BondState::unbonded) return std::nullopt;
+    ContactHistory h;
+    h.a = s.a;
+    h.b = s.b;
+    h.law = s.group_law;
+    h.shear.bond = s.bond;
+    return h;
+  }
+  const Contact& c = contact_of(s);
+  if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) return std::nullopt;
+  return ContactHistory{c.a,
+                        c.b,
+                        c.law,
+                        c.has_history,
+                        c.shear,
+                        c.twist,
+                        c.previous_normal(),
+                        c.force_point(),
+                        c.geometry.overlap,
+                        c.compressed_area()};
 }
 
 void World::restore_checkpoint() {

@@ -449,8 +449,8 @@ class World {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;
     Eigen::Quaterniond orientation;
   };
-  /// What a contact needs to go on after a restore (its geometry is re-derived).
   std::vector<Eigen::Vector3d> box_min_, box_max_;  ///< the blocks' boxes (see block_boxes)
+  /// What a contact needs to go on after a restore (its geometry is re-derived).
   struct ContactHistory {
     int a = -1, b = -1;
     int law = -1;
@@ -463,6 +463,10 @@ class World {
     double closure = 0.0;
     double area = 0.0;
   };
+  /// What a checkpoint keeps of a slot: its contact's history, or the bond of a pair without a
+  /// contact state; nothing for a pair that a fresh slot reproduces (no force, no history, no
+  /// bond).
+  std::optional<ContactHistory> checkpoint_history(const PairSlot& s) const;
   struct Checkpoint {
     std::vector<BlockState> blocks;
     std::vector<Motion> motions;  ///< per block, as blocks

@@ -503,20 +503,7 @@ void World::save_checkpoint_part() {
   std::vector<ContactHistory> contacts;
   for (const auto& s : slots_) {
     if (pair_owner(s) != rank) continue;
-    if (s.contact < 0) {
-      if (s.bond == BondState::unbonded) continue;
-      ContactHistory h;
-      h.a = s.a;
-      h.b = s.b;
-      h.law = s.group_law;
-      h.shear.bond = s.bond;
-      contacts.push_back(h);
-      continue;
-    }
-    const Contact& c = contact_of(s);
-    if (!s.active && !c.has_history && c.shear.bond == BondState::unbonded) continue;
-    contacts.push_back({c.a, c.b, c.law, c.has_history, c.shear, c.twist, c.previous_normal(),
-                        c.force_point(), c.geometry.overlap, c.compressed_area()});
+    if (const auto h = checkpoint_history(s)) contacts.push_back(*h);
   }
   checkpoint_.contacts = std::move(contacts);
   // A resting block's energy record holds the step's contact impulses, which a refresh sums
