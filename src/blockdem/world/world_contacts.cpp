@@ -62,6 +62,96 @@ std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
   return count;
 }
 
+// The pair merge in parallel: the slots of `pairs` (sorted by (a, b), no repeats) take their
+// places in `slots` (sorted, the pairs of the last step), each kept slot moved once; a pair
+// that had no slot gets fresh(a, b). The arrangement is the serial merge's, for any thread
+// count. Each thread owns a range of new places. It finds where each place's slot is now (a
+// binary search for its first pair, then a merge walk), copies aside the slots it takes from
+// outside its range, and after a barrier (no thread reads outside its range again) moves the
+// slots of its range: those going down in increasing order, those going up in decreasing
+// order. As both lists are sorted, a slot going down never lands where one going up still is,
+// and the reverse, so no slot is overwritten before it is moved. Returns false, having changed
+// nothing, if more than an eighth of the slots would be copied aside (a large shift, as after
+// a big rearrangement: the serial merge needs no room for them).
+template <typename Slot, typename Fresh>
+bool merge_in_parallel(std::vector<Slot>& slots, const std::vector<std::pair<int, int>>& pairs,
+                       int threads, Fresh&& fresh) {
+  const std::size_t n_old = slots.size(), n_new = pairs.size();
+  const auto runs = static_cast<std::size_t>(threads);
+  std::vector<std::int64_t> source(n_new);  // where each place's slot is now (-1: a new pair)
+  std::vector<std::size_t> aside_count(runs, 0);
+  std::vector<std::vector<std::pair<std::size_t, Slot>>> aside(runs);
+  bool too_many = false;
+  const auto slot_less = [](const Slot& s, const std::pair<int, int>& p) {
+    return less_pair(s.a, s.b, p.first, p.second);
+  };
+#pragma omp parallel num_threads(threads)
+  {
+    const auto t = static_cast<std::size_t>(team_rank());
+    const std::size_t team = static_cast<std::size_t>(team_size());
+    const std::size_t begin = t * n_new / team, end = (t + 1) * n_new / team;
+    const auto inside = [&](std::int64_t k) {
+      return k >= static_cast<std::int64_t>(begin) && k < static_cast<std::int64_t>(end);
+    };
+    // 1. The sources of the range's places (the slots are only read).
+    std::size_t k = n_old;
+    if (begin < end) {
+      k = static_cast<std::size_t>(
+          std::lower_bound(slots.begin(), slots.end(), pairs[begin], slot_less) - slots.begin());
+    }
+    std::size_t outside = 0;
+    for (std::size_t w = begin; w < end; ++w) {
+      while (k < n_old && slot_less(slots[k], pairs[w])) ++k;
+      if (k < n_old && slots[k].a == pairs[w].first && slots[k].b == pairs[w].second) {
+        source[w] = static_cast<std::int64_t>(k++);
+        if (!inside(source[w])) ++outside;
+      } else {
+        source[w] = -1;
+      }
+    }
+    aside_count[t] = outside;
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t total = 0;
+      for (std::size_t c : aside_count) total += c;
+      too_many = total > n_new / 8;
+      // Room for every place (the slots past the old end are moved into or made fresh).
+      if (!too_many && n_new > n_old) {
+        if (n_new > slots.capacity()) slots.reserve(n_new + n_new / 8);
+        slots.resize(n_new);
+      }
+    }
+    if (!too_many) {
+      // 2. The slots taken from outside the range, aside.
+      aside[t].reserve(aside_count[t]);
+      for (std::size_t w = begin; w < end; ++w) {
+        if (source[w] >= 0 && !inside(source[w]))
+          aside[t].emplace_back(w, std::move(slots[static_cast<std::size_t>(source[w])]));
+      }
+#pragma omp barrier
+      // 3. Within the range: down in increasing order, then up in decreasing order.
+      for (std::size_t w = begin; w < end; ++w) {
+        if (inside(source[w]) && static_cast<std::size_t>(source[w]) > w)
+          slots[w] = std::move(slots[static_cast<std::size_t>(source[w])]);
+      }
+      for (std::size_t w = end; w-- > begin;) {
+        if (inside(source[w]) && static_cast<std::size_t>(source[w]) < w)
+          slots[w] = std::move(slots[static_cast<std::size_t>(source[w])]);
+      }
+      // 4. The slots set aside, and the new pairs' slots.
+      for (auto& [place, slot] : aside[t]) slots[place] = std::move(slot);
+      std::vector<std::pair<std::size_t, Slot>>().swap(aside[t]);
+      for (std::size_t w = begin; w < end; ++w) {
+        if (source[w] < 0) slots[w] = fresh(pairs[w].first, pairs[w].second);
+      }
+    }
+  }
+  if (too_many) return false;
+  slots.resize(n_new);
+  return true;
+}
+
 // Prefetching for the per-pair passes. The slots are in (a, b) order: a pair's block a is
 // mostly the last pair's, but its block b lies anywhere up to a layer of blocks away in memory,
 // and in a scene of 1e5 blocks what lies between no longer fits the caches. Each pass asks for
@@ -141,7 +231,23 @@ void World::merge_pairs() {
     };
     same = count_in_parallel(pairs_.size(), thread_count(), differs) == 0;
   }
-  if (!same) {
+  // A new candidate pair: the joint law is looked up once, when the pair appears. Its contact
+  // state (none yet) stays where it was: settle_contacts drops it. Bonds (rock bridges) join
+  // only blocks that were candidates at the start: a pair that becomes one later has never
+  // been bonded and gets the residual strength.
+  const auto fresh_slot = [&](int a, int b) {
+    PairSlot fresh;
+    fresh.a = a;
+    fresh.b = b;
+    fresh.group_law = law_for(a, b);
+    if (step_count_ > 0) fresh.bond = BondState::unbonded;
+    return fresh;
+  };
+  const int threads = thread_count();
+  bool merged = same;
+  if (!merged && threads > 1 && pairs_.size() >= 256)
+    merged = merge_in_parallel(slots_, pairs_, threads, fresh_slot);
+  if (!merged) {
     // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
     // place (forward); then open the slots of new pairs, moving kept ones back (backward).
     std::size_t kept = 0, p = 0;
@@ -164,16 +270,7 @@ void World::merge_pairs() {
         --old;
         if (old != w) slots_[w] = std::move(slots_[old]);
       } else {
-        // A new candidate pair: the joint law is looked up once, when the pair appears.
-        // Its contact state (none yet) stays where it was: settle_contacts drops it.
-        PairSlot fresh;
-        fresh.a = a;
-        fresh.b = b;
-        fresh.group_law = law_for(a, b);
-        // Bonds (rock bridges) join only blocks that were candidates at the start: a pair that
-        // becomes one later has never been bonded and gets the residual strength.
-        if (step_count_ > 0) fresh.bond = BondState::unbonded;
-        slots_[w] = std::move(fresh);
+        slots_[w] = fresh_slot(a, b);
       }
     }
     slots_.resize(pairs_.size());
