@@ -75,15 +75,19 @@ struct ContactValues {
 struct Contact : ContactValues {
   Contact() = default;
   Contact(const Contact& other) : ContactValues(other) { copy_detail(other); }
-  Contact(Contact&&) noexcept = default;
+  Contact(Contact&& other) noexcept : detail_(std::move(other.detail_)) { copy_values(other); }
   Contact& operator=(const Contact& other) {
     if (this != &other) {
-      static_cast<ContactValues&>(*this) = other;
+      copy_values(other);
       copy_detail(other);
     }
     return *this;
   }
-  Contact& operator=(Contact&&) noexcept = default;
+  Contact& operator=(Contact&& other) noexcept {
+    copy_values(other);
+    detail_ = std::move(other.detail_);
+    return *this;
+  }
   ~Contact() = default;
 
   /// Where the normal and shear forces act (m): x_c for a point contact, the centre of pressure
@@ -150,6 +154,13 @@ struct Contact : ContactValues {
   }
   void drop_empty_detail() {
     if (!detail_->has_force_values && !detail_->has_previous_normal) detail_.reset();
+  }
+  /// The values as one block of bytes: the defaulted copy copies the shear state without its
+  /// tail (the flags and the law live there) and then those field by field, which the settle,
+  /// moving every contact, felt (memmove: a contact may be moved onto itself).
+  void copy_values(const Contact& other) {
+    std::memmove(static_cast<void*>(static_cast<ContactValues*>(this)),
+                 static_cast<const ContactValues*>(&other), sizeof(ContactValues));
   }
   void copy_detail(const Contact& other) {
     if (!other.detail_) {
