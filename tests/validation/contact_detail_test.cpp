@@ -129,5 +129,47 @@ TEST(ContactDetail, PreviousNormalIsKeptApartOnlyWhereItDiffers) {
   EXPECT_TRUE(same_bits(c.previous_normal(), c.geometry.normal));
 }
 
+// The flags and the law live in the shear state's tail padding: assigning the shear state, as
+// the shear kernels and a restore do, must leave them, and a moved or assigned contact must
+// carry them (it copies its values as one block of bytes).
+TEST(ContactDetail, FlagsAndLawInTheShearStateTailSurviveAssignmentsAndMoves) {
+  Contact c;
+  c.a = 3;
+  c.b = 7;
+  c.law = 5;
+  c.has_history = true;
+  c.sliding = true;
+  c.touching = true;
+  c.geometry.normal = Eigen::Vector3d(0.0, 0.6, 0.8);
+  c.shear.force = Eigen::Vector3d(1.0, -2.0, 0.5);
+  c.shear.bond = BondState::broken_in_shear;
+  c.twist.moment = -0.25;
+  c.slip_work = 1.5;
+  c.set_previous_normal(Eigen::Vector3d(0.0, 0.0, 1.0));
+  const Contact reference = c;
+
+  ShearState fresh;
+  fresh.plastic_slip = 0.125;
+  c.shear = fresh;
+  EXPECT_EQ(c.law, 5);
+  EXPECT_TRUE(c.has_history && c.sliding && c.touching && !c.integrated);
+  EXPECT_EQ(c.shear.bond, BondState::intact);
+  c.shear = reference.shear;
+  EXPECT_TRUE(same_state(c, reference));
+
+  Contact moved(std::move(c));
+  EXPECT_TRUE(same_state(moved, reference));
+  Contact assigned;
+  assigned = std::move(moved);
+  EXPECT_TRUE(same_state(assigned, reference));
+  Contact& self = assigned;
+  assigned = std::move(self);
+  EXPECT_TRUE(same_state(assigned, reference));
+  Contact copied;
+  copied = assigned;
+  EXPECT_TRUE(same_state(copied, reference));
+  EXPECT_NE(copied.detail_record(), assigned.detail_record());
+}
+
 }  // namespace
 }  // namespace blockdem

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -78,8 +79,9 @@ struct CurrentStrength {
   double cohesion = 0.0;              ///< c, or 0 once broken (Pa)
 };
 
-/// How a contact's bond stands.
-enum class BondState {
+/// How a contact's bond stands. One byte: the shear state that holds it leaves the rest of its
+/// last 8 bytes to the contact's flags and law (restart files write it as a 32-bit integer).
+enum class BondState : std::uint8_t {
   intact,             ///< no limit reached yet (or the joint cannot break)
   broken_in_tension,  ///< sigma_n reached -sigma_t
   broken_in_shear,    ///< |tau| reached c + sigma_n tan(phi)

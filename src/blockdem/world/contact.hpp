@@ -46,18 +46,21 @@ struct ContactDetail {
 
 /// A contact's fixed-size state (plain data: it travels between processes as bytes).
 struct ContactValues {
-  int a = -1;    ///< first block (the normal points from a to b)
-  int b = -1;    ///< second block
-  int law = -1;  ///< index into World::joint_laws()
-  // The flags sit together beside the indices (no padding between doubles).
-  bool has_history = false;  ///< false on the step the contact forms
-  bool integrated = false;   ///< the force came from face integration (else point contact)
-  bool sliding = false;      ///< the shear law yielded this step
-  bool touching = false;     ///< this step's overlap LP found r* > tolerance (geometry is set)
+  int a = -1;  ///< first block (the normal points from a to b)
+  int b = -1;  ///< second block
 
   ContactGeometryRecord geometry;  ///< this step's geometry
-  ShearState shear;                ///< shear history (force on b, plastic slip)
-  TwistState twist;                ///< twisting moment about the normal (on b)
+  /// Shear history (force on b, plastic slip). Its last 7 bytes are padding after the bond,
+  /// which the flags and the law below take (no_unique_address lets them into its tail): 192
+  /// bytes of values, not 200.
+  [[no_unique_address]] ShearState shear;
+  // One byte of bit-fields: a contact's flags are written by the one thread that has its pair.
+  bool has_history : 1 = false;  ///< false on the step the contact forms
+  bool integrated : 1 = false;   ///< the force came from face integration (else point contact)
+  bool sliding : 1 = false;      ///< the shear law yielded this step
+  bool touching : 1 = false;     ///< this step's overlap LP found r* > tolerance (geometry is set)
+  int law = -1;                  ///< index into World::joint_laws()
+  TwistState twist;              ///< twisting moment about the normal (on b)
 
   double normal_stress = 0.0;    ///< σ_n (Pa); face-integrated: mean over the compressed area
   double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
@@ -72,15 +75,19 @@ struct ContactValues {
 struct Contact : ContactValues {
   Contact() = default;
   Contact(const Contact& other) : ContactValues(other) { copy_detail(other); }
-  Contact(Contact&&) noexcept = default;
+  Contact(Contact&& other) noexcept : detail_(std::move(other.detail_)) { copy_values(other); }
   Contact& operator=(const Contact& other) {
     if (this != &other) {
-      static_cast<ContactValues&>(*this) = other;
+      copy_values(other);
       copy_detail(other);
     }
     return *this;
   }
-  Contact& operator=(Contact&&) noexcept = default;
+  Contact& operator=(Contact&& other) noexcept {
+    copy_values(other);
+    detail_ = std::move(other.detail_);
+    return *this;
+  }
   ~Contact() = default;
 
   /// Where the normal and shear forces act (m): x_c for a point contact, the centre of pressure
@@ -148,6 +155,13 @@ struct Contact : ContactValues {
   void drop_empty_detail() {
     if (!detail_->has_force_values && !detail_->has_previous_normal) detail_.reset();
   }
+  /// The values as one block of bytes: the defaulted copy copies the shear state without its
+  /// tail (the flags and the law live there) and then those field by field, which the settle,
+  /// moving every contact, felt (memmove: a contact may be moved onto itself).
+  void copy_values(const Contact& other) {
+    std::memmove(static_cast<void*>(static_cast<ContactValues*>(this)),
+                 static_cast<const ContactValues*>(&other), sizeof(ContactValues));
+  }
   void copy_detail(const Contact& other) {
     if (!other.detail_) {
       detail_.reset();
@@ -165,9 +179,9 @@ struct Contact : ContactValues {
 
 // A change of either record must be deliberate: the contact store is the largest array of a
 // large scene with the pair store (bench/README.md, "Memory at 1e5 blocks").
-static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 200,
+static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 192,
               "ContactValues changed size");
-static_assert(sizeof(Contact) == 208, "Contact changed size");
+static_assert(sizeof(Contact) == 200, "Contact changed size");
 static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 80,
               "ContactDetail changed size");
 

@@ -293,9 +293,9 @@ class World {
     /// below take (no_unique_address lets them into its tail): 120 bytes per slot, not 128.
     [[no_unique_address]] NarrowWarmStart narrow_cache;
     // One byte of bit-fields: a slot's flags are written by the one thread that has the slot.
-    /// The pair's bond while it has no contact state (a bond that broke stays broken). Three
-    /// bits: the field is signed (BondState's type is int) and its values run to 3.
-    BondState bond : 3 = BondState::intact;
+    /// The pair's bond while it has no contact state (a bond that broke stays broken). Two
+    /// bits: BondState's values run to 3.
+    BondState bond : 2 = BondState::intact;
     bool broke : 1 = false;    ///< the pair's bond broke in this step
     bool active : 1 = false;   ///< a force acts (the contact is in contacts())
     bool pending : 1 = false;  ///< this step's new contact state waits in pending_
