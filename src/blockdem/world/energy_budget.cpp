@@ -84,41 +84,91 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       if (free_[i] != static_cast<std::uint8_t>(blocks[i].is_dynamic())) swap_kind(i);
     }
-    return;
+  } else {
+    // The accounting starts (or starts again) at this level: no previous step to pair with.
+    previous_.assign(blocks.size(), Previous{});
+    free_.resize(blocks.size());
+    loads_.clear();
+    dormant_.clear();
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      previous_[i].velocity = blocks[i].velocity;
+      previous_[i].angular_velocity = blocks[i].angular_velocity;
+      previous_[i].angular_momentum = blocks[i].angular_momentum;
+      free_[i] = static_cast<std::uint8_t>(blocks[i].is_dynamic());
+    }
+    started_ = false;
   }
-  // The accounting starts (or starts again) at this level: no previous step to pair with.
-  previous_.assign(blocks.size(), Previous{});
-  free_.resize(blocks.size());
-  dormant_.clear();
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    previous_[i].velocity = blocks[i].velocity;
-    previous_[i].angular_velocity = blocks[i].angular_velocity;
-    previous_[i].angular_momentum = blocks[i].angular_momentum;
-    free_[i] = static_cast<std::uint8_t>(blocks[i].is_dynamic());
+  // block_terms records the free blocks' load impulses Δt F_ext, Δt T_ext in loads_ (from its
+  // threads, which cannot size it): made here once some block's are not +0.0 (Δt > 0).
+  if (loads_.empty()) {
+    for (const Block& b : blocks) {
+      if (b.is_dynamic() && !(zero_bits(b.external_force) && zero_bits(b.external_torque))) {
+        keep_loads();
+        break;
+      }
+    }
   }
-  started_ = false;
 }
 
-bool EnergyLedger::zero_bits(const Impulses& v) {
-  for (const Eigen::Vector3d& x : v) {
-    for (int k = 0; k < 3; ++k) {
-      if (std::bit_cast<std::uint64_t>(x[k]) != 0) return false;
-    }
+void EnergyLedger::keep_loads() {
+  if (loads_.empty())
+    loads_.assign(previous_.size(), {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
+}
+
+bool EnergyLedger::zero_bits(const Eigen::Vector3d& x) {
+  for (int k = 0; k < 3; ++k) {
+    if (std::bit_cast<std::uint64_t>(x[k]) != 0) return false;
   }
   return true;
 }
 
+bool EnergyLedger::zero_bits(const Impulses& v) {
+  return std::all_of(v.begin(), v.end(), [](const Eigen::Vector3d& x) { return zero_bits(x); });
+}
+
+EnergyLedger::Impulses EnergyLedger::own_impulses(std::size_t i) const {
+  const Previous& p = previous_[i];
+  Impulses q = zero_impulses();
+  if (free_[i] != 0) {
+    q[kGravity] = p.impulse[kKeptGravity];
+    q[kDamping] = p.impulse[kKeptDamping];
+    q[kDampingTorque] = p.impulse[kKeptDampingTorque];
+    if (!loads_.empty()) {
+      q[kLoad] = loads_[i][0];
+      q[kLoadTorque] = loads_[i][1];
+    }
+  } else {
+    q[kContact] = p.impulse[0];
+    q[kContactTorque] = p.impulse[1];
+  }
+  return q;
+}
+
+void EnergyLedger::set_own_impulses(std::size_t i, const Impulses& q) {
+  Previous& p = previous_[i];
+  const Eigen::Vector3d z = Eigen::Vector3d::Zero();
+  if (free_[i] != 0) {
+    p.impulse = {q[kGravity], q[kDamping], q[kDampingTorque]};
+    if (!(zero_bits(q[kLoad]) && zero_bits(q[kLoadTorque]))) keep_loads();
+    if (!loads_.empty()) loads_[i] = {q[kLoad], q[kLoadTorque]};
+  } else {
+    // The other kinds use the first two impulses only (block_terms, set_full_record).
+    p.impulse = {q[kContact], q[kContactTorque], z};
+    if (!loads_.empty()) loads_[i] = {z, z};
+  }
+}
+
 void EnergyLedger::swap_kind(std::size_t i) {
-  Impulses& own = previous_[i].impulse;
+  const Impulses own = own_impulses(i);
   const auto it = dormant_.find(i);
-  Impulses other = it == dormant_.end() ? zero_impulses() : it->second;
+  const Impulses other = it == dormant_.end() ? zero_impulses() : it->second;
   if (zero_bits(own)) {
     if (it != dormant_.end()) dormant_.erase(it);
   } else {
     dormant_[i] = own;
   }
-  own = other;
   free_[i] ^= 1;
+  set_own_impulses(i, other);
 }
 
 void EnergyLedger::full_record(std::size_t i, Eigen::Vector3d* out) const {
@@ -128,8 +178,9 @@ void EnergyLedger::full_record(std::size_t i, Eigen::Vector3d* out) const {
   out[2] = p.angular_momentum;
   const auto it = dormant_.find(i);
   const Impulses other = it == dormant_.end() ? zero_impulses() : it->second;
-  const Impulses& free = free_[i] != 0 ? p.impulse : other;
-  const Impulses& fixed = free_[i] != 0 ? other : p.impulse;
+  const Impulses own = own_impulses(i);
+  const Impulses& free = free_[i] != 0 ? own : other;
+  const Impulses& fixed = free_[i] != 0 ? other : own;
   for (std::size_t k = 0; k < 5; ++k) out[3 + k] = free[k];
   out[8] = fixed[kContact];
   out[9] = fixed[kContactTorque];
@@ -144,7 +195,7 @@ void EnergyLedger::set_full_record(std::size_t i, const Eigen::Vector3d* in) {
   for (std::size_t k = 0; k < 5; ++k) free[k] = in[3 + k];
   fixed[kContact] = in[8];
   fixed[kContactTorque] = in[9];
-  p.impulse = free_[i] != 0 ? free : fixed;
+  set_own_impulses(i, free_[i] != 0 ? free : fixed);
   const Impulses& other = free_[i] != 0 ? fixed : free;
   if (zero_bits(other)) {
     dormant_.erase(i);
@@ -183,27 +234,30 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
     const Eigen::Vector3d tl = dt * b.external_torque;
     const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
     const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
-    // before_integration gave the record a free block's impulses.
-    Impulses& q = p.impulse;
+    // before_integration gave the record a free block's impulses; with loads_ empty, the load
+    // impulses of the previous step and of this one are +0.0.
+    auto& q = p.impulse;
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d& ql = loads_.empty() ? zero : loads_[i][0];
+    const Eigen::Vector3d& qt = loads_.empty() ? zero : loads_[i][1];
     t.dynamic = 1.0;
-    t.gravity = 0.5 * u.dot(ig + q[kGravity]);
-    t.load = 0.5 * (u.dot(il + q[kLoad]) + w.dot(tl + q[kLoadTorque]));
-    t.damping = 0.5 * (u.dot(id + q[kDamping]) + w.dot(td + q[kDampingTorque]));
+    t.gravity = 0.5 * u.dot(ig + q[kKeptGravity]);
+    t.load = 0.5 * (u.dot(il + ql) + w.dot(tl + qt));
+    t.damping = 0.5 * (u.dot(id + q[kKeptDamping]) + w.dot(td + q[kKeptDampingTorque]));
     t.kinetic = 0.5 * b.mass * u.dot(b.velocity) +
                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
-    q[kGravity] = ig;
-    q[kLoad] = il;
-    q[kLoadTorque] = tl;
-    q[kDamping] = id;
-    q[kDampingTorque] = td;
+    q[kKeptGravity] = ig;
+    q[kKeptDamping] = id;
+    q[kKeptDampingTorque] = td;
+    if (!loads_.empty()) loads_[i] = {il, tl};
   } else {
     // A moving boundary does work -F·dx on the model through the contact force F it feels.
-    Impulses& q = p.impulse;
+    auto& q = p.impulse;
     const Eigen::Vector3d ic = dt * b.contact_force;
     const Eigen::Vector3d tc = dt * b.torque;
-    t.boundary = 0.5 * (u.dot(ic + q[kContact]) + w.dot(tc + q[kContactTorque]));
-    q[kContact] = ic;
-    q[kContactTorque] = tc;
+    t.boundary = 0.5 * (u.dot(ic + q[0]) + w.dot(tc + q[1]));
+    q[0] = ic;
+    q[1] = tc;
   }
   p.velocity = b.velocity;
   p.angular_velocity = b.angular_velocity;
@@ -292,6 +346,7 @@ void EnergyLedger::load_state(StateReader& r) {
   // Taken as free blocks' records; the next step's before_integration turns those of the other
   // blocks.
   free_.assign(previous_.size(), 1);
+  loads_.clear();
   dormant_.clear();
   for (std::size_t i = 0; i < previous_.size(); ++i) {
     Eigen::Vector3d v[10];

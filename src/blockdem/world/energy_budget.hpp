@@ -132,13 +132,24 @@ class EnergyLedger {
     const Eigen::Vector3d z = Eigen::Vector3d::Zero();
     return {z, z, z, z, z};
   }
-  /// What a block brings from the previous step.
+  /// What a block brings from the previous step: its velocities and the impulses of its kind
+  /// that most blocks have, 144 bytes. A free block's load impulses Δt F_ext, Δt T_ext live
+  /// apart (loads_), as in most scenes no block carries a load.
   struct Previous {
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          ///< v_{n-1/2} (m/s)
     Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< ω_{n-1/2} (rad/s)
     Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  ///< L_{n-1/2} (kg m²/s)
-    Impulses impulse = zero_impulses();  ///< those of the kind in free_ (192 bytes in all)
+    /// A free block's Δt m g, Δt F_d, Δt T_d; any other block's Δt F, Δt T, then zero.
+    std::array<Eigen::Vector3d, 3> impulse = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::Zero()};
   };
+  static constexpr std::size_t kKeptGravity = 0, kKeptDamping = 1, kKeptDampingTorque = 2;
+  /// Block i's impulses of the kind in free_[i], whole (the compact record and loads_).
+  Impulses own_impulses(std::size_t i) const;
+  /// Stores block i's impulses of the kind in free_[i] in the compact record (and loads_).
+  void set_own_impulses(std::size_t i, const Impulses& q);
+  /// Makes loads_ one zero entry per block, if it is empty.
+  void keep_loads();
   /// The ten vectors of block i's record in the order of block_record (velocity, angular
   /// velocity and momentum, then the free kind's five impulses and the other kind's two).
   void full_record(std::size_t i, Eigen::Vector3d* out) const;
@@ -148,9 +159,14 @@ class EnergyLedger {
   void swap_kind(std::size_t i);
   /// Whether every impulse is +0.0 (the bits of an absent dormant_ entry).
   static bool zero_bits(const Impulses& v);
+  static bool zero_bits(const Eigen::Vector3d& x);
 
   EnergyBudget budget_;
   std::vector<Previous> previous_;
+  /// Per block, the free kind's Δt F_ext, Δt T_ext of the previous step (N s, N m s); empty
+  /// while every block's are +0.0 (no block has had a load or a -0.0 in one since the
+  /// accounting started): 48 bytes per block saved in the common scene.
+  std::vector<std::array<Eigen::Vector3d, 2>> loads_;
   /// Per block: 1 when previous_[i].impulse holds a free block's impulses, 0 another block's.
   std::vector<std::uint8_t> free_;
   /// The impulses of the other kind for the few blocks whose motion changed while they were not

@@ -161,10 +161,15 @@ int World::pair_owner(int a, int b) const {
 }
 
 std::vector<const Contact*> World::counted_contacts() const {
+  const auto counted = [&](const PairSlot& s) {
+    return s.active && (replica_complete_ || pair_owner(s) == settings_.distribution->rank());
+  };
+  // Sized exactly: grown by doubling, the list (an output's, at the run's peak of memory) would
+  // hold up to twice its pointers, and three times while it moves.
   std::vector<const Contact*> out;
+  out.reserve(static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), counted)));
   for (const auto& s : slots_) {
-    if (s.active && (replica_complete_ || pair_owner(s) == settings_.distribution->rank()))
-      out.push_back(&contact_of(s));
+    if (counted(s)) out.push_back(&contact_of(s));
   }
   return out;
 }
@@ -497,6 +502,7 @@ void World::save_checkpoint_part() {
       checkpoint_.servos.emplace_back(static_cast<std::size_t>(i), b.servo);
   }
   checkpoint_.blocks = std::move(states);
+  checkpoint_.at_start = false;
   checkpoint_.motions = std::move(motions);
   checkpoint_.part_blocks = std::move(part);
   // The slots save_checkpoint keeps, of the pairs this process owns, in (a, b) order.
@@ -700,6 +706,7 @@ void World::gather_checkpoint() {
     }
   }
   cp.blocks = std::move(states);
+  cp.at_start = false;
   cp.motions = std::move(motions);
   cp.servos = std::move(servos);
   cp.contacts = std::move(contacts);
