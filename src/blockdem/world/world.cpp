@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -355,31 +353,13 @@ EquilibriumMeasures World::equilibrium() const {
 
 void World::save_checkpoint() {
   require_replica("save_checkpoint");
-  // A scene at rest at its initial pose (the first step's checkpoint, usually) is kept as that.
-  const auto zero = [](const Eigen::Vector3d& v) {
-    return std::bit_cast<std::uint64_t>(v[0]) == 0 && std::bit_cast<std::uint64_t>(v[1]) == 0 &&
-           std::bit_cast<std::uint64_t>(v[2]) == 0;
-  };
-  const auto same = [](const auto& x, const auto& y) {
-    return std::memcmp(x.data(), y.data(), sizeof(double) * static_cast<std::size_t>(x.size())) ==
-           0;
-  };
-  checkpoint_.at_start = std::all_of(blocks_.begin(), blocks_.end(), [&](const Block& b) {
-    return zero(b.velocity) && zero(b.angular_velocity) && zero(b.angular_momentum) &&
-           same(b.position, b.initial_position) &&
-           same(b.orientation.coeffs(), b.initial_orientation.coeffs());
-  });
-  if (checkpoint_.at_start)
-    std::vector<BlockState>().swap(checkpoint_.blocks);
-  else
-    checkpoint_.blocks.resize(blocks_.size());
+  checkpoint_.blocks.resize(blocks_.size());
   checkpoint_.motions.resize(blocks_.size());
   checkpoint_.servos.clear();
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const Block& b = blocks_[i];
-    if (!checkpoint_.at_start)
-      checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
-                               b.orientation};
+    checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
+                             b.orientation};
     checkpoint_.motions[i] = b.motion;
     if (!same_bits(b.servo, Servo{})) checkpoint_.servos.emplace_back(i, b.servo);
   }
@@ -399,13 +379,6 @@ void World::save_checkpoint() {
   checkpoint_.broken_bonds = broken_bonds_;
   checkpoint_.energy = energy_;
   checkpoint_.valid = true;
-}
-
-World::BlockState World::checkpoint_block(std::size_t i) const {
-  if (!checkpoint_.at_start) return checkpoint_.blocks[i];
-  const Block& b = blocks_[i];
-  const Eigen::Vector3d z = Eigen::Vector3d::Zero();
-  return {b.initial_position, z, z, z, b.initial_orientation};
 }
 
 std::optional<World::ContactHistory> World::checkpoint_history(const PairSlot& s) const {
@@ -436,9 +409,9 @@ std::optional<World::ContactHistory> World::checkpoint_history(const PairSlot& s
 void World::restore_checkpoint() {
   if (!checkpoint_.valid) return;
   std::size_t servo = 0;  // the next of checkpoint_.servos
-  for (std::size_t i = 0; i < blocks_.size() && i < checkpoint_.motions.size(); ++i) {
+  for (std::size_t i = 0; i < blocks_.size() && i < checkpoint_.blocks.size(); ++i) {
     Block& b = blocks_[i];
-    const BlockState s = checkpoint_block(i);
+    const BlockState& s = checkpoint_.blocks[i];
     b.position = s.position;
     b.velocity = s.velocity;
     b.angular_velocity = s.angular_velocity;

@@ -467,16 +467,8 @@ class World {
   /// contact state; nothing for a pair that a fresh slot reproduces (no force, no history, no
   /// bond).
   std::optional<ContactHistory> checkpoint_history(const PairSlot& s) const;
-  /// Block i's state in the checkpoint (i < checkpoint_.motions.size()).
-  BlockState checkpoint_block(std::size_t i) const;
   struct Checkpoint {
-    /// Per block; empty when `at_start` (checkpoint_block reads both).
     std::vector<BlockState> blocks;
-    /// Every block was at its initial pose (initial_position, initial_orientation, which do not
-    /// change afterwards) with every velocity, angular velocity and momentum +0.0 when saved,
-    /// as at the first step of a scene built at rest: `blocks` keeps nothing (128 bytes a block
-    /// saved until the first checkpoint of a later step).
-    bool at_start = false;
     std::vector<Motion> motions;  ///< per block, as blocks
     /// The servos that are not Servo{} bit for bit, by block index in increasing order; every
     /// other block's is Servo{} (a servo in each BlockState would add 64 bytes per block).

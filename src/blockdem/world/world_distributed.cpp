@@ -502,7 +502,6 @@ void World::save_checkpoint_part() {
       checkpoint_.servos.emplace_back(static_cast<std::size_t>(i), b.servo);
   }
   checkpoint_.blocks = std::move(states);
-  checkpoint_.at_start = false;
   checkpoint_.motions = std::move(motions);
   checkpoint_.part_blocks = std::move(part);
   // The slots save_checkpoint keeps, of the pairs this process owns, in (a, b) order.
@@ -706,7 +705,6 @@ void World::gather_checkpoint() {
     }
   }
   cp.blocks = std::move(states);
-  cp.at_start = false;
   cp.motions = std::move(motions);
   cp.servos = std::move(servos);
   cp.contacts = std::move(contacts);

@@ -240,10 +240,10 @@ void World::save_state(StateWriter& w) const {
   w.pod(checkpoint_.time);
   w.pod(checkpoint_.step_count);
   w.pod(checkpoint_.broken_bonds);
-  w.size(checkpoint_.motions.size());
+  w.size(checkpoint_.blocks.size());
   std::size_t servo = 0;  // the next of checkpoint_.servos (the others are Servo{})
-  for (std::size_t i = 0; i < checkpoint_.motions.size(); ++i) {
-    const BlockState s = checkpoint_block(i);
+  for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
+    const BlockState& s = checkpoint_.blocks[i];
     w.vec(s.position);
     w.vec(s.velocity);
     w.vec(s.angular_velocity);
@@ -395,7 +395,6 @@ void World::load_state(StateReader& r) {
   r.pod(checkpoint_.time);
   r.pod(checkpoint_.step_count);
   r.pod(checkpoint_.broken_bonds);
-  checkpoint_.at_start = false;
   checkpoint_.blocks.resize(r.size());
   checkpoint_.motions.resize(checkpoint_.blocks.size());
   checkpoint_.servos.clear();
