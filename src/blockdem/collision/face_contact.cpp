@@ -17,7 +17,9 @@ namespace {
 struct Linear {
   double c0;
   Eigen::Vector2d c;
-  double operator()(const Eigen::Vector2d& y) const { return c0 + c.dot(y); }
+  // c0 + c·y with the dot product written out: the same operations as Eigen's c.dot(y)
+  // (c_a y_a + c_b y_b), without its packing into one register and out again.
+  double operator()(const Eigen::Vector2d& y) const { return c0 + (c.x() * y.x() + c.y() * y.y()); }
   Linear operator-(const Linear& o) const { return {c0 - o.c0, c - o.c}; }
 };
 
@@ -36,16 +38,18 @@ struct Polygon {
 [[gnu::always_inline]] inline void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare,
                                         double* values) {
   if (poly.n == 0) return;
-  // Which side each vertex is on decides whether anything is cut at all.
-  bool any_out = false, any_in = false;
+  // Which side each vertex is on decides whether anything is cut at all: some vertex is out
+  // when the largest value is > 0, some in when the least is <= 0 (a NaN counts as neither).
+  double largest = -std::numeric_limits<double>::infinity();
+  double least = std::numeric_limits<double>::infinity();
   for (int i = 0; i < poly.n; ++i) {
     const double fp = f(poly.v[i]);
     values[i] = fp;
-    any_out |= fp > 0.0;
-    any_in |= fp <= 0.0;
+    largest = fp > largest ? fp : largest;
+    least = fp < least ? fp : least;
   }
-  if (!any_out) return;
-  if (!any_in) {
+  if (!(largest > 0.0)) return;
+  if (!(least <= 0.0)) {
     poly.n = 0;
     return;
   }
@@ -254,8 +258,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       }
       if (poly.n == 0) continue;
       // Filled in place: a cell is a few hundred bytes, not worth a copy.
-      out.cells.push_back(ClosureCell{});
-      ClosureCell& cell = out.cells.back();
+      ClosureCell& cell = out.cells.emplace_back();
       const Linear g = top[i] - bottom[k];
       for (int q = 0; q < poly.n; ++q) {
         const Eigen::Vector2d& y = poly.v[q];
