@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "blockdem/collision/face_twist.hpp"
@@ -22,7 +23,7 @@ TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eige
     double a = 0.0, j = 0.0;
     Eigen::Vector3d f = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < m; ++i) {
-      const Eigen::Vector3d u = v[i] - p, w = v[(i + 1) % m] - p;
+      const Eigen::Vector3d u = v[i] - p, w = v[i + 1 < m ? i + 1 : 0] - p;
       const double signed_area = 0.5 * u.cross(w).dot(normal);
       a += signed_area;
       f += signed_area * (u + w) / 3.0;
@@ -39,9 +40,13 @@ TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eige
   const Eigen::Vector3d offset = first / area;  // c - p
   g.centre = p + offset;
   g.polar_moment = std::max(0.0, polar - area * offset.squaredNorm());
+  // The largest squared distance, then one square root: the square root is monotonic, so this
+  // is the largest of the distances, bit for bit.
+  double max_radius2 = 0.0;
   for (const ClosureCell& cell : cells)
     for (const auto& x : cell.vertices)
-      g.max_radius = std::max(g.max_radius, (x - g.centre).norm());
+      max_radius2 = std::max(max_radius2, (x - g.centre).squaredNorm());
+  g.max_radius = std::max(g.max_radius, std::sqrt(max_radius2));
   g.radial_normal_moment = force * offset.norm();
   return g;
 }
