@@ -89,13 +89,33 @@ struct Box2 {
   }
 };
 
-Box2 box_of(const Polygon& p) {
+[[gnu::always_inline]] inline Box2 box_of(const Polygon& p) {
   Box2 b{p.v[0], p.v[0]};
   for (int i = 1; i < p.n; ++i) {
     b.lo = b.lo.cwiseMin(p.v[i]);
     b.hi = b.hi.cwiseMax(p.v[i]);
   }
   return b;
+}
+
+// Where a half-plane f(y) <= 0 leaves a polygon, told from the polygon's box alone when the
+// box is clearly on one side: f's bounds over the box, c0 + max (or min) of c_a y_a plus max (or
+// min) of c_b y_b at its corners, are beyond a margin of 1e-12 of the terms' magnitude, while f
+// at a vertex inside the box and the bounds themselves are formed within a few ulps of it. A clip
+// the box tells keeps every vertex (inside) or none (outside), as clip() would find vertex by
+// vertex; otherwise (unknown, or a NaN anywhere) clip() decides.
+enum class BoxSide { inside, outside, unknown };
+constexpr double kBoxMargin = 1e-12;
+[[gnu::always_inline]] inline BoxSide box_side(const Linear& f, const Box2& box) {
+  const double xa = f.c.x() * box.lo.x(), xb = f.c.x() * box.hi.x();
+  const double ya = f.c.y() * box.lo.y(), yb = f.c.y() * box.hi.y();
+  const double high = f.c0 + (std::max(xa, xb) + std::max(ya, yb));
+  const double low = f.c0 + (std::min(xa, xb) + std::min(ya, yb));
+  const double margin = kBoxMargin * (std::abs(f.c0) + std::max(std::abs(xa), std::abs(xb)) +
+                                      std::max(std::abs(ya), std::abs(yb)));
+  if (high <= -margin) return BoxSide::inside;
+  if (low > margin) return BoxSide::outside;
+  return BoxSide::unknown;
 }
 
 // Stack storage for the polygons (three nesting levels of two buffers) while the number of clips
@@ -121,11 +141,6 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     cached_angle = settings.face_angle;
   }
   const double cos_face = cached_cos;
-  bool face = false;
-  for (const auto& p : planes_a) face |= p.normal.dot(normal) > cos_face;
-  for (const auto& p : planes_b) face |= p.normal.dot(normal) < -cos_face;
-  if (!face) return out;
-  out.face_type = true;
 
   Eigen::Vector3d u, v;
   plane_axes(normal, u, v);
@@ -146,8 +161,12 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   Linear* const bottom = lines + m;
   Linear* const lateral = lines + 2 * m;
   int nt = 0, nb = 0, nl = 0;
-  auto add = [&](const Halfspace& p) {
+  // The same pass finds whether a block presents a face: A where one of its normals is within
+  // the face angle of n, B where one is within it of -n.
+  bool face = false;
+  auto add = [&](const Halfspace& p, bool of_a) {
     const double c = p.normal.dot(normal);
+    face |= of_a ? c > cos_face : c < -cos_face;
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (std::abs(c) <= settings.lateral_tolerance) {
@@ -158,9 +177,11 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       bottom[nb++] = {slack.c0 / c, slack.c / c};
     }
   };
-  for (const auto& p : planes_a) add(p);
+  for (const auto& p : planes_a) add(p, true);
   const int top_a = nt, bottom_a = nb;
-  for (const auto& p : planes_b) add(p);
+  for (const auto& p : planes_b) add(p, false);
+  if (!face) return out;
+  out.face_type = true;
   if (nt == 0 || nb == 0) return out;
 
   // A clip adds at most one vertex, and no polygon below sees more clips than this.
@@ -195,9 +216,22 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   region.v[2] = {extent, extent};
   region.v[3] = {-extent, extent};
   for (int l = 0; l < nl; ++l) outer.clip_by(region, lateral[l]);
+  if (region.n == 0) return out;
+  // The box of the region as it stands (kept so after every clip below that may cut): most of
+  // the clips below keep every vertex or none, which the box tells at once (box_side).
+  Box2 region_box = box_of(region);
   for (int i = 0; i < nt && region.n > 0; ++i) {
     for (int k = 0; k < nb && region.n > 0; ++k) {
-      if ((i < top_a) != (k < bottom_a)) outer.clip_by(region, bottom[k] - top[i]);
+      if ((i < top_a) == (k < bottom_a)) continue;
+      const Linear f = bottom[k] - top[i];
+      const BoxSide side = box_side(f, region_box);
+      if (side == BoxSide::inside) continue;
+      if (side == BoxSide::outside) {
+        region.n = 0;
+        continue;
+      }
+      outer.clip_by(region, f);
+      if (region.n > 0) region_box = box_of(region);
     }
   }
   if (region.n == 0) return out;
@@ -206,11 +240,22 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // counted twice: plane i is the lowest upper plane where upper_i <= upper_j - tie for j < i
   // and upper_i <= upper_j for j > i (and likewise for the highest lower plane).
   const Linear tie{1e-12 * extent, Eigen::Vector2d::Zero()};
-  auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly) {
+  // The region where plane i is the lowest (or highest) of `planes`, clipped in a copy of the
+  // region whose box is `box` (kept the box of poly).
+  auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly,
+                             Box2& box) {
     for (int j = 0; j < count && poly.n > 0; ++j) {
       if (j == i) continue;
       const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
-      middle.clip_by(poly, j < i ? Linear{below.c0 + tie.c0, below.c} : below);
+      const Linear f = j < i ? Linear{below.c0 + tie.c0, below.c} : below;
+      const BoxSide side = box_side(f, box);
+      if (side == BoxSide::inside) continue;
+      if (side == BoxSide::outside) {
+        poly.n = 0;
+        continue;
+      }
+      middle.clip_by(poly, f);
+      if (poly.n > 0) box = box_of(poly);
     }
   };
 
@@ -231,10 +276,11 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   int n_active = 0;
   for (int k = 0; k < nb; ++k) {
     Polygon poly = middle.copy_of(region);
-    envelope_region(bottom, nb, k, false, poly);
+    Box2 box = region_box;
+    envelope_region(bottom, nb, k, false, poly, box);
     if (poly.n == 0) continue;
     active_bottom[n_active] = k;
-    bottom_box[n_active++] = box_of(poly);
+    bottom_box[n_active++] = box;
   }
 
   // For each upper plane that is the lowest somewhere in P', the cell of each active lower plane
@@ -242,14 +288,17 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // highest of the active ones.
   for (int i = 0; i < nt; ++i) {
     Polygon upper = middle.copy_of(region);
-    envelope_region(top, nt, i, true, upper);
+    Box2 upper_box = region_box;
+    envelope_region(top, nt, i, true, upper, upper_box);
     if (upper.n == 0) continue;
-    const Box2 upper_box = box_of(upper);
     for (int a = 0; a < n_active; ++a) {
       if (!upper_box.meets(bottom_box[a])) continue;
       const int k = active_bottom[a];
       Polygon poly = inner.copy_of(upper);
-      inner.clip_by(poly, bottom[k] - top[i]);
+      const Linear closing = bottom[k] - top[i];
+      const BoxSide side = box_side(closing, upper_box);
+      if (side == BoxSide::outside) continue;
+      if (side == BoxSide::unknown) inner.clip_by(poly, closing);
       for (int b = 0; b < n_active && poly.n > 0; ++b) {
         const int j = active_bottom[b];
         if (j == k) continue;
