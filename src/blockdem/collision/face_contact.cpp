@@ -67,16 +67,13 @@ struct Polygon {
   poly.n = count >= 3 ? count : 0;
 }
 
-// Two buffers of one nesting level: a polygon in one, the clip output in the other.
+// Two buffers of one nesting level: a clip writes to the one that does not hold the polygon; a
+// polygon of an outer level is read in place, so a level's polygons start as an outer one's
+// without a copy.
 struct Level {
   Eigen::Vector2d* first = nullptr;
   Eigen::Vector2d* spare = nullptr;
   double* values = nullptr;  // f at each vertex during a clip
-  // A copy of `from` in this level's buffers (any earlier polygon of this level is overwritten).
-  Polygon copy_of(const Polygon& from) {
-    std::copy(from.v, from.v + from.n, first);
-    return {first, from.n};
-  }
   [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
     clip(poly, f, poly.v == first ? spare : first, values);
   }
@@ -240,10 +237,11 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // counted twice: plane i is the lowest upper plane where upper_i <= upper_j - tie for j < i
   // and upper_i <= upper_j for j > i (and likewise for the highest lower plane).
   const Linear tie{1e-12 * extent, Eigen::Vector2d::Zero()};
-  // The region where plane i is the lowest (or highest) of `planes`, clipped in a copy of the
-  // region whose box is `box` (kept the box of poly).
+  // The region where plane i is the lowest (or highest) of `planes`: poly starts as the region
+  // (its vertices are read, never written: a clip writes to the middle level's buffers) and box
+  // as its box, kept the box of poly. Inlined at both calls: most of them are one box test.
   auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly,
-                             Box2& box) {
+                             Box2& box) __attribute__((always_inline)) {
     for (int j = 0; j < count && poly.n > 0; ++j) {
       if (j == i) continue;
       const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
@@ -275,7 +273,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   }
   int n_active = 0;
   for (int k = 0; k < nb; ++k) {
-    Polygon poly = middle.copy_of(region);
+    Polygon poly = region;
     Box2 box = region_box;
     envelope_region(bottom, nb, k, false, poly, box);
     if (poly.n == 0) continue;
@@ -287,14 +285,15 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // inside that region: clip to the pair's non-negative closure and to lower plane k being the
   // highest of the active ones.
   for (int i = 0; i < nt; ++i) {
-    Polygon upper = middle.copy_of(region);
+    Polygon upper = region;
     Box2 upper_box = region_box;
     envelope_region(top, nt, i, true, upper, upper_box);
     if (upper.n == 0) continue;
     for (int a = 0; a < n_active; ++a) {
       if (!upper_box.meets(bottom_box[a])) continue;
       const int k = active_bottom[a];
-      Polygon poly = inner.copy_of(upper);
+      // Read from upper's buffer; a clip writes to the inner level's.
+      Polygon poly = upper;
       const Linear closing = bottom[k] - top[i];
       const BoxSide side = box_side(closing, upper_box);
       if (side == BoxSide::outside) continue;
