@@ -67,18 +67,6 @@ struct Polygon {
   poly.n = count >= 3 ? count : 0;
 }
 
-// Two buffers of one nesting level: a clip writes to the one that does not hold the polygon; a
-// polygon of an outer level is read in place, so a level's polygons start as an outer one's
-// without a copy.
-struct Level {
-  Eigen::Vector2d* first = nullptr;
-  Eigen::Vector2d* spare = nullptr;
-  double* values = nullptr;  // f at each vertex during a clip
-  [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
-    clip(poly, f, poly.v == first ? spare : first, values);
-  }
-};
-
 struct Box2 {
   Eigen::Vector2d lo, hi;
   bool meets(const Box2& o) const {
@@ -114,6 +102,29 @@ constexpr double kBoxMargin = 1e-12;
   if (low > margin) return BoxSide::outside;
   return BoxSide::unknown;
 }
+
+// Two buffers of one nesting level: a clip writes to the one that does not hold the polygon; a
+// polygon of an outer level is read in place, so a level's polygons start as an outer one's
+// without a copy.
+struct Level {
+  Eigen::Vector2d* first = nullptr;
+  Eigen::Vector2d* spare = nullptr;
+  double* values = nullptr;  // f at each vertex during a clip
+  [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
+    clip(poly, f, poly.v == first ? spare : first, values);
+  }
+  // clip_by told from `box`, the box of poly, where it can be (box_side); box stays poly's.
+  [[gnu::always_inline]] void clip_within_box(Polygon& poly, const Linear& f, Box2& box) {
+    const BoxSide side = box_side(f, box);
+    if (side == BoxSide::inside) return;
+    if (side == BoxSide::outside) {
+      poly.n = 0;
+      return;
+    }
+    clip_by(poly, f);
+    if (poly.n > 0) box = box_of(poly);
+  }
+};
 
 // Stack storage for the polygons (three nesting levels of two buffers) while the number of clips
 // any polygon may see stays below kStackCapacity (cube pairs need at most 52); a heap buffer
@@ -219,16 +230,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   Box2 region_box = box_of(region);
   for (int i = 0; i < nt && region.n > 0; ++i) {
     for (int k = 0; k < nb && region.n > 0; ++k) {
-      if ((i < top_a) == (k < bottom_a)) continue;
-      const Linear f = bottom[k] - top[i];
-      const BoxSide side = box_side(f, region_box);
-      if (side == BoxSide::inside) continue;
-      if (side == BoxSide::outside) {
-        region.n = 0;
-        continue;
-      }
-      outer.clip_by(region, f);
-      if (region.n > 0) region_box = box_of(region);
+      if ((i < top_a) != (k < bottom_a))
+        outer.clip_within_box(region, bottom[k] - top[i], region_box);
     }
   }
   if (region.n == 0) return out;
@@ -245,15 +248,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     for (int j = 0; j < count && poly.n > 0; ++j) {
       if (j == i) continue;
       const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
-      const Linear f = j < i ? Linear{below.c0 + tie.c0, below.c} : below;
-      const BoxSide side = box_side(f, box);
-      if (side == BoxSide::inside) continue;
-      if (side == BoxSide::outside) {
-        poly.n = 0;
-        continue;
-      }
-      middle.clip_by(poly, f);
-      if (poly.n > 0) box = box_of(poly);
+      middle.clip_within_box(poly, j < i ? Linear{below.c0 + tie.c0, below.c} : below, box);
     }
   };
 
@@ -294,10 +289,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       const int k = active_bottom[a];
       // Read from upper's buffer; a clip writes to the inner level's.
       Polygon poly = upper;
-      const Linear closing = bottom[k] - top[i];
-      const BoxSide side = box_side(closing, upper_box);
-      if (side == BoxSide::outside) continue;
-      if (side == BoxSide::unknown) inner.clip_by(poly, closing);
+      Box2 box = upper_box;
+      inner.clip_within_box(poly, bottom[k] - top[i], box);
       for (int b = 0; b < n_active && poly.n > 0; ++b) {
         const int j = active_bottom[b];
         if (j == k) continue;
