@@ -17,7 +17,9 @@ namespace {
 struct Linear {
   double c0;
   Eigen::Vector2d c;
-  double operator()(const Eigen::Vector2d& y) const { return c0 + c.dot(y); }
+  // c0 + c·y with the dot product written out: the same operations as Eigen's c.dot(y)
+  // (c_a y_a + c_b y_b), without its packing into one register and out again.
+  double operator()(const Eigen::Vector2d& y) const { return c0 + (c.x() * y.x() + c.y() * y.y()); }
   Linear operator-(const Linear& o) const { return {c0 - o.c0, c - o.c}; }
 };
 
@@ -36,16 +38,18 @@ struct Polygon {
 [[gnu::always_inline]] inline void clip(Polygon& poly, const Linear& f, Eigen::Vector2d* spare,
                                         double* values) {
   if (poly.n == 0) return;
-  // Which side each vertex is on decides whether anything is cut at all.
-  bool any_out = false, any_in = false;
+  // Which side each vertex is on decides whether anything is cut at all: some vertex is out
+  // when the largest value is > 0, some in when the least is <= 0 (a NaN counts as neither).
+  double largest = -std::numeric_limits<double>::infinity();
+  double least = std::numeric_limits<double>::infinity();
   for (int i = 0; i < poly.n; ++i) {
     const double fp = f(poly.v[i]);
     values[i] = fp;
-    any_out |= fp > 0.0;
-    any_in |= fp <= 0.0;
+    largest = fp > largest ? fp : largest;
+    least = fp < least ? fp : least;
   }
-  if (!any_out) return;
-  if (!any_in) {
+  if (!(largest > 0.0)) return;
+  if (!(least <= 0.0)) {
     poly.n = 0;
     return;
   }
@@ -63,21 +67,6 @@ struct Polygon {
   poly.n = count >= 3 ? count : 0;
 }
 
-// Two buffers of one nesting level: a polygon in one, the clip output in the other.
-struct Level {
-  Eigen::Vector2d* first = nullptr;
-  Eigen::Vector2d* spare = nullptr;
-  double* values = nullptr;  // f at each vertex during a clip
-  // A copy of `from` in this level's buffers (any earlier polygon of this level is overwritten).
-  Polygon copy_of(const Polygon& from) {
-    std::copy(from.v, from.v + from.n, first);
-    return {first, from.n};
-  }
-  [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
-    clip(poly, f, poly.v == first ? spare : first, values);
-  }
-};
-
 struct Box2 {
   Eigen::Vector2d lo, hi;
   bool meets(const Box2& o) const {
@@ -85,7 +74,7 @@ struct Box2 {
   }
 };
 
-Box2 box_of(const Polygon& p) {
+[[gnu::always_inline]] inline Box2 box_of(const Polygon& p) {
   Box2 b{p.v[0], p.v[0]};
   for (int i = 1; i < p.n; ++i) {
     b.lo = b.lo.cwiseMin(p.v[i]);
@@ -93,6 +82,49 @@ Box2 box_of(const Polygon& p) {
   }
   return b;
 }
+
+// Where a half-plane f(y) <= 0 leaves a polygon, told from the polygon's box alone when the
+// box is clearly on one side: f's bounds over the box, c0 + max (or min) of c_a y_a plus max (or
+// min) of c_b y_b at its corners, are beyond a margin of 1e-12 of the terms' magnitude, while f
+// at a vertex inside the box and the bounds themselves are formed within a few ulps of it. A clip
+// the box tells keeps every vertex (inside) or none (outside), as clip() would find vertex by
+// vertex; otherwise (unknown, or a NaN anywhere) clip() decides.
+enum class BoxSide { inside, outside, unknown };
+constexpr double kBoxMargin = 1e-12;
+[[gnu::always_inline]] inline BoxSide box_side(const Linear& f, const Box2& box) {
+  const double xa = f.c.x() * box.lo.x(), xb = f.c.x() * box.hi.x();
+  const double ya = f.c.y() * box.lo.y(), yb = f.c.y() * box.hi.y();
+  const double high = f.c0 + (std::max(xa, xb) + std::max(ya, yb));
+  const double low = f.c0 + (std::min(xa, xb) + std::min(ya, yb));
+  const double margin = kBoxMargin * (std::abs(f.c0) + std::max(std::abs(xa), std::abs(xb)) +
+                                      std::max(std::abs(ya), std::abs(yb)));
+  if (high <= -margin) return BoxSide::inside;
+  if (low > margin) return BoxSide::outside;
+  return BoxSide::unknown;
+}
+
+// Two buffers of one nesting level: a clip writes to the one that does not hold the polygon; a
+// polygon of an outer level is read in place, so a level's polygons start as an outer one's
+// without a copy.
+struct Level {
+  Eigen::Vector2d* first = nullptr;
+  Eigen::Vector2d* spare = nullptr;
+  double* values = nullptr;  // f at each vertex during a clip
+  [[gnu::always_inline]] void clip_by(Polygon& poly, const Linear& f) {
+    clip(poly, f, poly.v == first ? spare : first, values);
+  }
+  // clip_by told from `box`, the box of poly, where it can be (box_side); box stays poly's.
+  [[gnu::always_inline]] void clip_within_box(Polygon& poly, const Linear& f, Box2& box) {
+    const BoxSide side = box_side(f, box);
+    if (side == BoxSide::inside) return;
+    if (side == BoxSide::outside) {
+      poly.n = 0;
+      return;
+    }
+    clip_by(poly, f);
+    if (poly.n > 0) box = box_of(poly);
+  }
+};
 
 // Stack storage for the polygons (three nesting levels of two buffers) while the number of clips
 // any polygon may see stays below kStackCapacity (cube pairs need at most 52); a heap buffer
@@ -117,11 +149,6 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
     cached_angle = settings.face_angle;
   }
   const double cos_face = cached_cos;
-  bool face = false;
-  for (const auto& p : planes_a) face |= p.normal.dot(normal) > cos_face;
-  for (const auto& p : planes_b) face |= p.normal.dot(normal) < -cos_face;
-  if (!face) return out;
-  out.face_type = true;
 
   Eigen::Vector3d u, v;
   plane_axes(normal, u, v);
@@ -142,8 +169,12 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   Linear* const bottom = lines + m;
   Linear* const lateral = lines + 2 * m;
   int nt = 0, nb = 0, nl = 0;
-  auto add = [&](const Halfspace& p) {
+  // The same pass finds whether a block presents a face: A where one of its normals is within
+  // the face angle of n, B where one is within it of -n.
+  bool face = false;
+  auto add = [&](const Halfspace& p, bool of_a) {
     const double c = p.normal.dot(normal);
+    face |= of_a ? c > cos_face : c < -cos_face;
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (std::abs(c) <= settings.lateral_tolerance) {
@@ -154,9 +185,11 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       bottom[nb++] = {slack.c0 / c, slack.c / c};
     }
   };
-  for (const auto& p : planes_a) add(p);
+  for (const auto& p : planes_a) add(p, true);
   const int top_a = nt, bottom_a = nb;
-  for (const auto& p : planes_b) add(p);
+  for (const auto& p : planes_b) add(p, false);
+  if (!face) return out;
+  out.face_type = true;
   if (nt == 0 || nb == 0) return out;
 
   // A clip adds at most one vertex, and no polygon below sees more clips than this.
@@ -191,9 +224,14 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   region.v[2] = {extent, extent};
   region.v[3] = {-extent, extent};
   for (int l = 0; l < nl; ++l) outer.clip_by(region, lateral[l]);
+  if (region.n == 0) return out;
+  // The box of the region as it stands (kept so after every clip below that may cut): most of
+  // the clips below keep every vertex or none, which the box tells at once (box_side).
+  Box2 region_box = box_of(region);
   for (int i = 0; i < nt && region.n > 0; ++i) {
     for (int k = 0; k < nb && region.n > 0; ++k) {
-      if ((i < top_a) != (k < bottom_a)) outer.clip_by(region, bottom[k] - top[i]);
+      if ((i < top_a) != (k < bottom_a))
+        outer.clip_within_box(region, bottom[k] - top[i], region_box);
     }
   }
   if (region.n == 0) return out;
@@ -202,11 +240,15 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // counted twice: plane i is the lowest upper plane where upper_i <= upper_j - tie for j < i
   // and upper_i <= upper_j for j > i (and likewise for the highest lower plane).
   const Linear tie{1e-12 * extent, Eigen::Vector2d::Zero()};
-  auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly) {
+  // The region where plane i is the lowest (or highest) of `planes`: poly starts as the region
+  // (its vertices are read, never written: a clip writes to the middle level's buffers) and box
+  // as its box, kept the box of poly. Inlined at both calls: most of them are one box test.
+  auto envelope_region = [&](const Linear* planes, int count, int i, bool lowest, Polygon& poly,
+                             Box2& box) __attribute__((always_inline)) {
     for (int j = 0; j < count && poly.n > 0; ++j) {
       if (j == i) continue;
       const Linear below = lowest ? planes[i] - planes[j] : planes[j] - planes[i];
-      middle.clip_by(poly, j < i ? Linear{below.c0 + tie.c0, below.c} : below);
+      middle.clip_within_box(poly, j < i ? Linear{below.c0 + tie.c0, below.c} : below, box);
     }
   };
 
@@ -226,26 +268,29 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   }
   int n_active = 0;
   for (int k = 0; k < nb; ++k) {
-    Polygon poly = middle.copy_of(region);
-    envelope_region(bottom, nb, k, false, poly);
+    Polygon poly = region;
+    Box2 box = region_box;
+    envelope_region(bottom, nb, k, false, poly, box);
     if (poly.n == 0) continue;
     active_bottom[n_active] = k;
-    bottom_box[n_active++] = box_of(poly);
+    bottom_box[n_active++] = box;
   }
 
   // For each upper plane that is the lowest somewhere in P', the cell of each active lower plane
   // inside that region: clip to the pair's non-negative closure and to lower plane k being the
   // highest of the active ones.
   for (int i = 0; i < nt; ++i) {
-    Polygon upper = middle.copy_of(region);
-    envelope_region(top, nt, i, true, upper);
+    Polygon upper = region;
+    Box2 upper_box = region_box;
+    envelope_region(top, nt, i, true, upper, upper_box);
     if (upper.n == 0) continue;
-    const Box2 upper_box = box_of(upper);
     for (int a = 0; a < n_active; ++a) {
       if (!upper_box.meets(bottom_box[a])) continue;
       const int k = active_bottom[a];
-      Polygon poly = inner.copy_of(upper);
-      inner.clip_by(poly, bottom[k] - top[i]);
+      // Read from upper's buffer; a clip writes to the inner level's.
+      Polygon poly = upper;
+      Box2 box = upper_box;
+      inner.clip_within_box(poly, bottom[k] - top[i], box);
       for (int b = 0; b < n_active && poly.n > 0; ++b) {
         const int j = active_bottom[b];
         if (j == k) continue;
@@ -254,8 +299,7 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       }
       if (poly.n == 0) continue;
       // Filled in place: a cell is a few hundred bytes, not worth a copy.
-      out.cells.push_back(ClosureCell{});
-      ClosureCell& cell = out.cells.back();
+      ClosureCell& cell = out.cells.emplace_back();
       const Linear g = top[i] - bottom[k];
       for (int q = 0; q < poly.n; ++q) {
         const Eigen::Vector2d& y = poly.v[q];

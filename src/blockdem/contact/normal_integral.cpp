@@ -8,8 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include "blockdem/contact/overloaded.hpp"
+#include <variant>
 
 namespace blockdem {
 namespace {
@@ -142,46 +141,52 @@ void wide_node_remainders(const Eigen::Vector3d& x, double& r3, Eigen::Vector3d&
 /// Mean stress and barycentric-weighted means over a triangle whose vertex closures y are all >= 0.
 /// The weights use the identities (1/A) int f(g) dA = 2 F[y0, y1, y2] with F'' = f and
 /// (1/A) int lambda_j f(g) dA = 2 G[y_j, y_j, y_k, y_l] with G''' = f (Hermite-Genocchi).
-void compressed_triangle_moments(const NormalLaw& law, const Eigen::Vector3d& y, double& mean,
+/// One overload per law: the polygon's loop below is compiled once per law, so the law is
+/// dispatched once per polygon, not once per fan triangle.
+void compressed_triangle_moments(const LinearNormal& lin, const Eigen::Vector3d& y, double& mean,
                                  Eigen::Vector3d& weights) {
-  std::visit(Overloaded{
-                 [&](const LinearNormal& lin) {
-                   // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA =
-                   // (1 + delta_ij) / 12.
-                   const double sum = y.sum();
-                   mean = lin.stiffness * sum / 3.0;
-                   for (int j = 0; j < 3; ++j) weights[j] = lin.stiffness * (sum + y[j]) / 12.0;
-                 },
-                 [&](const ExponentialNormal& e) {
-                   // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry
-                   // the law. Close nodes: one series; nodes spread more than 1: the three
-                   // exponentials.
-                   const Eigen::Vector3d x = e.b * y;
-                   double r3 = 0.0;
-                   Eigen::Vector3d r4;
-                   if (x.maxCoeff() - x.minCoeff() <= 1.0) {
-                     close_node_remainders(x, r3, r4);
-                   } else {
-                     wide_node_remainders(x, r3, r4);
-                   }
-                   mean = 2.0 * e.a * r3;
-                   weights = 2.0 * e.a * r4;
-                 },
-             },
-             law);
+  // sigma = k g is linear: mean k g_bar; (1/A) int lambda_j lambda_i dA = (1 + delta_ij) / 12.
+  const double sum = y.sum();
+  mean = lin.stiffness * sum / 3.0;
+  for (int j = 0; j < 3; ++j) weights[j] = lin.stiffness * (sum + y[j]) / 12.0;
 }
 
-void require_finite(const char* what, double value) {
-  if (!std::isfinite(value)) {
-    throw std::invalid_argument(std::string("integrate_normal_stress: ") + what +
-                                " must be finite, got " + std::to_string(value));
+void compressed_triangle_moments(const ExponentialNormal& e, const Eigen::Vector3d& y, double& mean,
+                                 Eigen::Vector3d& weights) {
+  // sigma = a [exp(b g) - 1]; in x = b g the differences of exp(x) - 1 - ... carry the law.
+  // Close nodes: one series; nodes spread more than 1: the three exponentials.
+  const Eigen::Vector3d x = e.b * y;
+  double r3 = 0.0;
+  Eigen::Vector3d r4;
+  if (x.maxCoeff() - x.minCoeff() <= 1.0) {
+    close_node_remainders(x, r3, r4);
+  } else {
+    wide_node_remainders(x, r3, r4);
   }
+  mean = 2.0 * e.a * r3;
+  weights = 2.0 * e.a * r4;
 }
 
-}  // namespace
+[[noreturn, gnu::cold, gnu::noinline]] void throw_not_finite(const char* what, double value) {
+  throw std::invalid_argument(std::string("integrate_normal_stress: ") + what +
+                              " must be finite, got " + std::to_string(value));
+}
 
-TriangleStressMoments integrate_normal_stress_over_triangle(const NormalLaw& law,
-                                                            const Eigen::Vector3d& closures) {
+// A test inlined where it is made (once per closure and coordinate); the message is built out of
+// line.
+inline void require_finite(const char* what, double value) {
+  if (!std::isfinite(value)) throw_not_finite(what, value);
+}
+
+template <class Law>
+TriangleStressMoments partly_open_triangle_moments(const Law& law, const Eigen::Vector3d& closures);
+
+// integrate_normal_stress_over_triangle for one law. Inlined into the polygon's loop: the
+// compressed triangle (the usual case) is a few dozen operations; a triangle that is partly
+// open is clipped out of line.
+template <class Law>
+[[gnu::always_inline]] inline TriangleStressMoments triangle_moments(
+    const Law& law, const Eigen::Vector3d& closures) {
   for (int i = 0; i < 3; ++i) require_finite("a vertex closure", closures[i]);
   TriangleStressMoments result;
   if (closures.maxCoeff() <= 0.0) return result;
@@ -200,7 +205,14 @@ TriangleStressMoments integrate_normal_stress_over_triangle(const NormalLaw& law
     result.compressed_fraction += fraction;
     return result;
   }
+  return partly_open_triangle_moments(law, closures);
+}
 
+// A triangle with closures of both signs: the part where g > 0.
+template <class Law>
+TriangleStressMoments partly_open_triangle_moments(const Law& law,
+                                                   const Eigen::Vector3d& closures) {
+  TriangleStressMoments result;
   // Clip the triangle at g = 0 in barycentric coordinates (Sutherland-Hodgman on one line):
   // at most four vertices, each with its barycentric point and closure (exactly 0 on the cut).
   std::array<Eigen::Vector3d, 4> points;
@@ -238,6 +250,13 @@ TriangleStressMoments integrate_normal_stress_over_triangle(const NormalLaw& law
   return result;
 }
 
+}  // namespace
+
+TriangleStressMoments integrate_normal_stress_over_triangle(const NormalLaw& law,
+                                                            const Eigen::Vector3d& closures) {
+  return std::visit([&](const auto& l) { return triangle_moments(l, closures); }, law);
+}
+
 PolygonStressResultant integrate_normal_stress_over_polygon(
     const NormalLaw& law, std::span<const Eigen::Vector3d> vertices,
     std::span<const double> closures) {
@@ -254,18 +273,23 @@ PolygonStressResultant integrate_normal_stress_over_polygon(
   PolygonStressResultant result;
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   double max_closure = closures[0];
-  for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
-    const Eigen::Vector3d& a = vertices[0];
-    const Eigen::Vector3d& b = vertices[k];
-    const Eigen::Vector3d& c = vertices[k + 1];
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    const TriangleStressMoments m = integrate_normal_stress_over_triangle(
-        law, Eigen::Vector3d(closures[0], closures[k], closures[k + 1]));
-    result.area += area;
-    result.compressed_area += area * m.compressed_fraction;
-    result.force += area * m.mean_stress;
-    moment += area * (m.vertex_weights[0] * a + m.vertex_weights[1] * b + m.vertex_weights[2] * c);
-  }
+  std::visit(
+      [&](const auto& l) {
+        for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
+          const Eigen::Vector3d& a = vertices[0];
+          const Eigen::Vector3d& b = vertices[k];
+          const Eigen::Vector3d& c = vertices[k + 1];
+          const double area = 0.5 * (b - a).cross(c - a).norm();
+          const TriangleStressMoments m =
+              triangle_moments(l, Eigen::Vector3d(closures[0], closures[k], closures[k + 1]));
+          result.area += area;
+          result.compressed_area += area * m.compressed_fraction;
+          result.force += area * m.mean_stress;
+          moment +=
+              area * (m.vertex_weights[0] * a + m.vertex_weights[1] * b + m.vertex_weights[2] * c);
+        }
+      },
+      law);
   for (const double g : closures) max_closure = std::max(max_closure, g);
   result.peak_stress = normal_stress(law, max_closure);
   if (result.force > 0.0) result.centre_of_pressure = Eigen::Vector3d(moment / result.force);

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "blockdem/collision/face_twist.hpp"
@@ -19,14 +20,21 @@ TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eige
   for (const ClosureCell& cell : cells) {
     const auto& v = cell.vertices;
     const std::size_t m = v.size();
+    if (m == 0) continue;
     double a = 0.0, j = 0.0;
     Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    // Each edge's end is the next edge's start: its offset and squared length carry over.
+    Eigen::Vector3d u = v[0] - p;
+    double uu = u.squaredNorm();
     for (std::size_t i = 0; i < m; ++i) {
-      const Eigen::Vector3d u = v[i] - p, w = v[(i + 1) % m] - p;
+      const Eigen::Vector3d w = v[i + 1 < m ? i + 1 : 0] - p;
+      const double ww = w.squaredNorm();
       const double signed_area = 0.5 * u.cross(w).dot(normal);
       a += signed_area;
       f += signed_area * (u + w) / 3.0;
-      j += signed_area * (u.squaredNorm() + w.squaredNorm() + u.dot(w)) / 6.0;
+      j += signed_area * (uu + ww + u.dot(w)) / 6.0;
+      u = w;
+      uu = ww;
     }
     const double orientation = a < 0.0 ? -1.0 : 1.0;  // a cell's vertices may run either way
     area += orientation * a;
@@ -39,9 +47,13 @@ TwistGeometry face_twist_geometry(std::span<const ClosureCell> cells, const Eige
   const Eigen::Vector3d offset = first / area;  // c - p
   g.centre = p + offset;
   g.polar_moment = std::max(0.0, polar - area * offset.squaredNorm());
+  // The largest squared distance, then one square root: the square root is monotonic, so this
+  // is the largest of the distances, bit for bit.
+  double max_radius2 = 0.0;
   for (const ClosureCell& cell : cells)
     for (const auto& x : cell.vertices)
-      g.max_radius = std::max(g.max_radius, (x - g.centre).norm());
+      max_radius2 = std::max(max_radius2, (x - g.centre).squaredNorm());
+  g.max_radius = std::max(g.max_radius, std::sqrt(max_radius2));
   g.radial_normal_moment = force * offset.norm();
   return g;
 }

@@ -199,6 +199,51 @@ TEST(NormalIntegral, OpenPolygonHasNoCentreOfPressure) {
   EXPECT_FALSE(r.centre_of_pressure.has_value());
 }
 
+// The polygon dispatches the law once and integrates its fan triangles in line: the same sums,
+// bit for bit, as integrating each fan triangle through the public triangle function (compressed
+// triangles and partly open ones, both laws).
+TEST(NormalIntegral, PolygonIsTheSumOfItsFanTrianglesBitForBit) {
+  const std::vector<Eigen::Vector3d> vertices = {{0.0, 0.0, 0.01},
+                                                 {0.04, -0.005, 0.012},
+                                                 {0.05, 0.03, 0.011},
+                                                 {0.02, 0.045, 0.009},
+                                                 {-0.01, 0.02, 0.0105}};
+  const std::vector<std::vector<double>> fields = {
+      {2e-5, 3e-5, 1e-5, 4e-5, 2.5e-5},    // compressed throughout
+      {2e-5, -3e-5, 1e-5, -4e-5, 2.5e-5},  // partly open
+      {9e-4, 1e-5, 2e-4, 6e-4, 3e-6}};     // widely spread (the exponential law's recursion)
+  for (const NormalLaw& law :
+       {NormalLaw{LinearNormal{10e9}}, NormalLaw{ExponentialNormal::eq4()}}) {
+    for (const auto& closures : fields) {
+      double area = 0.0, compressed = 0.0, force = 0.0;
+      Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+      for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
+        const Eigen::Vector3d& a = vertices[0];
+        const Eigen::Vector3d& b = vertices[k];
+        const Eigen::Vector3d& c = vertices[k + 1];
+        const double triangle = 0.5 * (b - a).cross(c - a).norm();
+        const TriangleStressMoments m = integrate_normal_stress_over_triangle(
+            law, Eigen::Vector3d(closures[0], closures[k], closures[k + 1]));
+        area += triangle;
+        compressed += triangle * m.compressed_fraction;
+        force += triangle * m.mean_stress;
+        moment += triangle *
+                  (m.vertex_weights[0] * a + m.vertex_weights[1] * b + m.vertex_weights[2] * c);
+      }
+      const PolygonStressResultant r =
+          integrate_normal_stress_over_polygon(law, vertices, closures);
+      EXPECT_EQ(r.area, area);
+      EXPECT_EQ(r.compressed_area, compressed);
+      ASSERT_GT(force, 0.0);
+      EXPECT_EQ(r.force, force);
+      ASSERT_TRUE(r.centre_of_pressure.has_value());
+      EXPECT_EQ(*r.centre_of_pressure, Eigen::Vector3d(moment / force));
+      EXPECT_EQ(r.peak_stress,
+                normal_stress(law, *std::max_element(closures.begin(), closures.end())));
+    }
+  }
+}
+
 TEST(NormalIntegral, RejectsMalformedPolygons) {
   const auto square = rectangle(0.01, 0.01);
   EXPECT_THROW(integrate_normal_stress_over_polygon(LinearNormal{}, square,

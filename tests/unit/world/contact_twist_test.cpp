@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -47,6 +48,30 @@ NormalResultant normal_resultant(const FaceContactGeometry& fc, const NormalLaw&
     if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
   }
   return {force, moment / force};
+}
+
+// r_max is the largest distance of a vertex from the centroid, to the bit (taken as the square
+// root of the largest squared distance).
+TEST(ContactTwist, MaxRadiusIsTheLargestVertexDistance) {
+  FaceContactGeometry fc;
+  fc.face_type = true;
+  for (int c = 0; c < 3; ++c) {
+    ClosureCell& cell = fc.cells.emplace_back();
+    for (int k = 0; k < 4 + c; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / (4 + c) + 0.3 * c;
+      cell.vertices.push_back(Eigen::Vector3d(0.02 * c + 0.013 * std::cos(angle),
+                                              0.011 * c + 0.017 * std::sin(angle), 0.0));
+      cell.closures.push_back(1e-5);
+    }
+  }
+  const TwistGeometry g = face_twist_geometry(fc.cells, Eigen::Vector3d::UnitZ(), 1.0,
+                                              Eigen::Vector3d(0.02, 0.01, 0.0));
+  double largest = 0.0;
+  for (const ClosureCell& cell : fc.cells)
+    for (const Eigen::Vector3d& x : cell.vertices)
+      largest = std::max(largest, (x - g.centre).norm());
+  ASSERT_GT(largest, 0.0);
+  EXPECT_EQ(g.max_radius, largest);
 }
 
 // J about the centroid: a⁴/6, to round-off (1e-12).
