@@ -194,6 +194,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     for (const auto& w : mpi.rank() == 0 ? sc.warnings : std::vector<std::string>{})
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";
     rock_mass = rock_mass_scene(sc) != nullptr;
+    // The rock mass's sliced cells serve `blockdem generate`; a run has their blocks and reads
+    // nothing else of them, so they go before the world is built (they were still held at the
+    // peak of a large rock mass's first step).
+    if (rock_mass) sc.built.reset();
     if (sc.stages.empty())
       throw ScenarioError(sc.file, "stages", "a run needs at least one [[stages]] entry");
     const KillHook hook = kill_hook_from_environment();
