@@ -225,13 +225,6 @@ TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
   EXPECT_EQ(read_file_bytes(out / "checkpoint.bdck"), garbage);
 }
 
-int count_lines(const fs::path& file) {
-  std::ifstream in(file);
-  int n = 0;
-  for (std::string line; std::getline(in, line);) ++n;
-  return n;
-}
-
 /// Runs the restart scenario with a last stage of `steps` steps on 2 processes and, once they
 /// are inside that stage, sends SIGTERM from outside to process 1 alone (its process id from a
 /// wrapper shell that execs the program) or to mpirun (which passes it on to both after
@@ -259,12 +252,16 @@ void signal_from_outside(bool to_launcher, long long steps, int expected_code, b
                                             "; exec " + BLOCKDEM_CLI_PATH + args + "'";
   FILE* launcher = ::popen((cmd + " > /dev/null 2>&1; echo $?").c_str(), "r");
   ASSERT_NE(launcher, nullptr);
-  // Into the last stage: its row count shows the two first stages are done.
+  // Inside the last stage by its progress, not by a time that a loaded machine can outlast:
+  // frame 3 is the first `vtk_interval` frame of the long stage (frames 0-2 are the start and
+  // the two stage ends), written at step 2500, 1500 steps into it; frames are renamed into
+  // place whole.
+  const fs::path inside = out / "vtk" / "blocks_000003.pvtu";
   const auto start = std::chrono::steady_clock::now();
-  while (count_lines(out / "history.csv") < 3 &&
+  while (!fs::exists(inside) &&
          std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_TRUE(fs::exists(inside)) << "the run did not reach step 2500 in 120 s";
   std::string pid;
   std::ifstream(pid_file) >> pid;
   ASSERT_FALSE(pid.empty());
@@ -292,7 +289,7 @@ void signal_from_outside(bool to_launcher, long long steps, int expected_code, b
 // SIGTERM to process 1 alone: both stop after the same step; mpirun passes on the exit code 143.
 TEST(MpiRestartSignal, SigtermFromOutsideToOneRankStopsAllAndResumesBitIdentically) {
   if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-  // The stage (100,000 steps) outlasts the 0.2 s before the signal on an idle machine too.
+  // The stage (100,000 steps) outlasts the moment the signal arrives (1500 steps into it).
   signal_from_outside(false, 100000, 143, true);
 }
 
