@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <vector>
 
 #include "blockdem/collision/analytic_centre.hpp"
@@ -166,27 +165,6 @@ double chord_length(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
 
 namespace {
 
-// Runs f on one span holding the planes of A followed by those of B: on the stack (left
-// uninitialised until the copy) for up to kStack planes, on the heap beyond.
-template <typename F>
-auto with_both(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b, F&& f) {
-  constexpr std::size_t kStack = 96;
-  union Storage {
-    Storage() {}
-    Halfspace planes[kStack];
-  } storage;
-  std::vector<Halfspace> heap_buffer;
-  const std::size_t total = planes_a.size() + planes_b.size();
-  Halfspace* all = storage.planes;
-  if (total > kStack) {
-    heap_buffer.resize(total);
-    all = heap_buffer.data();
-  }
-  std::uninitialized_copy(planes_a.begin(), planes_a.end(), all);
-  std::uninitialized_copy(planes_b.begin(), planes_b.end(), all + planes_a.size());
-  return f(std::span<const Halfspace>(all, total));
-}
-
 // Clears the cache if it was filled for other plane lists.
 void match_cache(std::span<const Halfspace> planes_a, std::span<const Halfspace> planes_b,
                  Boon2012Cache* cache) {
@@ -216,10 +194,10 @@ void normal_and_overlap(const PlaneColumns& columns, std::size_t planes_a,
 }
 
 // Steps 2-5 given the LP solution for the planes of A then those of B.
-ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
-                                  std::span<const Halfspace> planes_b, const InscribedBall& ball,
-                                  double extent, const Boon2012Settings& settings,
-                                  Boon2012Cache* cache) {
+// `columns` holds the planes of A (the first `planes_a`) followed by those of B.
+ContactGeometry contact_from_ball(const PlaneColumns& columns, std::size_t planes_a,
+                                  const InscribedBall& ball, double extent,
+                                  const Boon2012Settings& settings, Boon2012Cache* cache) {
   ContactGeometry out;
   out.inscribed_radius = ball.radius;
   out.inscribed_centre = ball.center;
@@ -229,7 +207,6 @@ ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
   // 2. Contact point: analytic centre of all planes, from the previous step's point when it is
   //    still strictly inside, otherwise from the ball's centre or, when that is far from
   //    central, from a central point of a face contact's overlap.
-  const PlaneColumns columns(planes_a, planes_b);
   SliceWarmStart local_edges;
   SliceWarmStart& edges = cache != nullptr ? cache->slice : local_edges;
   AnalyticCentreResult centre;
@@ -240,7 +217,7 @@ ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
     centre = analytic_centre(columns, ball.center, 1);
     Eigen::Vector3d start = centre.point;
     if (!(centre.decrement < 0.25)) {
-      face_contact_start(columns, planes_a.size(), ball, extent, start, edges);
+      face_contact_start(columns, planes_a, ball, extent, start, edges);
     }
     if (!centre.converged) centre = analytic_centre(columns, start);
   }
@@ -253,8 +230,8 @@ ContactGeometry contact_from_ball(std::span<const Halfspace> planes_a,
   // 3-4. Normal and overlap.
   PointColumns at_point(columns.size());
   Eigen::Vector3d axis_u, axis_v;
-  normal_and_overlap(columns, planes_a.size(), out.point, settings, at_point, out.normal,
-                     out.overlap, axis_u, axis_v);
+  normal_and_overlap(columns, planes_a, out.point, settings, at_point, out.normal, out.overlap,
+                     axis_u, axis_v);
 
   // 5. Contact area: the slice of A∩B by the plane through x_c normal to n.
   const SliceLines lines{at_point.a_u, at_point.a_v, at_point.slack, columns.size()};
@@ -270,16 +247,17 @@ ContactGeometry boon2012_contact(std::span<const Halfspace> planes_a,
                                  const Boon2012Settings& settings, Boon2012Cache* cache) {
   // 1. Overlap test: the largest ball inside A∩B (4-variable LP), warm-started from this pair's
   //    solution at the previous step when the cache has one for the same plane lists.
+  //    The planes are laid out column by column once, for every step below.
   match_cache(planes_a, planes_b, cache);
+  const PlaneColumns columns(planes_a, planes_b);
   const bool warm = cache != nullptr && cache->has_ball;
-  const InscribedBall ball = with_both(planes_a, planes_b, [&](std::span<const Halfspace> both) {
-    return warm ? largest_inscribed_ball(both, cache->ball) : largest_inscribed_ball(both);
-  });
+  const InscribedBall ball =
+      warm ? largest_inscribed_ball(columns, cache->ball) : largest_inscribed_ball(columns);
   if (cache != nullptr) {
     cache->ball = ball;
     cache->has_ball = true;
   }
-  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
+  return contact_from_ball(columns, planes_a.size(), ball, extent, settings, cache);
 }
 
 void boon2012_normal_and_overlap(std::span<const Halfspace> planes_a,
@@ -298,7 +276,8 @@ ContactGeometry boon2012_contact_from_ball(std::span<const Halfspace> planes_a,
                                            const InscribedBall& ball, double extent,
                                            const Boon2012Settings& settings, Boon2012Cache* cache) {
   match_cache(planes_a, planes_b, cache);
-  return contact_from_ball(planes_a, planes_b, ball, extent, settings, cache);
+  const PlaneColumns columns(planes_a, planes_b);
+  return contact_from_ball(columns, planes_a.size(), ball, extent, settings, cache);
 }
 
 }  // namespace blockdem

@@ -58,7 +58,11 @@ constexpr int kBlandAfter = 8;             // consecutive degenerate steps befor
 
 // The planes and the per-plane workspace shared by both methods.
 struct Problem {
-  const Halfspace* planes = nullptr;
+  // The planes' columns n_x, n_y, n_z and d.
+  const double* nx = nullptr;
+  const double* ny = nullptr;
+  const double* nz = nullptr;
+  const double* offsets = nullptr;
   int m = 0;
   double* gap = nullptr;          ///< d_j - n_j·x at the current x; the slack is gap_j - r (m)
   double* alpha = nullptr;        ///< a_j·p for the current step direction p (-)
@@ -67,15 +71,11 @@ struct Problem {
   bool min_gap_valid = false;     ///< set by the passes that compute the gaps from scratch
   int max_iterations = 0;
 
-  Vec4 row(int j) const {
-    const Eigen::Vector3d& n = planes[j].normal;
-    return Vec4(n.x(), n.y(), n.z(), 1.0);
-  }
-  double d(int j) const { return planes[j].offset; }
+  Vec4 row(int j) const { return Vec4(nx[j], ny[j], nz[j], 1.0); }
+  double d(int j) const { return offsets[j]; }
   /// n_j·v (m or -).
   double normal_dot(int j, double vx, double vy, double vz) const {
-    const Eigen::Vector3d& n = planes[j].normal;
-    return n.x() * vx + n.y() * vy + n.z() * vz;
+    return nx[j] * vx + ny[j] * vy + nz[j] * vz;
   }
 };
 
@@ -366,8 +366,8 @@ InscribedBall make_result(const Problem& pb, const State& st, bool bounded) {
 // Runs `solve` with the gap and step workspace on the stack for short plane lists and on the
 // heap otherwise.
 template <typename Solve>
-InscribedBall with_workspace(std::span<const Halfspace> planes, Solve&& solve) {
-  if (planes.empty()) {
+InscribedBall with_workspace(const PlaneColumns& planes, Solve&& solve) {
+  if (planes.size() == 0) {
     throw std::invalid_argument("largest_inscribed_ball: the plane list is empty");
   }
   const int m = static_cast<int>(planes.size());
@@ -379,7 +379,10 @@ InscribedBall with_workspace(std::span<const Halfspace> planes, Solve&& solve) {
     buffer = heap_buffer.data();
   }
   Problem pb;
-  pb.planes = planes.data();
+  pb.nx = planes.nx();
+  pb.ny = planes.ny();
+  pb.nz = planes.nz();
+  pb.offsets = planes.d();
   pb.m = m;
   pb.gap = buffer;
   pb.alpha = buffer + m;
@@ -388,10 +391,13 @@ InscribedBall with_workspace(std::span<const Halfspace> planes, Solve&& solve) {
 }
 
 // The mean of the foot points d_j n_j: the centre of a box, near the middle of a pair of blocks.
-Eigen::Vector3d mean_foot_point(std::span<const Halfspace> planes) {
+// (Component by component in plane order, as the sum of the vectors d_j n_j.)
+Eigen::Vector3d mean_foot_point(const Problem& pb) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Halfspace& h : planes) sum += h.offset * h.normal;
-  return sum / static_cast<double>(planes.size());
+  for (int j = 0; j < pb.m; ++j)
+    sum += Eigen::Vector3d(pb.offsets[j] * pb.nx[j], pb.offsets[j] * pb.ny[j],
+                           pb.offsets[j] * pb.nz[j]);
+  return sum / static_cast<double>(pb.m);
 }
 
 InscribedBall solve_cold(Problem& pb, const Eigen::Vector3d& x0, int iterations_so_far) {
@@ -476,13 +482,21 @@ InscribedBall positive_multiplier_set(const Problem& pb, const InscribedBall& pr
 }  // namespace
 
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes) {
-  // Cold start from the mean of the foot points.
-  return with_workspace(planes,
-                        [&](Problem& pb) { return solve_cold(pb, mean_foot_point(planes), 0); });
+  return largest_inscribed_ball(PlaneColumns(planes));
 }
 
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous) {
+  return largest_inscribed_ball(PlaneColumns(planes), previous);
+}
+
+InscribedBall largest_inscribed_ball(const PlaneColumns& planes) {
+  // Cold start from the mean of the foot points.
+  return with_workspace(planes,
+                        [&](Problem& pb) { return solve_cold(pb, mean_foot_point(pb), 0); });
+}
+
+InscribedBall largest_inscribed_ball(const PlaneColumns& planes, const InscribedBall& previous) {
   if (!previous.bounded || !previous.center.allFinite()) return largest_inscribed_ball(planes);
   return with_workspace(planes, [&](Problem& pb) {
     State st;

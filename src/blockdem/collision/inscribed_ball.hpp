@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "blockdem/collision/plane_columns.hpp"
 #include "blockdem/geometry/halfspace.hpp"
 
 namespace blockdem {
@@ -56,6 +57,11 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes);
 /// it is not unique.
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous);
+
+/// The same two solves for planes stored column by column (the narrow phase's layout): the same
+/// bits as for the planes in a list.
+InscribedBall largest_inscribed_ball(const PlaneColumns& planes);
+InscribedBall largest_inscribed_ball(const PlaneColumns& planes, const InscribedBall& previous);
 
 /// Plane lists up to this length are solved without heap allocation.
 inline constexpr int kInscribedBallStackPlanes = 64;
