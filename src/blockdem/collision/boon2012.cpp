@@ -43,22 +43,26 @@ class PointColumns {
   double* data_ = nullptr;
 };
 
-// Step 3 for planes [begin, end) with slacks s_j at x: the gradient 2 Σ <r - s_j> n_j, or
-// 2 r n of the nearest face (the first of equals) when every bracket is zero (NaN if the slacks
-// are not numbers).
-Eigen::Vector3d gradient_of(const PlaneColumns& c, const double* slack, std::size_t begin,
-                            std::size_t end, double rounding_distance) {
+// Step 3 for planes [begin, end) at x: fills their slacks s_j = d_j - n_j·x and returns the
+// gradient 2 Σ <r - s_j> n_j, or 2 r n of the nearest face (the first of equals) when every
+// bracket is zero (NaN if the slacks are not numbers). (One pass over the planes for both: the
+// slacks are those fill_slacks gives.)
+Eigen::Vector3d gradient_of(const PlaneColumns& c, const Eigen::Vector3d& x, double* slack,
+                            std::size_t begin, std::size_t end, double rounding_distance) {
   const double* nx = c.nx();
   const double* ny = c.ny();
   const double* nz = c.nz();
+  const double* d = c.d();
   double gx = 0.0, gy = 0.0, gz = 0.0;
   double least = std::numeric_limits<double>::infinity();
   for (std::size_t j = begin; j < end; ++j) {
-    const double w = 2.0 * std::max(rounding_distance - slack[j], 0.0);
+    const double s = d[j] - (nx[j] * x.x() + ny[j] * x.y() + nz[j] * x.z());
+    slack[j] = s;
+    const double w = 2.0 * std::max(rounding_distance - s, 0.0);
     gx += w * nx[j];
     gy += w * ny[j];
     gz += w * nz[j];
-    least = std::min(least, slack[j]);
+    least = std::min(least, s);
   }
   if (rounding_distance - least > 0.0 || begin == end) return Eigen::Vector3d(gx, gy, gz);
   std::size_t j = begin;
@@ -151,8 +155,7 @@ Eigen::Vector3d potential_gradient(std::span<const Halfspace> planes, const Eige
                                    double rounding_distance) {
   const PlaneColumns columns(planes);
   PointColumns at_x(planes.size());
-  fill_slacks(columns, x, at_x.slack);
-  return gradient_of(columns, at_x.slack, 0, planes.size(), rounding_distance);
+  return gradient_of(columns, x, at_x.slack, 0, planes.size(), rounding_distance);
 }
 
 double chord_length(std::span<const Halfspace> planes, const Eigen::Vector3d& x,
@@ -184,10 +187,10 @@ void normal_and_overlap(const PlaneColumns& columns, std::size_t planes_a,
                         const Eigen::Vector3d& point, const Boon2012Settings& settings,
                         PointColumns& at_point, Eigen::Vector3d& normal, double& overlap,
                         Eigen::Vector3d& axis_u, Eigen::Vector3d& axis_v) {
-  fill_slacks(columns, point, at_point.slack);
   const double r = settings.rounding_distance;
-  const Eigen::Vector3d ga = gradient_of(columns, at_point.slack, 0, planes_a, r);
-  const Eigen::Vector3d gb = gradient_of(columns, at_point.slack, planes_a, columns.size(), r);
+  const Eigen::Vector3d ga = gradient_of(columns, point, at_point.slack, 0, planes_a, r);
+  const Eigen::Vector3d gb =
+      gradient_of(columns, point, at_point.slack, planes_a, columns.size(), r);
   normal = (ga - gb).normalized();
   plane_axes(normal, axis_u, axis_v);
   overlap = chord_of(columns, at_point.slack, normal, &at_point, axis_u, axis_v);

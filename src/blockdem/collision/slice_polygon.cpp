@@ -5,6 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace blockdem {
 
 SliceVertices::SliceVertices(std::initializer_list<Eigen::Vector2d> points) {
@@ -219,8 +223,24 @@ bool warm_polygon(const Workspace& w, const SliceWarmStart& warm, double toleran
     if (!(-w.av[j] * edge.x() + w.au[j] * edge.y() > 0.0)) return false;
   }
   // Every vertex inside every half-plane (a NaN fails the test).
+  std::size_t j = 0;
   bool inside = true;
-  for (std::size_t j = 0; j < w.m; ++j) {
+#if defined(__SSE2__)
+  // Two planes at a time (SSE2 packets), each value formed as in the scalar loop below.
+  __m128d all = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  const __m128d tol = _mm_set1_pd(tolerance);
+  for (; j + 1 < w.m; j += 2) {
+    const __m128d au = _mm_loadu_pd(w.au + j), av = _mm_loadu_pd(w.av + j);
+    const __m128d limit = _mm_add_pd(_mm_loadu_pd(w.s + j), tol);
+    for (std::size_t i = 0; i < n; ++i) {
+      const __m128d value = _mm_add_pd(_mm_mul_pd(au, _mm_set1_pd(out[i].x())),
+                                       _mm_mul_pd(av, _mm_set1_pd(out[i].y())));
+      all = _mm_and_pd(all, _mm_cmple_pd(value, limit));
+    }
+  }
+  inside = _mm_movemask_pd(all) == 3;
+#endif
+  for (; j < w.m; ++j) {
     const double au = w.au[j], av = w.av[j], limit = w.s[j] + tolerance;
     for (std::size_t i = 0; i < n; ++i) inside &= au * out[i].x() + av * out[i].y() <= limit;
   }
