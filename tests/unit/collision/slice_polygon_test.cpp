@@ -155,5 +155,34 @@ TEST(SlicePolygon, StaleWarmStartFallsBackToClipping) {
       square.area(), 1e-14);
 }
 
+// A warm polygon that one plane cuts is rejected wherever that plane sits in the list (the inside
+// test takes the planes two at a time, with a last plane of an odd count on its own).
+TEST(SlicePolygon, WarmStartCutByAnyPlaneOfTheListIsRejected) {
+  const Planes cube = test_shapes::box(Eigen::Vector3d::Constant(0.5));
+  const Eigen::Vector3d diagonal = Eigen::Vector3d(1.0, 1.0, 0.0).normalized();
+  for (const bool even : {false, true}) {
+    for (std::size_t k = 0; k <= cube.size(); ++k) {
+      // x + y <= 0.9 cuts the corner (0.5, 0.5) of the unit square: area 1 - 0.1²/2. The same
+      // plane moved to x + y <= 5 cuts nothing and lets the square's edges be the warm start.
+      const auto with_plane = [&](double offset) {
+        Planes planes = cube;
+        planes.insert(planes.begin() + static_cast<std::ptrdiff_t>(k),
+                      Halfspace{diagonal, offset / std::sqrt(2.0)});
+        if (even) planes.push_back(Halfspace{Eigen::Vector3d::UnitZ(), 5.0});
+        return planes;
+      };
+      SliceWarmStart warm;
+      const SlicePolygon square = slice_halfspaces(with_plane(5.0), Eigen::Vector3d::Zero(),
+                                                   Eigen::Vector3d::UnitZ(), 4.0, warm);
+      ASSERT_NEAR(square.area(), 1.0, 1e-14);
+      ASSERT_EQ(warm.count, 4u);
+      const SlicePolygon cut = slice_halfspaces(with_plane(0.9), Eigen::Vector3d::Zero(),
+                                                Eigen::Vector3d::UnitZ(), 4.0, warm);
+      EXPECT_EQ(cut.vertices.size(), 5u) << "plane " << k << (even ? " of 8" : " of 7");
+      EXPECT_NEAR(cut.area(), 1.0 - 0.5 * 0.1 * 0.1, 1e-14);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace blockdem
