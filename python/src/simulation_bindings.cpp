@@ -221,14 +221,14 @@ void bind_simulation(py::module_& m) {
       .def(
           "set_external_force",
           [](Simulation& s, const py::handle& block, const Eigen::Vector3d& f) {
-            s.world.blocks()[block_index(s.world, block)].external_force = f;
+            s.world.blocks()[block_index(s.world, block)].set_external_force(f);
           },
           py::arg("block"), py::arg("force"),
           "Constant force on a free block from now on, world frame, at its centroid (N).")
       .def(
           "set_external_torque",
           [](Simulation& s, const py::handle& block, const Eigen::Vector3d& t) {
-            s.world.blocks()[block_index(s.world, block)].external_torque = t;
+            s.world.blocks()[block_index(s.world, block)].set_external_torque(t);
           },
           py::arg("block"), py::arg("torque"), "Constant torque on a free block (N m).")
       .def(

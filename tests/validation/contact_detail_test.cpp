@@ -57,8 +57,8 @@ World pressed_block(ContactMode mode) {
   w.add_block(test::box_block({0.4, 0.4, 0.05}, {0, 0, -0.025}, 2600, Motion::fixed, "base"));
   const double P = 200.0, e = 0.02, H = 0.05;
   Block b = test::box_block({0.1, 0.1, H}, {0, 0, H / 2 - 1e-8}, 2600);
-  b.external_force = {0, 0, -P};
-  b.external_torque = {0, P * e, 0};
+  b.set_external_force({0, 0, -P});
+  b.set_external_torque({0, P * e, 0});
   w.add_block(b);
   for (int k = 0; k < 300; ++k) w.step();
   return w;

@@ -185,8 +185,9 @@ TEST_P(EccentricLoad, TiltAndPeakClosureMatchWinklerFooting) {
   World w = test::linear_world(k, 1e9, 60, s);
   w.add_block(test::box_block({0.4, 0.4, 0.05}, {0, 0, -0.025}, 2600, Motion::fixed, "base"));
   Block b = test::box_block({L, W, H}, {0, 0, H / 2}, 2600);
-  b.external_force = {0, 0, -P};
-  b.external_torque = {0, P * e, 0};  // the load at x = e: r × F = (e,0,0) × (0,0,-P) = (0, P e, 0)
+  b.set_external_force({0, 0, -P});
+  b.set_external_torque(
+      {0, P * e, 0});  // the load at x = e: r × F = (e,0,0) × (0,0,-P) = (0, P e, 0)
   w.add_block(b);
   Stage st;
   st.unbalanced_tolerance = 1e-10;

@@ -68,8 +68,8 @@ World pressed_cube(WorldSettings s, const Eigen::Vector3d& force, double torque_
   Block cube = box_block(Eigen::Vector3d::Constant(kSide), {0, 0, kSide / 2 - kOverlap}, kDensity);
   cube.blocked_translation = {false, false, true};
   cube.blocked_rotation = {true, true, false};
-  cube.external_force = force;
-  cube.external_torque = Eigen::Vector3d(0, 0, torque_z);
+  cube.set_external_force(force);
+  cube.set_external_torque(Eigen::Vector3d(0, 0, torque_z));
   w.add_block(cube);
   return w;
 }
@@ -130,7 +130,7 @@ TEST(ShearTwistInWorld, ShearWithoutTwistIsUnchanged) {
       w.add_block(box_block({0.2, 0.2, 0.05}, {0, 0, -0.025}, kDensity, Motion::fixed, "base"));
       Block cube = box_block(Eigen::Vector3d::Constant(kSide), {0, 0, kSide / 2 - 1e-8}, kDensity);
       const double weight = cube.mass * 9.81;
-      cube.external_force = Eigen::Vector3d(push * friction() * weight, 0.0, 0.0);
+      cube.set_external_force(Eigen::Vector3d(push * friction() * weight, 0.0, 0.0));
       w.add_block(cube);
       for (int k = 0; k < 2000; ++k) w.step();
       worlds.push_back(std::move(w));

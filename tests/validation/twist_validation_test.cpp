@@ -48,7 +48,7 @@ World twisted_cube(WorldSettings s, bool turn_only, double torque_z, double damp
     cube.blocked_translation = {true, true, true};
     cube.blocked_rotation = {true, true, false};
   }
-  cube.external_torque = Eigen::Vector3d(0, 0, torque_z);
+  cube.set_external_torque(Eigen::Vector3d(0, 0, torque_z));
   w.add_block(cube);
   return w;
 }
@@ -206,12 +206,12 @@ TEST(TwistInWorld, EnergyLedgerClosesWithTheTwistSpringAndItsSlip) {
     World w = twisted_cube(s, true, 0.0, 0.0);
     for (int k = 0; k < 5; ++k) w.step();  // the contact forms at rest
     const double normal_energy = w.energy_budget().elastic;
-    w.blocks()[1].external_torque = Eigen::Vector3d(0, 0, 0.8 * slip_moment());
+    w.blocks()[1].set_external_torque(Eigen::Vector3d(0, 0, 0.8 * slip_moment()));
     const double stiffness = kShear * square_polar_moment();
     double worst = 0.0, most_stored = 0.0, coulomb = 0.0, slipped = 0.0;
     for (int k = 0; k < 400; ++k) {
       if (k == 200) {  // released
-        w.blocks()[1].external_torque.setZero();
+        w.blocks()[1].set_external_torque(Eigen::Vector3d::Zero());
         const double spring_turn = turn_of(w) - w.blocks()[1].angular_velocity.z() * s.time_step;
         coulomb = slip_moment() * (spring_turn + w.contacts()[0]->twist.moment / stiffness);
         slipped = w.energy_budget().friction_dissipation;
@@ -277,7 +277,7 @@ TEST(TwistInWorld, ShearWithoutTwistIsUnchanged) {
     World w = linear_world(kNormal, kShear, kFriction, s);
     w.add_block(box_block({0.2, 0.2, 0.05}, {0, 0, -0.025}, kDensity, Motion::fixed, "base"));
     Block cube = box_block(Eigen::Vector3d::Constant(kSide), {0, 0, kSide / 2 - 1e-7}, kDensity);
-    cube.external_force = Eigen::Vector3d(0.3, 0.0, 0.0);  // below tan 40° x the weight
+    cube.set_external_force(Eigen::Vector3d(0.3, 0.0, 0.0));  // below tan 40° x the weight
     w.add_block(cube);
     for (int k = 0; k < 300; ++k) w.step();
     return w;

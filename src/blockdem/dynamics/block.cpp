@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
+#include <set>
 
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
@@ -19,7 +21,7 @@ Block make_block(const Polyhedron& world_shape, double density, std::string name
   }
   Block b;
   b.name = std::move(name);
-  b.group = std::move(group);
+  b.set_group(std::move(group));
   b.density = density;
   b.mass = density * world_shape.volume();
 
@@ -62,6 +64,50 @@ void Block::update_world_geometry() {
     aabb_min = aabb_min.cwiseMin(w);
     aabb_max = aabb_max.cwiseMax(w);
   }
+}
+
+const BlockExtras Block::kNoExtras{};
+const std::string Block::kNoGroup;
+
+BlockExtras& Block::own_extras() {
+  if (!extras_.p) extras_.p = std::make_unique<BlockExtras>();
+  return *extras_.p;
+}
+
+namespace {
+
+bool zero_bits(const Eigen::Vector3d& v) {
+  return std::bit_cast<std::uint64_t>(v.x()) == 0 && std::bit_cast<std::uint64_t>(v.y()) == 0 &&
+         std::bit_cast<std::uint64_t>(v.z()) == 0;
+}
+
+}  // namespace
+
+// The setters keep a block without extras so when the value is the default's bits (-0.0 is not
+// 0.0), so that reading the value back always gives the bits that were set.
+void Block::set_servo(const Servo& s) {
+  if (extras_.p || !same_bits(s, Servo{})) own_extras().servo = s;
+}
+
+void Block::set_external_force(const Eigen::Vector3d& f) {
+  if (extras_.p || !zero_bits(f)) own_extras().external_force = f;
+}
+
+void Block::set_external_torque(const Eigen::Vector3d& t) {
+  if (extras_.p || !zero_bits(t)) own_extras().external_torque = t;
+}
+
+void Block::set_group(std::string g) {
+  if (g.empty()) {
+    group_ = nullptr;
+    return;
+  }
+  // Never freed, so that a group's address stays valid for every block, even during static
+  // destruction; a set's nodes do not move when it grows.
+  static std::mutex mutex;
+  static auto* names = new std::set<std::string>;
+  const std::lock_guard<std::mutex> lock(mutex);
+  group_ = &*names->insert(std::move(g)).first;
 }
 
 bool same_bits(const Servo& a, const Servo& b) {

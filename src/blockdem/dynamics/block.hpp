@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,12 +35,23 @@ struct Servo {
 /// Servo{} this way is Servo{}.
 bool same_bits(const Servo& a, const Servo& b);
 
+/// The fields most blocks leave at their defaults. A block holds them apart, behind one pointer
+/// that stays null until one is set, so that a large scene of plain blocks does not pay their
+/// 112 bytes per block.
+struct BlockExtras {
+  Servo servo;
+  // Constant applied loads (world frame), added every step to free blocks.
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();   ///< (N), acts at the centroid
+  Eigen::Vector3d external_torque = Eigen::Vector3d::Zero();  ///< (N m)
+};
+
 // The fields are ordered by use. The step's per-pair passes (narrow phase, contact forces, the
 // loads' scatter) read a few fields of two blocks per pair, and in a large scene the blocks of a
 // pair lie far apart in memory: those fields sit together in the first 120 bytes of the record (at
 // most three cache lines; the loads of the step in the next 72), not spread over all of it.
 // The small members fill what the larger ones' alignment would leave as padding: index and motion
-// the 8 bytes after bounding_radius, the blocked degrees of freedom the 6 before the servo.
+// the 8 bytes after bounding_radius, density the 8 before the orientation, the blocked degrees of
+// freedom the 6 before the pointer to the extras.
 struct Block {
   // Read per pair: the shape, pose, velocities and world planes (narrow phase, shear).
   Polyhedron shape;  ///< body frame: centroid at the origin, principal axes
@@ -60,12 +72,13 @@ struct Block {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();         ///< about the centroid (N m)
   Eigen::Vector3d contact_force = Eigen::Vector3d::Zero();  ///< from contacts only (N)
 
+  double density = 0.0;  ///< (kg/m^3)
+
   // State. Orientation maps body to world coordinates.
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d angular_momentum =
       Eigen::Vector3d::Zero();  ///< world frame (kg m^2/s), half step
 
-  double density = 0.0;                               ///< (kg/m^3)
   double mass = 0.0;                                  ///< (kg)
   Eigen::Vector3d inertia = Eigen::Vector3d::Zero();  ///< principal moments (kg m^2)
 
@@ -75,21 +88,55 @@ struct Block {
   Eigen::Matrix<bool, 3, 1> blocked_translation = Eigen::Matrix<bool, 3, 1>::Constant(false);
   Eigen::Matrix<bool, 3, 1> blocked_rotation = Eigen::Matrix<bool, 3, 1>::Constant(false);
 
-  Servo servo;
+ private:
+  /// Null while every field of BlockExtras has its default; a copy of a block copies them.
+  struct ExtrasBox {
+    std::unique_ptr<BlockExtras> p;
+    ExtrasBox() = default;
+    ExtrasBox(const ExtrasBox& o) : p(o.p ? std::make_unique<BlockExtras>(*o.p) : nullptr) {}
+    ExtrasBox(ExtrasBox&&) noexcept = default;
+    ExtrasBox& operator=(const ExtrasBox& o) {
+      if (this != &o) p = o.p ? std::make_unique<BlockExtras>(*o.p) : nullptr;
+      return *this;
+    }
+    ExtrasBox& operator=(ExtrasBox&&) noexcept = default;
+    ~ExtrasBox() = default;
+  };
+  ExtrasBox extras_;
+  /// The group's name, one copy per distinct name for the whole process (a scene has a handful
+  /// of groups and every block has one, "default" unless named); null for "".
+  const std::string* group_ = nullptr;
 
+ public:
   // Reference state for displacement outputs.
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond initial_orientation = Eigen::Quaterniond::Identity();
-
-  // Constant applied loads (world frame), added every step to free blocks.
-  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();   ///< (N), acts at the centroid
-  Eigen::Vector3d external_torque = Eigen::Vector3d::Zero();  ///< (N m)
 
   Eigen::Vector3d aabb_min = Eigen::Vector3d::Zero();
   Eigen::Vector3d aabb_max = Eigen::Vector3d::Zero();
 
   std::string name;
-  std::string group;
+
+  /// The rarely set fields: the defaults (BlockExtras{}) for a block that has none.
+  const BlockExtras& extras() const { return extras_.p ? *extras_.p : kNoExtras; }
+  /// Whether the block holds its own extras (otherwise they are all at their defaults).
+  bool has_extras() const { return extras_.p != nullptr; }
+  /// The servo (Servo{} for a block that has none).
+  const Servo& servo() const { return extras().servo; }
+  /// The servo, to be changed (the block's extras are created if it has none).
+  Servo& edit_servo() { return own_extras().servo; }
+  /// Sets the servo; a block without extras stays so when `s` has Servo{}'s bits.
+  void set_servo(const Servo& s);
+  /// Constant applied force (world frame), added every step to a free block (N).
+  const Eigen::Vector3d& external_force() const { return extras().external_force; }
+  /// Constant applied torque (world frame), added every step to a free block (N m).
+  const Eigen::Vector3d& external_torque() const { return extras().external_torque; }
+  /// Set the applied loads; a block without extras stays so when the value's bits are all zero.
+  void set_external_force(const Eigen::Vector3d& f);
+  void set_external_torque(const Eigen::Vector3d& t);
+  /// The contact rules' group ("" for none).
+  const std::string& group() const { return group_ ? *group_ : kNoGroup; }
+  void set_group(std::string g);
 
   bool is_dynamic() const { return motion == Motion::free; }
   /// Rotation matrix body -> world.
@@ -111,6 +158,11 @@ struct Block {
   double kinetic_energy() const;
   /// World inertia tensor R diag(I) Rᵀ (kg m^2).
   Eigen::Matrix3d world_inertia() const;
+
+ private:
+  static const BlockExtras kNoExtras;
+  static const std::string kNoGroup;
+  BlockExtras& own_extras();
 };
 
 /// Builds a block from a shape given in world coordinates (the shape's own frame is the world's):

@@ -108,7 +108,7 @@ void block_row(CsvWriter& csv, const World& world, const Block& b, int level,
   csv.cell(level)
       .cell(stage)
       .cell(b.name)
-      .cell(b.group)
+      .cell(b.group())
       .cell(st.position.x() + origin.x())
       .cell(st.position.y() + origin.y())
       .cell(st.position.z() + origin.z())

@@ -168,7 +168,7 @@ Grid block_grid(const World& world, int stage, const std::vector<int>& which) {
     face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
     ids.push_back(b.index);
     names.push_back(b.name);
-    groups.push_back(b.group);
+    groups.push_back(b.group());
     stages.push_back(stage);
     displacement.push_back(s.position - b.initial_position);
     velocity.push_back(s.velocity);

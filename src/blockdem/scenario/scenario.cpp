@@ -156,7 +156,7 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     if (made) {
       b = *made;
       b.name = name;
-      b.group = group;
+      b.set_group(group);
     } else {
       poly = poly.transformed(rot, Eigen::Vector3d::Zero());
       b = make_block(poly, density, name, group);
@@ -169,8 +169,8 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
   }
 
   const std::string motion = t.choice("motion", "free", {"free", "fixed", "prescribed", "servo"});
-  b.external_force = t.vec3("external_force", Eigen::Vector3d::Zero());
-  b.external_torque = t.vec3("external_torque", Eigen::Vector3d::Zero());
+  b.set_external_force(t.vec3("external_force", Eigen::Vector3d::Zero()));
+  b.set_external_torque(t.vec3("external_torque", Eigen::Vector3d::Zero()));
   b.velocity = t.vec3("velocity", Eigen::Vector3d::Zero());
   b.angular_velocity = t.vec3("angular_velocity", Eigen::Vector3d::Zero());
   if (motion == "fixed") {
@@ -186,11 +186,12 @@ Block read_block(const CheckedTable& t, const std::map<std::string, double>& mat
     const Eigen::Vector3d axis = s.vec3("axis");
     if (!(axis.norm() > 0.0) || !std::isfinite(axis.norm()))
       s.fail("axis", "must be a non-zero vector of finite length");
-    b.servo.axis = axis.normalized();
-    b.servo.target_force = s.positive("target_force", 0.0, true);
-    b.servo.gain = s.positive("gain", 0.0, true);
-    b.servo.max_speed = s.positive("max_speed", 0.0, true);
-    b.servo.tolerance = s.positive("tolerance", b.servo.tolerance);
+    Servo& servo = b.edit_servo();
+    servo.axis = axis.normalized();
+    servo.target_force = s.positive("target_force", 0.0, true);
+    servo.gain = s.positive("gain", 0.0, true);
+    servo.max_speed = s.positive("max_speed", 0.0, true);
+    servo.tolerance = s.positive("tolerance", servo.tolerance);
     s.finish();
   } else {
     b.motion = Motion::free;
@@ -226,7 +227,7 @@ void read_listed_block(const CheckedTable& bt, const std::map<std::string, doubl
   Block b = read_block(bt, materials, boxes);
   if (listed.names.count(b.name)) bt.fail("name", "block \"" + b.name + "\" is defined twice");
   listed.names.insert(b.name);
-  listed.groups.insert(b.group);
+  listed.groups.insert(b.group());
   std::vector<Halfspace>().swap(b.world_planes);
   listed.blocks.push_back(std::move(b));
 }
@@ -498,7 +499,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     builder->build_from_root(t, sc);
     for (std::size_t i = 0; i < sc.blocks.size(); ++i) {
       names.insert(sc.blocks[i].name);
-      groups.insert(sc.blocks[i].group);
+      groups.insert(sc.blocks[i].group());
     }
   }
   if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");

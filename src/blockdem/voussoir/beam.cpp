@@ -64,9 +64,9 @@ VoussoirModel build_voussoir(const VoussoirSpec& spec) {
   right.motion = Motion::fixed;
   auto make_servo = [&](Block& b, double direction) {
     b.motion = Motion::servo;
-    b.servo.axis = Eigen::Vector3d(direction, 0.0, 0.0);
-    b.servo.target_force = spec.preload_force;
-    b.servo.tolerance = spec.preload_tolerance;
+    b.edit_servo().axis = Eigen::Vector3d(direction, 0.0, 0.0);
+    b.edit_servo().target_force = spec.preload_force;
+    b.edit_servo().tolerance = spec.preload_tolerance;
   };
   if (spec.servo_side != "right") make_servo(left, 1.0);
   if (spec.servo_side != "left") make_servo(right, -1.0);

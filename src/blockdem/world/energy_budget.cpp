@@ -102,7 +102,7 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
   // threads, which cannot size it): made here once some block's are not +0.0 (Δt > 0).
   if (loads_.empty()) {
     for (const Block& b : blocks) {
-      if (b.is_dynamic() && !(zero_bits(b.external_force) && zero_bits(b.external_torque))) {
+      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
         keep_loads();
         break;
       }
@@ -230,8 +230,8 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
   if (b.is_dynamic()) {
     // This step's impulses; the damping force is what local_damping took off the load.
     const Eigen::Vector3d ig = dt * b.mass * gravity;
-    const Eigen::Vector3d il = dt * b.external_force;
-    const Eigen::Vector3d tl = dt * b.external_torque;
+    const Eigen::Vector3d il = dt * b.external_force();
+    const Eigen::Vector3d tl = dt * b.external_torque();
     const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
     const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
     // before_integration gave the record a free block's impulses; with loads_ empty, the load

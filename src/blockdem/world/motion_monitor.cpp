@@ -58,7 +58,7 @@ void MotionMonitor::observe(const World& world, bool ramping) {
     sums[0].add(b.kinetic_energy());
     // Gravity and external forces are constant over a stage (outside a ramp), so their work is
     // the load times the displacement; during a ramp the current gravity overstates it.
-    sums[1].add((b.mass * g + b.external_force).dot(d));
+    sums[1].add((b.mass * g + b.external_force()).dot(d));
     if (d.norm() > 0.1 * r.displacement_limit) moving.push_back(b.index);
   }
   world.reduce_partials(sums, maxima, {});

@@ -46,10 +46,10 @@ bool servos_settled(const World& world) {
   std::array<std::int64_t, 1> unsettled{0};
   for (std::size_t i = 0; i < world.blocks().size(); ++i) {
     const Block& b = world.blocks()[i];
-    if (b.motion != Motion::servo || b.servo.hold || !world.counts_block(i)) continue;
-    const double reaction = -b.contact_force.dot(b.servo.axis);
-    if (std::abs(reaction - b.servo.target_force) > b.servo.tolerance * b.servo.target_force)
-      ++unsettled[0];
+    const Servo& s = b.servo();
+    if (b.motion != Motion::servo || s.hold || !world.counts_block(i)) continue;
+    const double reaction = -b.contact_force.dot(s.axis);
+    if (std::abs(reaction - s.target_force) > s.tolerance * s.target_force) ++unsettled[0];
   }
   world.reduce_partials({}, {}, unsettled);
   return unsettled[0] == 0;
@@ -68,15 +68,16 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
       throw std::invalid_argument("stage '" + stage.name + "': no block named '" + cmd.block + "'");
     Block& b = world.blocks()[i];
     b.motion = Motion::servo;
-    b.servo.hold = false;
-    b.servo.target_force = cmd.target_force;
-    if (cmd.axis) b.servo.axis = *cmd.axis;
+    Servo& s = b.edit_servo();
+    s.hold = false;
+    s.target_force = cmd.target_force;
+    if (cmd.axis) s.axis = *cmd.axis;
   }
   for (const auto& name : stage.hold) {
     const int i = world.find_block(name);
     if (i < 0)
       throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
-    world.blocks()[i].servo.hold = true;
+    world.blocks()[i].edit_servo().hold = true;
   }
   if (!stage.remove.empty()) {
     std::vector<int> gone;
@@ -186,7 +187,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   if (!deferred || sync->end_synchronizes) world.synchronize();
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
-      if (b.motion == Motion::servo) b.servo.hold = true;
+      if (b.motion == Motion::servo) b.edit_servo().hold = true;
     }
   }
   r.time = world.time();

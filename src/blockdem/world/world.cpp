@@ -94,8 +94,8 @@ int World::find_block(const std::string& name) const {
 }
 
 int World::law_for(int a, int b) const {
-  const std::string& ga = blocks_[a].group;
-  const std::string& gb = blocks_[b].group;
+  const std::string& ga = blocks_[a].group();
+  const std::string& gb = blocks_[b].group();
   auto matches = [](const std::string& rule, const std::string& group) {
     return rule.empty() || rule == group;
   };
@@ -137,9 +137,9 @@ void World::update_geometry(int threads) {
     b.update_world_geometry();
     box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
     box_max_[static_cast<std::size_t>(i)] = b.aabb_max;
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
                              : Eigen::Vector3d::Zero();
-    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
+    b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   };
   // No parallel region for one thread: a team of one still costs a futex call at its end.
@@ -195,7 +195,7 @@ void World::apply_servos(double dt, const std::vector<char>* only) {
   for (auto& b : blocks_) {
     if (b.motion != Motion::servo) continue;
     if (only && (*only)[static_cast<std::size_t>(b.index)] == 0) continue;
-    Servo& s = b.servo;
+    const Servo& s = b.servo();
     if (s.hold) {
       b.velocity.setZero();
       b.angular_velocity.setZero();
@@ -361,7 +361,7 @@ void World::save_checkpoint() {
     checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
                              b.orientation};
     checkpoint_.motions[i] = b.motion;
-    if (!same_bits(b.servo, Servo{})) checkpoint_.servos.emplace_back(i, b.servo);
+    if (!same_bits(b.servo(), Servo{})) checkpoint_.servos.emplace_back(i, b.servo());
   }
   // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
@@ -419,7 +419,8 @@ void World::restore_checkpoint() {
     b.orientation = s.orientation;
     b.motion = checkpoint_.motions[i];
     const auto& servos = checkpoint_.servos;
-    b.servo = servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{};
+    b.set_servo(servo < servos.size() && servos[servo].first == i ? servos[servo++].second
+                                                                  : Servo{});
     b.update_world_geometry();
   }
   // Contacts come back with their shear history; geometry and normal forces are re-derived at

@@ -498,8 +498,8 @@ void World::save_checkpoint_part() {
     states.push_back(
         {b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.orientation});
     motions.push_back(b.motion);
-    if (!same_bits(b.servo, Servo{}))
-      checkpoint_.servos.emplace_back(static_cast<std::size_t>(i), b.servo);
+    if (!same_bits(b.servo(), Servo{}))
+      checkpoint_.servos.emplace_back(static_cast<std::size_t>(i), b.servo());
   }
   checkpoint_.blocks = std::move(states);
   checkpoint_.motions = std::move(motions);
@@ -998,9 +998,9 @@ void World::step_distributed(double dt, int threads) {
     b.update_world_geometry();
     box_min_[i] = b.aabb_min;
     box_max_[i] = b.aabb_max;
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force)
+    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
                              : Eigen::Vector3d::Zero();
-    b.torque = b.is_dynamic() ? b.external_torque : Eigen::Vector3d::Zero();
+    b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   }
   // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots; a

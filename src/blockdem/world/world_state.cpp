@@ -193,7 +193,7 @@ void World::save_state(StateWriter& w) const {
     w.vec(b.angular_velocity);
     w.vec(b.angular_momentum);
     write_motion(w, b.motion);
-    write_servo(w, b.servo);
+    write_servo(w, b.servo());
     w.vec(b.force);
     w.vec(b.torque);
     w.vec(b.contact_force);
@@ -293,7 +293,7 @@ void World::load_state(StateReader& r) {
     b.angular_velocity = r.vec();
     b.angular_momentum = r.vec();
     b.motion = read_motion(r);
-    b.servo = read_servo(r);
+    b.set_servo(read_servo(r));
     b.force = r.vec();
     b.torque = r.vec();
     b.contact_force = r.vec();
@@ -331,7 +331,7 @@ void World::load_state(StateReader& r) {
     b.angular_velocity = s.angular_velocity;
     b.angular_momentum = s.angular_momentum;
     b.motion = s.motion;
-    b.servo = s.servo;
+    b.set_servo(s.servo());
     b.force = s.force;
     b.torque = s.torque;
     b.contact_force = s.contact_force;

@@ -94,7 +94,7 @@ TEST(ListedBlocksApart, TheScenarioIsTheWholeTreesBitForBit) {
     const Block& a = got.blocks[i];
     const Block& b = want.blocks[i];
     EXPECT_EQ(a.name, b.name);
-    EXPECT_EQ(a.group, b.group);
+    EXPECT_EQ(a.group(), b.group());
     EXPECT_EQ(a.density, b.density);
     EXPECT_EQ(a.mass, b.mass);
     EXPECT_EQ(a.inertia, b.inertia);
@@ -102,13 +102,13 @@ TEST(ListedBlocksApart, TheScenarioIsTheWholeTreesBitForBit) {
     EXPECT_EQ(a.initial_position, b.initial_position);
     EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
     EXPECT_EQ(a.motion, b.motion);
-    EXPECT_EQ(a.servo.axis, b.servo.axis);
-    EXPECT_EQ(a.servo.target_force, b.servo.target_force);
+    EXPECT_EQ(a.servo().axis, b.servo().axis);
+    EXPECT_EQ(a.servo().target_force, b.servo().target_force);
     EXPECT_EQ(a.shape.vertices(), b.shape.vertices());
     EXPECT_TRUE(a.world_planes.empty());
   }
   EXPECT_EQ(got.blocks[1501].motion, Motion::servo);
-  EXPECT_EQ(got.blocks[12].group, "g2");
+  EXPECT_EQ(got.blocks[12].group(), "g2");
   // Identical boxes share one shape across the runs of tables, as in the whole tree.
   EXPECT_TRUE(got.blocks[2].shape.shares_data_with(got.blocks[2400].shape));
   EXPECT_EQ(got.title, want.title);

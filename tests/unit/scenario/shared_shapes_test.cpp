@@ -94,7 +94,7 @@ TEST(SharedShapes, IdenticalBoxesShareOneShapeAndEqualBoxesBuiltAlone) {
   EXPECT_FALSE(bl[0].shape.shares_data_with(bl[3].shape));  // another size
   EXPECT_FALSE(bl[0].shape.shares_data_with(bl[4].shape));  // another density
   EXPECT_EQ(bl[1].name, "b");
-  EXPECT_EQ(bl[2].group, "other");
+  EXPECT_EQ(bl[2].group(), "other");
 
   const Eigen::Vector3d cube(0.1, 0.1, 0.1);
   expect_same_block(bl[0], box_block(cube, 2600.0, {0.0, 0.0, 0.05}));

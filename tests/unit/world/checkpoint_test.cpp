@@ -19,7 +19,7 @@ World pushed_cube() {
   World w = linear_world(10e9, 1e9, 40.0, s);
   w.add_block(box_block({0.2, 0.2, 0.05}, {0, 0, -0.025}, 1207.0, Motion::fixed, "base"));
   Block cube = box_block(Eigen::Vector3d::Constant(0.046), {0, 0, 0.023 - 1e-7}, 1207.0);
-  cube.external_force = Eigen::Vector3d(0.3, 0.0, 0.0);  // 0.3 N < tan 40° x 1.15 N
+  cube.set_external_force(Eigen::Vector3d(0.3, 0.0, 0.0));  // 0.3 N < tan 40° x 1.15 N
   w.add_block(cube);
   return w;
 }
@@ -64,22 +64,22 @@ TEST(Checkpoint, RestoreGivesBackEachBlocksServo) {
   World w = pushed_cube();
   Block pusher =
       box_block(Eigen::Vector3d::Constant(0.046), {0.2, 0, 0.023}, 1207.0, Motion::servo, "pusher");
-  pusher.servo.axis = -Eigen::Vector3d::UnitX();
-  pusher.servo.target_force = 2.5;
-  pusher.servo.gain = -0.0;  // a bit pattern Servo{} does not have
+  pusher.edit_servo().axis = -Eigen::Vector3d::UnitX();
+  pusher.edit_servo().target_force = 2.5;
+  pusher.edit_servo().gain = -0.0;  // a bit pattern Servo{} does not have
   w.add_block(pusher);
   w.save_checkpoint();
-  const Servo saved = w.blocks()[2].servo;
+  const Servo saved = w.blocks()[2].servo();
   for (Block& b : w.blocks()) {
-    b.servo.target_force = 7.0;
-    b.servo.hold = true;
+    b.edit_servo().target_force = 7.0;
+    b.edit_servo().hold = true;
   }
   w.restore_checkpoint();
-  EXPECT_TRUE(same_bits(w.blocks()[0].servo, Servo{}));
-  EXPECT_TRUE(same_bits(w.blocks()[1].servo, Servo{}));
-  EXPECT_TRUE(same_bits(w.blocks()[2].servo, saved));
+  EXPECT_TRUE(same_bits(w.blocks()[0].servo(), Servo{}));
+  EXPECT_TRUE(same_bits(w.blocks()[1].servo(), Servo{}));
+  EXPECT_TRUE(same_bits(w.blocks()[2].servo(), saved));
   EXPECT_FALSE(same_bits(saved, Servo{}));
-  EXPECT_TRUE(std::signbit(w.blocks()[2].servo.gain));
+  EXPECT_TRUE(std::signbit(w.blocks()[2].servo().gain));
 }
 
 }  // namespace

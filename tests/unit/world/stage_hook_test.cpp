@@ -17,7 +17,7 @@ TEST(StageHook, CalledEveryStepAndStopsTheStage) {
   s.time_step = 1e-4;
   World w = linear_world(1e9, 1e8, 40.0, s);
   Block cube = box_block(Eigen::Vector3d::Ones(), {0, 0, 0}, 1000.0);
-  cube.external_force = Eigen::Vector3d(50.0, 0.0, 0.0);
+  cube.set_external_force(Eigen::Vector3d(50.0, 0.0, 0.0));
   w.add_block(cube);
   Stage stage;
   stage.kind = Stage::Kind::steps;

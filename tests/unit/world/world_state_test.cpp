@@ -20,7 +20,7 @@ World pushed_cubes() {
   for (int i = 0; i < 3; ++i) {
     Block cube = box_block(Eigen::Vector3d::Constant(0.046), {0.06 * i, 0, 0.023 - 1e-7}, 1207.0,
                            Motion::free, "cube" + std::to_string(i));
-    cube.external_force = Eigen::Vector3d(0.2 * (i + 1), 0.0, 0.0);
+    cube.set_external_force(Eigen::Vector3d(0.2 * (i + 1), 0.0, 0.0));
     w.add_block(cube);
   }
   return w;
@@ -99,7 +99,7 @@ World near_cubes(int threads) {
     Block cube = make_block(Polyhedron::box(Eigen::Vector3d::Constant(0.046))
                                 .transformed(turn, {0.062 * i, 0, 0.023 - 1e-7}),
                             1207.0, "cube" + std::to_string(i));
-    cube.external_force = Eigen::Vector3d(1.5 * (1 - i), 0.0, 0.0);
+    cube.set_external_force(Eigen::Vector3d(1.5 * (1 - i), 0.0, 0.0));
     w.add_block(cube);
   }
   return w;
