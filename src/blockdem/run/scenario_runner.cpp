@@ -172,7 +172,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
   // A checkpoint: the world, where the run stands, and the files written so far.
   auto last_checkpoint = std::chrono::steady_clock::now();
   auto write_checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
-                              const World* before) {
+                              const World* before, std::string world_state) {
     RunPoint p;
     p.level = level;
     p.in_stage = at != nullptr;
@@ -182,7 +182,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       monitor->save_state(w);
       p.monitor.assign(w.bytes().begin(), w.bytes().end());
     }
-    p.world = state_bytes(world);
+    p.world = std::move(world_state);
     if (before) p.before = state_bytes(*before);
     p.summary = summary.dump();
     p.stages = stages.dump();
@@ -205,10 +205,11 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
   // alone writes the file): the checkpoint does not depend on the number of processes.
   auto checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
                         const World* before) {
-    // A distributed world is made whole first (collectively: every process calls this at the
-    // same steps, see poll()).
-    world.synchronize();
-    if (control.write_checkpoint_files) write_checkpoint(level, at, monitor, before);
+    // A distributed world's state is merged to process 0 without making it whole anywhere
+    // (collectively: every process calls this at the same steps, see poll()).
+    std::string state = world.save_state_to_root();
+    if (control.write_checkpoint_files)
+      write_checkpoint(level, at, monitor, before, std::move(state));
     last_checkpoint = std::chrono::steady_clock::now();
   };
   auto poll = [&] {
