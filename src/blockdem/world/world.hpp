@@ -212,11 +212,11 @@ class World {
   /// StateError when the state does not fit this world.
   void load_state(StateReader& in);
   /// Collective with settings().distribution (every process at the same step): save_state's
-  /// bytes on process 0, as a whole world would write them, without making the world whole on
-  /// any process: each process sends the blocks and pairs it keeps exact, merged to process 0 in
-  /// chunks (merge_to_root); the others get an empty string (docs/restart.md). Without a
-  /// distribution, or on a whole world: save_state's bytes.
-  std::string save_state_to_root();
+  /// bytes, in order and in pieces, to `emit` on process 0 (the others call nothing), as a whole
+  /// world would write them, without making the world whole on any process: each process sends
+  /// the blocks and pairs it keeps exact, merged to process 0 in bounded chunks (merge_to_root;
+  /// docs/restart.md). Without a distribution, or on a whole world: save_state's bytes at once.
+  void save_state_to_root(const std::function<void(std::string_view)>& emit);
   /// With settings().distribution: the owner process of each block (empty before the first
   /// step) and this process's figures of the distributed work.
   const std::vector<int>& block_owners() const { return owner_; }

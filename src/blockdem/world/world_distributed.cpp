@@ -718,14 +718,17 @@ void World::gather_checkpoint() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string World::save_state_to_root() {
+void World::save_state_to_root(const std::function<void(std::string_view)>& emit) {
   // The divergence checkpoint's parts are gathered as synchronize() gathers them (into the
   // checkpoint's own per-block records, which every process keeps: no whole world).
   if (settings_.distribution) gather_checkpoint();
+  const bool root = !settings_.distribution || settings_.distribution->rank() == 0;
   if (!settings_.distribution || replica_complete_) {
+    if (!root) return;
     StateWriter w;
     save_state(w);
-    return std::string(w.bytes().begin(), w.bytes().end());
+    emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+    return;
   }
   // save_state's bytes as they would be after synchronize(), in its order, each section merged
   // to process 0 from the processes that keep it exact (docs/restart.md, "Under MPI"): the
@@ -734,7 +737,6 @@ std::string World::save_state_to_root() {
   // loads (sum_resting_loads), the index of the overlap violation in the whole slot list.
   PairDistribution& dist = *settings_.distribution;
   const int rank = dist.rank();
-  const bool root = rank == 0;
   const std::size_t n = blocks_.size();
   if (energy_.records() != n)
     throw std::logic_error("save_state_to_root: the energy ledger has another number of blocks");
@@ -832,10 +834,12 @@ std::string World::save_state_to_root() {
     return loads;
   };
 
-  StateWriter w;  // process 0's
-  auto& out = w.bytes();
-  const auto append = [&](std::string_view text) {
-    out.insert(out.end(), text.begin(), text.end());
+  // Process 0's own bytes between the merges (which emit theirs as they come): flush() emits.
+  StateWriter w;
+  const auto flush = [&] {
+    if (root && !w.bytes().empty())
+      emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+    w.bytes().clear();
   };
   w.vec(settings_.gravity);
   w.pod(settings_.damping);
@@ -843,6 +847,7 @@ std::string World::save_state_to_root() {
   w.size(n);
   // The blocks, each with its stiffness sums (kept for the section after the blocks).
   std::vector<double> stiffness(root ? 2 * n : 0, 0.0);
+  flush();
   merge_to_root(
       mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
       [&](std::size_t k, std::string& text) {
@@ -863,7 +868,7 @@ std::string World::save_state_to_root() {
         const auto i = static_cast<std::size_t>(head[0]);
         stiffness[i] = head[1];
         stiffness[n + i] = head[2];
-        append(text.substr(sizeof head));
+        emit(text.substr(sizeof head));
       });
   if (root) {
     w.size(n);
@@ -894,14 +899,16 @@ std::string World::save_state_to_root() {
   // The slots' pairs, then their records (a contact state where a force acts, as synchronize
   // keeps it: through its bytes).
   if (root) w.size(static_cast<std::size_t>(counts[0]));
+  flush();
   merge_to_root(
       owned.size(), pair_key,
       [&](std::size_t k, std::string& text) {
         const std::int32_t ab[2] = {owned[k]->a, owned[k]->b};
         text.append(reinterpret_cast<const char*>(ab), sizeof ab);
       },
-      append);
+      emit);
   if (root) w.size(static_cast<std::size_t>(counts[0]));
+  flush();
   merge_to_root(
       owned.size(), pair_key,
       [&](std::size_t k, std::string& text) {
@@ -917,8 +924,9 @@ std::string World::save_state_to_root() {
         }
         text.append(reinterpret_cast<const char*>(b.bytes().data()), b.bytes().size());
       },
-      append);
+      emit);
   if (root) save_divergence_checkpoint(w);
+  flush();
   // The energy ledger (EnergyLedger::save_state's layout): the budget (every process's), each
   // block's record from its owner (a resting block's contact impulses from the sums above, as
   // sum_resting_loads sets them), the level velocities (kept for their two lists), the flag.
@@ -932,6 +940,7 @@ std::string World::save_state_to_root() {
   constexpr std::size_t kRecord = EnergyLedger::kBlockRecordDoubles;
   constexpr std::size_t kLevel = kRecord - 6;  // the record's level velocities
   std::vector<double> level(root ? 6 * n : 0, 0.0);
+  flush();
   merge_to_root(
       mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
       [&](std::size_t k, std::string& text) {
@@ -955,17 +964,17 @@ std::string World::save_state_to_root() {
         double record[1 + kRecord];
         std::memcpy(record, text.data(), sizeof record);
         const auto i = static_cast<std::size_t>(record[0]);
-        for (std::size_t c = 0; c < kLevel; ++c) w.pod(record[1 + c]);
+        emit(text.substr(sizeof(double), kLevel * sizeof(double)));
         for (std::size_t c = 0; c < 6; ++c) level[6 * i + c] = record[1 + kLevel + c];
       });
-  if (!root) return {};
+  if (!root) return;
   for (const std::size_t at : {std::size_t{0}, std::size_t{3}}) {
     w.size(n);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t c = 0; c < 3; ++c) w.pod(level[6 * i + at + c]);
   }
   w.pod(static_cast<std::uint8_t>(energy_.started()));
-  return std::string(out.begin(), out.end());
+  flush();
 }
 
 void World::synchronize() {
