@@ -203,6 +203,34 @@ TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
   expect_same_frames(reference_, out);
 }
 
+// Checkpoints every 250 steps, inside stages and at their ends, by 2 processes: each is merged
+// to process 0 without a whole-world refresh (summary.json's "distribution": as many
+// replica_refreshes on each process as the run without checkpoints, the stages' starts), the
+// last two byte-identical to one process's but for their VTK part (checkpoint_without_vtk), and
+// the outputs those of the run never stopped. Tolerance: none (bytes, counts).
+TEST_F(MpiRestart, CheckpointsInsideStagesNeedNoWholeWorld) {
+  const auto refreshes = [](const fs::path& out) {
+    std::vector<long long> r;
+    const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+    for (const auto& p : summary.at("distribution"))
+      r.push_back(p.at("replica_refreshes").get<long long>());
+    return r;
+  };
+  const std::string every = "--checkpoint-every 250";
+  const fs::path single = dir("every_single"), plain = dir("every_plain"), out = dir("every2");
+  ASSERT_EQ(run(0, scenario_, single, every), 0);
+  ASSERT_EQ(run(2, scenario_, plain, ""), 0);
+  ASSERT_EQ(run(2, scenario_, out, every), 0);
+  EXPECT_EQ(refreshes(out), refreshes(plain));
+  EXPECT_EQ(refreshes(out).size(), 2u);
+  for (const char* name : {"checkpoint.bdck", "checkpoint.bdck.prev"}) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(checkpoint_without_vtk(out / name, scenario_) ==
+                checkpoint_without_vtk(single / name, scenario_));
+  }
+  EXPECT_EQ(outputs(out), outputs(reference_));
+}
+
 // Bad input: a checkpoint that is not one, given to --resume on 3 processes. Process 0 alone
 // reads it; every process stops with its one message, exit code 2, the folder untouched.
 TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {

@@ -162,25 +162,10 @@ void CheckpointFileWriter::finish() {
 
 void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash,
                            std::string_view payload) {
-  std::string bytes(kMagic, sizeof kMagic);
-  put(bytes, kByteOrder);
-  put(bytes, kCheckpointVersion);
-  put(bytes, scenario_hash);
-  put(bytes, static_cast<std::uint64_t>(payload.size()));
+  std::string bytes = header(scenario_hash, payload.size());
   bytes.append(payload);
   put(bytes, fnv1a64(bytes));
-  // The last checkpoint becomes NAME.prev by a second name (a hard link; a copy where the file
-  // system has none), then the new one replaces NAME by a rename: at every moment NAME is a
-  // whole checkpoint, also when the process is killed in between.
-  std::error_code ec;
-  if (std::filesystem::exists(file, ec)) {
-    std::filesystem::path prev = file;
-    prev += ".prev";
-    std::filesystem::remove(prev, ec);
-    std::filesystem::create_hard_link(file, prev, ec);
-    if (ec)
-      std::filesystem::copy_file(file, prev, std::filesystem::copy_options::overwrite_existing, ec);
-  }
+  keep_previous(file);
   write_file_atomically(file, bytes);
 }
 
