@@ -203,6 +203,32 @@ TEST_F(MpiRestart, KilledRankLeavesTheLastWholeCheckpointAndNoSummary) {
   expect_same_frames(reference_, out);
 }
 
+// Checkpoints every 250 steps, inside stages and at their ends, by 2 processes: each is merged
+// to process 0 without a whole-world refresh (summary.json's "distribution": on each process no
+// more refreshes than the two later stages' starts and one per new partition after the first,
+// which the timing-driven rebalancing makes; the ten checkpoints, seven inside stages, made as
+// many more before), the last two byte-identical to one process's but for their VTK part
+// (checkpoint_without_vtk), and the outputs those of the run never stopped. Tolerance: none.
+TEST_F(MpiRestart, CheckpointsInsideStagesNeedNoWholeWorld) {
+  const std::string every = "--checkpoint-every 250";
+  const fs::path single = dir("every_single"), out = dir("every2");
+  ASSERT_EQ(run(0, scenario_, single, every), 0);
+  ASSERT_EQ(run(2, scenario_, out, every), 0);
+  const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  ASSERT_EQ(summary.at("distribution").size(), 2u);
+  for (const auto& p : summary.at("distribution")) {
+    const auto refreshes = p.at("replica_refreshes").get<long long>();
+    const auto partitions = p.at("partitions").get<long long>();
+    EXPECT_LE(refreshes, 2 + (partitions - 1)) << p.dump();
+  }
+  for (const char* name : {"checkpoint.bdck", "checkpoint.bdck.prev"}) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(checkpoint_without_vtk(out / name, scenario_) ==
+                checkpoint_without_vtk(single / name, scenario_));
+  }
+  EXPECT_EQ(outputs(out), outputs(reference_));
+}
+
 // Bad input: a checkpoint that is not one, given to --resume on 3 processes. Process 0 alone
 // reads it; every process stops with its one message, exit code 2, the folder untouched.
 TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {

@@ -4,8 +4,15 @@
 // 32 + n FNV-1a 64 of bytes [0, 32 + n) (u64). Integers in the writer's byte order.
 #include "blockdem/io/checkpoint_file.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
+#include <stdexcept>
 #include <system_error>
+#include <vector>
 
 #include "blockdem/io/atomic_file.hpp"
 
@@ -30,20 +37,19 @@ T get(const std::string& s, std::size_t at) {
   return v;
 }
 
-}  // namespace
-
-void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash,
-                           std::string_view payload) {
+std::string header(std::uint64_t scenario_hash, std::uint64_t payload_size) {
   std::string bytes(kMagic, sizeof kMagic);
   put(bytes, kByteOrder);
   put(bytes, kCheckpointVersion);
   put(bytes, scenario_hash);
-  put(bytes, static_cast<std::uint64_t>(payload.size()));
-  bytes.append(payload);
-  put(bytes, fnv1a64(bytes));
-  // The last checkpoint becomes NAME.prev by a second name (a hard link; a copy where the file
-  // system has none), then the new one replaces NAME by a rename: at every moment NAME is a
-  // whole checkpoint, also when the process is killed in between.
+  put(bytes, payload_size);
+  return bytes;
+}
+
+// The last checkpoint becomes NAME.prev by a second name (a hard link; a copy where the file
+// system has none), then the new one replaces NAME by a rename: at every moment NAME is a whole
+// checkpoint, also when the process is killed in between.
+void keep_previous(const std::filesystem::path& file) {
   std::error_code ec;
   if (std::filesystem::exists(file, ec)) {
     std::filesystem::path prev = file;
@@ -53,6 +59,113 @@ void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scen
     if (ec)
       std::filesystem::copy_file(file, prev, std::filesystem::copy_options::overwrite_existing, ec);
   }
+}
+
+[[noreturn]] void fail(const std::filesystem::path& file, const char* what) {
+  throw std::runtime_error("cannot write " + file.string() + ": " + what + " (" +
+                           std::strerror(errno) + ")");
+}
+
+constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
+
+}  // namespace
+
+CheckpointFileWriter::CheckpointFileWriter(const std::filesystem::path& file,
+                                           std::uint64_t scenario_hash)
+    : file_(file), scenario_hash_(scenario_hash) {
+  // The temporary name of write_file_atomically (a run's folder clean-up knows it).
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  std::string name(1, '.');
+  name.append(file.filename().string()).append(".tmp");
+  tmp_ = dir / name;
+  fd_ = ::open(tmp_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) fail(file_, "cannot create the temporary file");
+}
+
+CheckpointFileWriter::~CheckpointFileWriter() {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  ::unlink(tmp_.c_str());
+}
+
+void CheckpointFileWriter::write_at(std::uint64_t at, std::string_view bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n =
+        ::pwrite(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(at + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail(file_, "write failed");
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+void CheckpointFileWriter::flush() {
+  write_at(kHeader + written_, buffer_);
+  written_ += buffer_.size();
+  buffer_.clear();
+}
+
+void CheckpointFileWriter::append(std::string_view bytes) {
+  buffer_.append(bytes);
+  size_ += bytes.size();
+  if (buffer_.size() >= kBufferBytes) flush();
+}
+
+void CheckpointFileWriter::patch(std::uint64_t at, std::string_view bytes) {
+  if (at + bytes.size() > size_) throw std::logic_error("checkpoint patch past the end");
+  // The part still buffered is patched there, the rest in the file.
+  for (std::size_t k = 0; k < bytes.size(); ++k) {
+    const std::uint64_t p = at + k;
+    if (p >= written_)
+      buffer_[static_cast<std::size_t>(p - written_)] = bytes[k];
+    else
+      write_at(kHeader + p, bytes.substr(k, 1));
+  }
+}
+
+void CheckpointFileWriter::finish() {
+  flush();
+  write_at(0, header(scenario_hash_, size_));
+  // The checksum of header and payload, read back in chunks (never the whole file in memory).
+  std::uint64_t hash = 14695981039346656037ull;
+  std::vector<char> chunk(kBufferBytes);
+  for (std::uint64_t at = 0, end = kHeader + size_; at < end;) {
+    const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), end - at));
+    const ssize_t n = ::pread(fd_, chunk.data(), want, static_cast<off_t>(at));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail(file_, "read back failed");
+    hash = fnv1a64(std::string_view(chunk.data(), static_cast<std::size_t>(n)), hash);
+    at += static_cast<std::uint64_t>(n);
+  }
+  std::string tail;
+  put(tail, hash);
+  write_at(kHeader + size_, tail);
+  if (::fsync(fd_) != 0) fail(file_, "fsync failed");
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) {
+    ::unlink(tmp_.c_str());
+    fail(file_, "close failed");
+  }
+  keep_previous(file_);
+  if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
+    ::unlink(tmp_.c_str());
+    fail(file_, "rename failed");
+  }
+  const std::filesystem::path dir = file_.has_parent_path() ? file_.parent_path() : ".";
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash,
+                           std::string_view payload) {
+  std::string bytes = header(scenario_hash, payload.size());
+  bytes.append(payload);
+  put(bytes, fnv1a64(bytes));
+  keep_previous(file);
   write_file_atomically(file, bytes);
 }
 

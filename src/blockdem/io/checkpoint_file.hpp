@@ -25,6 +25,35 @@ inline constexpr std::uint32_t kCheckpointVersion = 2;
 void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash,
                            std::string_view payload);
 
+/// A checkpoint file written in pieces, for a payload that is never held whole (a distributed
+/// run's state, merged to process 0 as it comes): the same bytes, the same temporary name, fsync,
+/// `.prev` and rename as write_checkpoint_file. The pieces go to the temporary file (buffered);
+/// finish() writes the header, reads the file back in chunks for its checksum and renames it.
+/// Destroyed unfinished (an exception), it removes its temporary file.
+class CheckpointFileWriter {
+ public:
+  CheckpointFileWriter(const std::filesystem::path& file, std::uint64_t scenario_hash);
+  ~CheckpointFileWriter();
+  CheckpointFileWriter(const CheckpointFileWriter&) = delete;
+  CheckpointFileWriter& operator=(const CheckpointFileWriter&) = delete;
+  void append(std::string_view bytes);
+  /// Payload bytes appended so far.
+  std::uint64_t size() const { return size_; }
+  /// Overwrites payload bytes appended earlier, at payload offset `at` (a length known later).
+  void patch(std::uint64_t at, std::string_view bytes);
+  void finish();
+
+ private:
+  void write_at(std::uint64_t at, std::string_view bytes);
+  void flush();
+  std::filesystem::path file_, tmp_;
+  std::uint64_t scenario_hash_ = 0;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;     ///< payload bytes appended
+  std::uint64_t written_ = 0;  ///< payload bytes in the file (the rest in buffer_)
+  std::string buffer_;
+};
+
 /// Reads a checkpoint file and returns its payload after checking, in order: the magic, the
 /// byte order, the format version, the size, the checksum and the scenario hash. Throws
 /// CheckpointError with the reason.

@@ -5,7 +5,7 @@
 
 namespace blockdem {
 
-std::string encode_run_point(const RunPoint& p) {
+std::pair<std::string, std::string> encode_run_point_around_world(const RunPoint& p) {
   StateWriter w;
   w.pod(static_cast<std::int32_t>(p.level));
   w.pod(static_cast<std::uint8_t>(p.in_stage));
@@ -13,7 +13,8 @@ std::string encode_run_point(const RunPoint& p) {
   w.vec(p.stage.gravity_before);
   w.pod(p.stage.start_time);
   w.str(p.monitor);
-  w.str(p.world);
+  std::string head(w.bytes().begin(), w.bytes().end());
+  w.bytes().clear();
   w.str(p.before);
   w.str(p.summary);
   w.str(p.stages);
@@ -27,7 +28,16 @@ std::string encode_run_point(const RunPoint& p) {
     w.str(content);
   }
   w.str(p.outputs);
-  return std::string(w.bytes().begin(), w.bytes().end());
+  return {std::move(head), std::string(w.bytes().begin(), w.bytes().end())};
+}
+
+std::string encode_run_point(const RunPoint& p) {
+  auto [head, tail] = encode_run_point_around_world(p);
+  StateWriter w;
+  w.str(p.world);
+  head.append(w.bytes().begin(), w.bytes().end());
+  head.append(tail);
+  return head;
 }
 
 RunPoint decode_run_point(const std::string& bytes) {

@@ -32,6 +32,10 @@ struct RunPoint {
 };
 
 std::string encode_run_point(const RunPoint& point);
+/// encode_run_point's bytes before and after the world's state (`point.world` is not read): the
+/// encoding is head, the world's length (8 bytes) and bytes, tail. For a writer that streams the
+/// world's state into the file as it comes (a distributed run's, docs/restart.md).
+std::pair<std::string, std::string> encode_run_point_around_world(const RunPoint& point);
 /// Throws StateError for bytes that are not a RunPoint.
 RunPoint decode_run_point(const std::string& bytes);
 

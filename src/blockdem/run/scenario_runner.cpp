@@ -182,7 +182,6 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       monitor->save_state(w);
       p.monitor.assign(w.bytes().begin(), w.bytes().end());
     }
-    p.world = state_bytes(world);
     if (before) p.before = state_bytes(*before);
     p.summary = summary.dump();
     p.stages = stages.dump();
@@ -199,16 +198,29 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       if (is_checkpoint(rel) || res.foreign_files.count(rel)) continue;
       p.files.emplace_back(rel, read_file_bytes(out / rel));
     }
-    write_checkpoint_file(out / kCheckpointName, control.scenario_hash, encode_run_point(p));
+    // The world's state streams into the file as it is merged (encode_run_point's layout): no
+    // process holds it whole, nor process 0 its bytes.
+    const auto [head, tail] = encode_run_point_around_world(p);
+    CheckpointFileWriter file(out / kCheckpointName, control.scenario_hash);
+    file.append(head);
+    const std::uint64_t length_at = file.size();
+    file.append(std::string(sizeof(std::uint64_t), '\0'));
+    world.save_state_to_root([&](std::string_view bytes) { file.append(bytes); });
+    const std::uint64_t length = file.size() - length_at - sizeof(std::uint64_t);
+    file.patch(length_at, std::string_view(reinterpret_cast<const char*>(&length), sizeof length));
+    file.append(tail);
+    file.finish();
   };
   // A checkpoint that every process of an MPI run decides on together (the outputs' writer
   // alone writes the file): the checkpoint does not depend on the number of processes.
   auto checkpoint = [&](int level, const StageResume* at, const MotionMonitor* monitor,
                         const World* before) {
-    // A distributed world is made whole first (collectively: every process calls this at the
-    // same steps, see poll()).
-    world.synchronize();
-    if (control.write_checkpoint_files) write_checkpoint(level, at, monitor, before);
+    // A distributed world's state is merged to process 0 without making it whole anywhere
+    // (collectively: every process calls this at the same steps, see poll()).
+    if (control.write_checkpoint_files)
+      write_checkpoint(level, at, monitor, before);
+    else
+      world.save_state_to_root([](std::string_view) {});
     last_checkpoint = std::chrono::steady_clock::now();
   };
   auto poll = [&] {

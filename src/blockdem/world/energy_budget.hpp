@@ -109,6 +109,10 @@ class EnergyLedger {
 
   /// Blocks were removed: the next step starts the accounting again, carrying the residual.
   void restart() { started_ = false; }
+  /// Whether a step has been accounted (save_state's last byte), and the number of per-block
+  /// records (its count), for a writer of save_state's bytes in parts.
+  bool started() const { return started_; }
+  std::size_t records() const { return previous_.size(); }
 
   const EnergyBudget& budget() const { return budget_; }
   /// The whole ledger (budget, previous step, level velocities), for a bit-identical restart.

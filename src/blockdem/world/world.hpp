@@ -211,6 +211,12 @@ class World {
   /// are removed again, matched by name); the run then continues bit-identically. Throws
   /// StateError when the state does not fit this world.
   void load_state(StateReader& in);
+  /// Collective with settings().distribution (every process at the same step): save_state's
+  /// bytes, in order and in pieces, to `emit` on process 0 (the others call nothing), as a whole
+  /// world would write them, without making the world whole on any process: each process sends
+  /// the blocks and pairs it keeps exact, merged to process 0 in bounded chunks (merge_to_root;
+  /// docs/restart.md). Without a distribution, or on a whole world: save_state's bytes at once.
+  void save_state_to_root(const std::function<void(std::string_view)>& emit);
   /// With settings().distribution: the owner process of each block (empty before the first
   /// step) and this process's figures of the distributed work.
   const std::vector<int>& block_owners() const { return owner_; }
@@ -486,7 +492,15 @@ class World {
     bool partial = false;
   } checkpoint_;
   void save_checkpoint_part();  ///< the divergence checkpoint of a distributed step, its part
-  void gather_checkpoint();     ///< collective: the parts into the whole checkpoint
+  // save_state's parts (world_state.cpp), shared with save_state_to_root: block i's record with
+  // its loads (force, torque, contact force), a slot's record with its contact state (null: the
+  // fresh contact it restarts from), the counters after the stiffness sums, and the divergence
+  // checkpoint.
+  void save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loads) const;
+  void save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const;
+  void save_counters(StateWriter& w, std::int64_t overlap_violation) const;
+  void save_divergence_checkpoint(StateWriter& w) const;
+  void gather_checkpoint();  ///< collective: the parts into the whole checkpoint
 };
 
 }  // namespace blockdem

@@ -718,6 +718,265 @@ void World::gather_checkpoint() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void World::save_state_to_root(const std::function<void(std::string_view)>& emit) {
+  // The divergence checkpoint's parts are gathered as synchronize() gathers them (into the
+  // checkpoint's own per-block records, which every process keeps: no whole world).
+  if (settings_.distribution) gather_checkpoint();
+  const bool root = !settings_.distribution || settings_.distribution->rank() == 0;
+  if (!settings_.distribution || replica_complete_) {
+    if (!root) return;
+    StateWriter w;
+    save_state(w);
+    emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+    return;
+  }
+  // save_state's bytes as they would be after synchronize(), in its order, each section merged
+  // to process 0 from the processes that keep it exact (docs/restart.md, "Under MPI"): the
+  // blocks by index from their owners, the slots by (a, b) from the pairs' owners, the energy
+  // records by index. What synchronize() re-derives is derived here alike: the resting blocks'
+  // loads (sum_resting_loads), the index of the overlap violation in the whole slot list.
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const std::size_t n = blocks_.size();
+  if (energy_.records() != n)
+    throw std::logic_error("save_state_to_root: the energy ledger has another number of blocks");
+  std::vector<std::size_t> mine;  // this process's blocks
+  for (std::size_t i = 0; i < n; ++i)
+    if (own_[i] != 0) mine.push_back(i);
+
+  // The resting blocks' loads and stiffness sums, as sum_resting_loads sums them on a whole
+  // world (every active slot in (a, b) order, its arithmetic), on every process: 11 values each.
+  constexpr std::size_t kRest = 11;  // force, torque, contact force, stiffness, rotational
+  std::vector<std::size_t> rest_at(n, n);
+  std::vector<double> rest;
+  if (resting_.size() == n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (resting_[i] == 0) continue;
+      rest_at[i] = rest.size() / kRest;
+      rest.resize(rest.size() + kRest, 0.0);
+    }
+  }
+  if (!rest.empty()) {
+    std::vector<const PairSlot*> terms;
+    for (const PairSlot& s : slots_) {
+      if (s.active && (resting_[s.a] != 0 || resting_[s.b] != 0) && pair_owner(s) == rank)
+        terms.push_back(&s);
+    }
+    struct Term {
+      std::int32_t a, b;
+      double f[3], xf[3], normal[3];
+      double twist, spread, stiffness, twist_stiffness;
+    };
+    static_assert(std::is_trivially_copyable_v<Term>);
+    merge_to_root(
+        terms.size(),
+        [&](std::size_t k) {
+          return (static_cast<std::uint64_t>(terms[k]->a) << 32) |
+                 static_cast<std::uint32_t>(terms[k]->b);
+        },
+        [&](std::size_t k, std::string& text) {
+          const Contact& ct = contact_of(*terms[k]);
+          const Eigen::Vector3d f = ct.force_on_b();
+          Term t{ct.a,
+                 ct.b,
+                 {},
+                 {},
+                 {},
+                 ct.twist.moment,
+                 ct.compressed_area() / 12.0,
+                 ct.stiffness,
+                 ct.twist_stiffness};
+          for (int c = 0; c < 3; ++c) {
+            t.f[c] = f[c];
+            t.xf[c] = ct.force_point()[c];
+            t.normal[c] = ct.geometry.normal[c];
+          }
+          text.append(reinterpret_cast<const char*>(&t), sizeof t);
+        },
+        [&](std::string_view text) {
+          Term t;
+          std::memcpy(static_cast<void*>(&t), text.data(), sizeof t);
+          const Eigen::Vector3d f(t.f[0], t.f[1], t.f[2]), xf(t.xf[0], t.xf[1], t.xf[2]);
+          const Eigen::Vector3d normal(t.normal[0], t.normal[1], t.normal[2]);
+          for (const int i : {t.a, t.b}) {
+            const std::size_t j = rest_at[static_cast<std::size_t>(i)];
+            if (j == n) continue;
+            double* r = rest.data() + j * kRest;
+            Eigen::Map<Eigen::Vector3d> force(r), torque(r + 3), contact_force(r + 6);
+            const Eigen::Vector3d& position = blocks_[static_cast<std::size_t>(i)].position;
+            if (i == t.b) {
+              force += f;
+              contact_force += f;
+              torque += (xf - position).cross(f);
+              if (t.twist != 0.0) torque += t.twist * normal;
+            } else {
+              force -= f;
+              contact_force -= f;
+              torque -= (xf - position).cross(f);
+              if (t.twist != 0.0) torque -= t.twist * normal;
+            }
+            r[9] += t.stiffness;
+            r[10] += t.stiffness * ((xf - position).squaredNorm() + t.spread);
+            r[10] += t.twist_stiffness;
+          }
+        });
+    std::vector<char> bytes(rest.size() * sizeof(double));
+    std::memcpy(bytes.data(), rest.data(), bytes.size());
+    dist.broadcast(bytes);
+    if (bytes.size() != rest.size() * sizeof(double))
+      throw std::logic_error("save_state_to_root: a malformed broadcast");
+    std::memcpy(rest.data(), bytes.data(), bytes.size());
+  }
+  const auto loads_of = [&](std::size_t i, Eigen::Vector3d* loads) -> const Eigen::Vector3d* {
+    if (rest_at[i] == n) return nullptr;
+    const double* r = rest.data() + rest_at[i] * kRest;
+    for (int k = 0; k < 3; ++k) loads[k] = Eigen::Vector3d(r[3 * k], r[3 * k + 1], r[3 * k + 2]);
+    return loads;
+  };
+
+  // Process 0's own bytes between the merges (which emit theirs as they come): flush() emits.
+  StateWriter w;
+  const auto flush = [&] {
+    if (root && !w.bytes().empty())
+      emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+    w.bytes().clear();
+  };
+  w.vec(settings_.gravity);
+  w.pod(settings_.damping);
+  w.size(laws_.size());
+  w.size(n);
+  // The blocks, each with its stiffness sums (kept for the section after the blocks).
+  std::vector<double> stiffness(root ? 2 * n : 0, 0.0);
+  flush();
+  merge_to_root(
+      mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
+      [&](std::size_t k, std::string& text) {
+        const std::size_t i = mine[k];
+        Eigen::Vector3d loads[3];
+        const double* r = rest_at[i] == n ? nullptr : rest.data() + rest_at[i] * kRest;
+        const double head[3] = {
+            static_cast<double>(i), r ? r[9] : (i < stiffness_.size() ? stiffness_[i] : 0.0),
+            r ? r[10] : (i < rotational_stiffness_.size() ? rotational_stiffness_[i] : 0.0)};
+        text.append(reinterpret_cast<const char*>(head), sizeof head);
+        StateWriter b;
+        save_block(b, i, loads_of(i, loads));
+        text.append(reinterpret_cast<const char*>(b.bytes().data()), b.bytes().size());
+      },
+      [&](std::string_view text) {
+        double head[3];
+        std::memcpy(head, text.data(), sizeof head);
+        const auto i = static_cast<std::size_t>(head[0]);
+        stiffness[i] = head[1];
+        stiffness[n + i] = head[2];
+        emit(text.substr(sizeof head));
+      });
+  if (root) {
+    w.size(n);
+    for (std::size_t i = 0; i < n; ++i) w.pod(stiffness[i]);
+    w.size(n);
+    for (std::size_t i = 0; i < n; ++i) w.pod(stiffness[n + i]);
+  }
+  std::vector<double>().swap(stiffness);
+  // The counters, with the overlap violation's index in the whole (a, b)-sorted slot list:
+  // the owned slots before its pair, summed over the processes.
+  std::vector<const PairSlot*> owned;
+  for (const PairSlot& s : slots_)
+    if (pair_owner(s) == rank) owned.push_back(&s);
+  std::int64_t counts[3] = {static_cast<std::int64_t>(owned.size()), 0, 0};
+  if (std::isfinite(overlap_key_)) {
+    for (const PairSlot* s : owned) {
+      const double key = static_cast<double>(s->a) * static_cast<double>(n) + s->b;
+      counts[1] += key < overlap_key_ ? 1 : 0;
+      counts[2] += key == overlap_key_ ? 1 : 0;
+    }
+  }
+  reduce_partials({}, {}, counts);
+  if (root) save_counters(w, counts[2] > 0 ? counts[1] : -1);
+  const auto pair_key = [&](std::size_t k) {
+    return (static_cast<std::uint64_t>(owned[k]->a) << 32) |
+           static_cast<std::uint32_t>(owned[k]->b);
+  };
+  // The slots' pairs, then their records (a contact state where a force acts, as synchronize
+  // keeps it: through its bytes).
+  if (root) w.size(static_cast<std::size_t>(counts[0]));
+  flush();
+  merge_to_root(
+      owned.size(), pair_key,
+      [&](std::size_t k, std::string& text) {
+        const std::int32_t ab[2] = {owned[k]->a, owned[k]->b};
+        text.append(reinterpret_cast<const char*>(ab), sizeof ab);
+      },
+      emit);
+  if (root) w.size(static_cast<std::size_t>(counts[0]));
+  flush();
+  merge_to_root(
+      owned.size(), pair_key,
+      [&](std::size_t k, std::string& text) {
+        const PairSlot& s = *owned[k];
+        StateWriter b;
+        if (s.active) {
+          char bytes[kContactBytes];
+          contact_to_bytes(contact_of(s), bytes);
+          const Contact c = contact_from_bytes(bytes);
+          save_slot(b, s, &c);
+        } else {
+          save_slot(b, s, nullptr);
+        }
+        text.append(reinterpret_cast<const char*>(b.bytes().data()), b.bytes().size());
+      },
+      emit);
+  if (root) save_divergence_checkpoint(w);
+  flush();
+  // The energy ledger (EnergyLedger::save_state's layout): the budget (every process's), each
+  // block's record from its owner (a resting block's contact impulses from the sums above, as
+  // sum_resting_loads sets them), the level velocities (kept for their two lists), the flag.
+  const EnergyBudget& e = energy_.budget();
+  if (root) {
+    for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
+                     e.friction_dissipation, e.damping_dissipation, e.initial})
+      w.pod(v);
+    w.size(n);
+  }
+  constexpr std::size_t kRecord = EnergyLedger::kBlockRecordDoubles;
+  constexpr std::size_t kLevel = kRecord - 6;  // the record's level velocities
+  std::vector<double> level(root ? 6 * n : 0, 0.0);
+  flush();
+  merge_to_root(
+      mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
+      [&](std::size_t k, std::string& text) {
+        const std::size_t i = mine[k];
+        double record[1 + kRecord];
+        record[0] = static_cast<double>(i);
+        energy_.block_record(i, record + 1);
+        if (rest_at[i] != n && step_count_ != 0) {
+          constexpr std::size_t kContact = 1 + 24;  // as sum_resting_loads
+          const double* r = rest.data() + rest_at[i] * kRest;
+          const Eigen::Vector3d impulse = last_dt_ * Eigen::Vector3d(r[6], r[7], r[8]);
+          const Eigen::Vector3d angular = last_dt_ * Eigen::Vector3d(r[3], r[4], r[5]);
+          for (int c = 0; c < 3; ++c) {
+            record[kContact + static_cast<std::size_t>(c)] = impulse[c];
+            record[kContact + 3 + static_cast<std::size_t>(c)] = angular[c];
+          }
+        }
+        text.append(reinterpret_cast<const char*>(record), sizeof record);
+      },
+      [&](std::string_view text) {
+        double record[1 + kRecord];
+        std::memcpy(record, text.data(), sizeof record);
+        const auto i = static_cast<std::size_t>(record[0]);
+        emit(text.substr(sizeof(double), kLevel * sizeof(double)));
+        for (std::size_t c = 0; c < 6; ++c) level[6 * i + c] = record[1 + kLevel + c];
+      });
+  if (!root) return;
+  for (const std::size_t at : {std::size_t{0}, std::size_t{3}}) {
+    w.size(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t c = 0; c < 3; ++c) w.pod(level[6 * i + at + c]);
+  }
+  w.pod(static_cast<std::uint8_t>(energy_.started()));
+  flush();
+}
+
 void World::synchronize() {
   // A divergence checkpoint in parts is made whole with the world (its readers, the reset to it
   // and the restart file, read a whole world).

@@ -185,36 +185,10 @@ void World::save_state(StateWriter& w) const {
   w.pod(settings_.damping);
   w.size(laws_.size());
   w.size(blocks_.size());
-  for (const Block& b : blocks_) {
-    w.str(b.name);
-    w.vec(b.position);
-    w.quat(b.orientation);
-    w.vec(b.velocity);
-    w.vec(b.angular_velocity);
-    w.vec(b.angular_momentum);
-    write_motion(w, b.motion);
-    write_servo(w, b.servo());
-    w.vec(b.force);
-    w.vec(b.torque);
-    w.vec(b.contact_force);
-    // World planes and box as the last step left them (a restart does not refresh them).
-    w.size(b.world_planes.size());
-    for (const Halfspace& h : b.world_planes) {
-      w.vec(h.normal);
-      w.pod(h.offset);
-    }
-    w.vec(b.aabb_min);
-    w.vec(b.aabb_max);
-  }
+  for (std::size_t i = 0; i < blocks_.size(); ++i) save_block(w, i, nullptr);
   write_doubles(w, stiffness_);
   write_doubles(w, rotational_stiffness_);
-  w.pod(contact_dt_);
-  w.pod(time_);
-  w.pod(step_count_);
-  w.pod(last_dt_);
-  w.pod(broken_bonds_);
-  w.pod(overlap_violation_);
-  w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
+  save_counters(w, overlap_violation_);
   // The broad phase's pairs of the last step, which its merge made the slots' pairs (a restart
   // reads them and leaves them to the next broad phase; the step frees its own list).
   w.size(slots_.size());
@@ -223,18 +197,59 @@ void World::save_state(StateWriter& w) const {
     w.pod(static_cast<std::int32_t>(s.b));
   }
   w.size(slots_.size());
-  for (const PairSlot& s : slots_) {
-    const Contact& c = s.contact >= 0 ? contact_of(s) : fresh_contact(s);
-    write_contact(w, c, unpack_warm_start(s.narrow_cache));
-    w.pod(static_cast<std::int32_t>(s.group_law));
-    w.pod(static_cast<std::uint8_t>(s.broke));
-    // The step's terms of a pair: its contact's where a force acts, else zero (as the per-pair
-    // pass leaves them).
-    w.pod(s.active ? c.slip_work : 0.0);
-    w.pod(s.active ? c.stiffness : 0.0);
-    w.pod(s.active ? c.twist_stiffness : 0.0);
-    w.pod(static_cast<std::uint8_t>(s.active));
+  for (const PairSlot& s : slots_) save_slot(w, s, s.contact >= 0 ? &contact_of(s) : nullptr);
+  save_divergence_checkpoint(w);
+  // The energy ledger last: level_state() and energy_budget() read it.
+  energy_.save_state(w);
+}
+
+void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loads) const {
+  const Block& b = blocks_[i];
+  w.str(b.name);
+  w.vec(b.position);
+  w.quat(b.orientation);
+  w.vec(b.velocity);
+  w.vec(b.angular_velocity);
+  w.vec(b.angular_momentum);
+  write_motion(w, b.motion);
+  write_servo(w, b.servo());
+  w.vec(loads ? loads[0] : b.force);
+  w.vec(loads ? loads[1] : b.torque);
+  w.vec(loads ? loads[2] : b.contact_force);
+  // World planes and box as the last step left them (a restart does not refresh them).
+  w.size(b.world_planes.size());
+  for (const Halfspace& h : b.world_planes) {
+    w.vec(h.normal);
+    w.pod(h.offset);
   }
+  w.vec(b.aabb_min);
+  w.vec(b.aabb_max);
+}
+
+void World::save_counters(StateWriter& w, std::int64_t overlap_violation) const {
+  w.pod(contact_dt_);
+  w.pod(time_);
+  w.pod(step_count_);
+  w.pod(last_dt_);
+  w.pod(broken_bonds_);
+  w.pod(overlap_violation);
+  w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
+}
+
+void World::save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const {
+  const Contact& c = contact ? *contact : fresh_contact(s);
+  write_contact(w, c, unpack_warm_start(s.narrow_cache));
+  w.pod(static_cast<std::int32_t>(s.group_law));
+  w.pod(static_cast<std::uint8_t>(s.broke));
+  // The step's terms of a pair: its contact's where a force acts, else zero (as the per-pair
+  // pass leaves them).
+  w.pod(s.active ? c.slip_work : 0.0);
+  w.pod(s.active ? c.stiffness : 0.0);
+  w.pod(s.active ? c.twist_stiffness : 0.0);
+  w.pod(static_cast<std::uint8_t>(s.active));
+}
+
+void World::save_divergence_checkpoint(StateWriter& w) const {
   // The divergence checkpoint, so that a blow-up after a restart rolls back to the same state.
   w.pod(static_cast<std::uint8_t>(checkpoint_.valid));
   w.pod(checkpoint_.time);
@@ -268,8 +283,6 @@ void World::save_state(StateWriter& w) const {
     w.pod(h.area);
   }
   checkpoint_.energy.save_state(w);
-  // The energy ledger last: level_state() and energy_budget() read it.
-  energy_.save_state(w);
 }
 
 void World::load_state(StateReader& r) {

@@ -1,0 +1,102 @@
+// The restart file's envelope written in pieces (CheckpointFileWriter, as a distributed run
+// streams its state into it) against the whole-payload writer, and the reader's refusals of a
+// damaged file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/checkpoint_file.hpp"
+
+namespace blockdem {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("blockdem_checkpoint_file_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A payload larger than the writer's buffer (1 MiB), so that pieces, the patch and the
+// read-back checksum cross its bounds.
+std::string payload() {
+  std::string p;
+  for (int k = 0; p.size() < (std::size_t{3} << 20); ++k) p += std::to_string(k * 7919) + ';';
+  return p;
+}
+
+// In pieces, with a length patched in after the fact (already on disk), the file is the bytes
+// write_checkpoint_file writes for the whole payload, and it reads back to the payload. The
+// previous checkpoint becomes NAME.prev alike. Tolerance: none (bytes).
+TEST(CheckpointFileWriter, PiecesWithAPatchGiveTheWholeWritersBytes) {
+  const fs::path dir = fresh("pieces");
+  const std::string p = payload();
+  write_checkpoint_file(dir / "whole.bdck", 42, "old");
+  write_checkpoint_file(dir / "whole.bdck", 42, p);
+  write_checkpoint_file(dir / "pieces.bdck", 42, "old");
+  {
+    CheckpointFileWriter w(dir / "pieces.bdck", 42);
+    w.append(p.substr(0, 10));
+    w.append(std::string(8, '\0'));  // patched below, once written to the file
+    for (std::size_t at = 18; at < p.size(); at += 100'003) w.append(p.substr(at, 100'003));
+    EXPECT_EQ(w.size(), p.size());
+    w.patch(10, p.substr(10, 8));
+    w.finish();
+  }
+  EXPECT_EQ(read_file_bytes(dir / "pieces.bdck"), read_file_bytes(dir / "whole.bdck"));
+  EXPECT_EQ(read_checkpoint_file(dir / "pieces.bdck", 42), p);
+  EXPECT_EQ(read_file_bytes(dir / "pieces.bdck.prev"), read_file_bytes(dir / "whole.bdck.prev"));
+  EXPECT_FALSE(fs::exists(dir / ".pieces.bdck.tmp"));
+  fs::remove_all(dir);
+}
+
+// A writer destroyed before finish() (an error while the state was merged) leaves the last
+// checkpoint as it was and no temporary file.
+TEST(CheckpointFileWriter, UnfinishedLeavesTheLastCheckpoint) {
+  const fs::path dir = fresh("unfinished");
+  write_checkpoint_file(dir / "c.bdck", 7, "last");
+  const std::string before = read_file_bytes(dir / "c.bdck");
+  {
+    CheckpointFileWriter w(dir / "c.bdck", 7);
+    w.append(payload());
+  }
+  EXPECT_EQ(read_file_bytes(dir / "c.bdck"), before);
+  EXPECT_FALSE(fs::exists(dir / "c.bdck.prev"));
+  EXPECT_FALSE(fs::exists(dir / ".c.bdck.tmp"));
+  fs::remove_all(dir);
+}
+
+// Bad input: a file written in pieces, then truncated by one byte or with one payload byte
+// changed, is refused with the file's name and the reason.
+TEST(CheckpointFileWriter, DamagedFileIsRefusedWithItsReason) {
+  const fs::path dir = fresh("damaged");
+  {
+    CheckpointFileWriter w(dir / "c.bdck", 7);
+    w.append(payload());
+    w.finish();
+  }
+  const std::string good = read_file_bytes(dir / "c.bdck");
+  const auto refusal = [&](const std::string& bytes) {
+    write_file_atomically(dir / "c.bdck", bytes);
+    try {
+      read_checkpoint_file(dir / "c.bdck", 7);
+    } catch (const CheckpointError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string truncated = refusal(good.substr(0, good.size() - 1));
+  EXPECT_NE(truncated.find((dir / "c.bdck").string() + ": truncated"), std::string::npos)
+      << truncated;
+  std::string flipped = good;
+  flipped[1000] ^= 1;
+  EXPECT_NE(refusal(flipped).find("corrupt (checksum mismatch)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace blockdem
