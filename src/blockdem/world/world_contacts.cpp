@@ -281,54 +281,6 @@ void World::merge_pairs() {
   }
 }
 
-// The cache's layout, field for field: a field added to Boon2012Cache, InscribedBall or
-// SliceWarmStart must be added to NarrowWarmStart and the two functions below.
-static_assert(sizeof(Boon2012Cache) == 184 && sizeof(InscribedBall) == 64 &&
-                  sizeof(SliceWarmStart) == 72,
-              "the narrow-phase cache changed: update World::NarrowWarmStart");
-
-World::NarrowWarmStart World::pack_warm_start(const Boon2012Cache& cache) {
-  constexpr int kMax = std::numeric_limits<std::int16_t>::max();
-  const auto fits = [](int i) { return i >= -1 && i <= kMax; };
-  bool ok = fits(cache.planes_a) && fits(cache.planes_b) && cache.ball.num_active >= 0 &&
-            cache.ball.num_active <= 4 && cache.slice.count <= cache.slice.edge_planes.size();
-  for (int i : cache.ball.active) ok = ok && fits(i);
-  for (int i : cache.slice.edge_planes) ok = ok && fits(i);
-  NarrowWarmStart w;
-  if (!ok) return w;
-  w.radius = cache.ball.radius;
-  w.center = cache.ball.center;
-  w.last_point = cache.last_point;
-  for (std::size_t k = 0; k < 4; ++k) w.active[k] = static_cast<std::int16_t>(cache.ball.active[k]);
-  for (std::size_t k = 0; k < w.edge_planes.size(); ++k)
-    w.edge_planes[k] = static_cast<std::int16_t>(cache.slice.edge_planes[k]);
-  w.planes_a = static_cast<std::int16_t>(cache.planes_a);
-  w.planes_b = static_cast<std::int16_t>(cache.planes_b);
-  w.num_active = static_cast<std::uint8_t>(cache.ball.num_active);
-  w.slice_count = static_cast<std::uint8_t>(cache.slice.count);
-  w.flags = static_cast<std::uint8_t>((cache.has_ball ? NarrowWarmStart::kHasBall : 0) |
-                                      (cache.ball.bounded ? NarrowWarmStart::kBounded : 0) |
-                                      (cache.has_point ? NarrowWarmStart::kHasPoint : 0));
-  return w;
-}
-
-Boon2012Cache World::unpack_warm_start(const NarrowWarmStart& w) {
-  Boon2012Cache c;
-  c.planes_a = w.planes_a;
-  c.planes_b = w.planes_b;
-  c.ball.radius = w.radius;
-  c.ball.center = w.center;
-  c.ball.bounded = (w.flags & NarrowWarmStart::kBounded) != 0;
-  for (std::size_t k = 0; k < 4; ++k) c.ball.active[k] = w.active[k];
-  c.ball.num_active = w.num_active;
-  c.has_ball = (w.flags & NarrowWarmStart::kHasBall) != 0;
-  c.last_point = w.last_point;
-  c.has_point = (w.flags & NarrowWarmStart::kHasPoint) != 0;
-  for (std::size_t k = 0; k < w.edge_planes.size(); ++k) c.slice.edge_planes[k] = w.edge_planes[k];
-  c.slice.count = w.slice_count;
-  return c;
-}
-
 Contact World::fresh_contact(const PairSlot& slot) const {
   Contact c;
   c.a = slot.a;

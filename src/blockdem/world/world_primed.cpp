@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <limits>
 
 #include "blockdem/world/world.hpp"
 
@@ -20,6 +21,59 @@ bool same_bits(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
 }
 
 }  // namespace
+
+// The cache's layout, field for field: a field added to Boon2012Cache, InscribedBall or
+// SliceWarmStart must be added to NarrowWarmStart and the two functions below. They sit in the
+// file of narrow_phase, which calls them for every pair and step: inlined there, the fields of
+// the cache that the other writes over are not cleared first.
+static_assert(sizeof(Boon2012Cache) == 184 && sizeof(InscribedBall) == 64 &&
+                  sizeof(SliceWarmStart) == 72,
+              "the narrow-phase cache changed: update World::NarrowWarmStart");
+
+World::NarrowWarmStart World::pack_warm_start(const Boon2012Cache& cache) {
+  // Every index in [-1, kMax]: tested over whole arrays without a branch per index (signed
+  // comparisons or-ed together, which the compiler makes vector operations).
+  constexpr int kMax = std::numeric_limits<std::int16_t>::max();
+  const auto outside = [](int i) { return static_cast<int>(i < -1) | static_cast<int>(i > kMax); };
+  int out = outside(cache.planes_a) | outside(cache.planes_b);
+  for (int i : cache.ball.active) out |= outside(i);
+  for (int i : cache.slice.edge_planes) out |= outside(i);
+  const bool bad = out != 0 || cache.ball.num_active < 0 || cache.ball.num_active > 4 ||
+                   cache.slice.count > cache.slice.edge_planes.size();
+  NarrowWarmStart w;
+  if (bad) return w;
+  w.radius = cache.ball.radius;
+  w.center = cache.ball.center;
+  w.last_point = cache.last_point;
+  for (std::size_t k = 0; k < 4; ++k) w.active[k] = static_cast<std::int16_t>(cache.ball.active[k]);
+  for (std::size_t k = 0; k < w.edge_planes.size(); ++k)
+    w.edge_planes[k] = static_cast<std::int16_t>(cache.slice.edge_planes[k]);
+  w.planes_a = static_cast<std::int16_t>(cache.planes_a);
+  w.planes_b = static_cast<std::int16_t>(cache.planes_b);
+  w.num_active = static_cast<std::uint8_t>(cache.ball.num_active);
+  w.slice_count = static_cast<std::uint8_t>(cache.slice.count);
+  w.flags = static_cast<std::uint8_t>((cache.has_ball ? NarrowWarmStart::kHasBall : 0) |
+                                      (cache.ball.bounded ? NarrowWarmStart::kBounded : 0) |
+                                      (cache.has_point ? NarrowWarmStart::kHasPoint : 0));
+  return w;
+}
+
+Boon2012Cache World::unpack_warm_start(const NarrowWarmStart& w) {
+  Boon2012Cache c;
+  c.planes_a = w.planes_a;
+  c.planes_b = w.planes_b;
+  c.ball.radius = w.radius;
+  c.ball.center = w.center;
+  c.ball.bounded = (w.flags & NarrowWarmStart::kBounded) != 0;
+  for (std::size_t k = 0; k < 4; ++k) c.ball.active[k] = w.active[k];
+  c.ball.num_active = w.num_active;
+  c.has_ball = (w.flags & NarrowWarmStart::kHasBall) != 0;
+  c.last_point = w.last_point;
+  c.has_point = (w.flags & NarrowWarmStart::kHasPoint) != 0;
+  for (std::size_t k = 0; k < w.edge_planes.size(); ++k) c.slice.edge_planes[k] = w.edge_planes[k];
+  c.slice.count = w.slice_count;
+  return c;
+}
 
 void World::prime_narrow_phase(
     const std::vector<std::pair<int, int>>& pairs,
@@ -116,7 +170,9 @@ void World::take_primed_slots() {
 ContactGeometry World::narrow_phase(PairSlot& slot, const Block& a, const Block& b,
                                     double extent) const {
   const std::size_t k = static_cast<std::size_t>(&slot - slots_.data());
-  if (k < primed_area_.size() && primed_area_[k] != kNotPrimed) {
+  // Each path builds its result in the caller's object: the geometry holds the slice polygon's
+  // vertices inline (~300 bytes), which a copy per pair and step would move again.
+  const auto primed = [&] {
     // The cold solve of the set-up at these very poses: its warm start is the slot's already,
     // the contact point its last point, from which steps 3 and 4 give the same normal and
     // overlap again; the area (step 5, whose warm start of the cold solve is gone) was kept.
@@ -132,12 +188,16 @@ ContactGeometry World::narrow_phase(PairSlot& slot, const Block& a, const Block&
       g.area = primed_area_[k];
     }
     return g;
-  }
-  Boon2012Cache cache = unpack_warm_start(slot.narrow_cache);
-  const ContactGeometry g =
-      boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
-  slot.narrow_cache = pack_warm_start(cache);
-  return g;
+  };
+  const auto solve = [&] {
+    Boon2012Cache cache = unpack_warm_start(slot.narrow_cache);
+    ContactGeometry g =
+        boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
+    slot.narrow_cache = pack_warm_start(cache);
+    return g;
+  };
+  if (k < primed_area_.size() && primed_area_[k] != kNotPrimed) return primed();
+  return solve();
 }
 
 }  // namespace blockdem
