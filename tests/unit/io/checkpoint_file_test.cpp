@@ -3,6 +3,7 @@
 // damaged file.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -25,7 +26,8 @@ fs::path fresh(const std::string& name) {
 // read-back checksum cross its bounds.
 std::string payload() {
   std::string p;
-  for (int k = 0; p.size() < (std::size_t{3} << 20); ++k) p += std::to_string(k * 7919) + ';';
+  for (std::int64_t k = 0; p.size() < (std::size_t{3} << 20); ++k)
+    p += std::to_string(k * 7919) + ';';
   return p;
 }
 
