@@ -397,9 +397,11 @@ void World::settle_contacts() {
   // states lie in its own range of the store, range[t] to range[t + 1] (the store is in slot
   // order), and their new places from places[t] on. Within its range a run moves the
   // states that go down in increasing order and those that go up in decreasing order (no state
-  // is overwritten before it is moved); the few whose new place is outside the range (about as
-  // many as states formed or dropped before the run) are copied aside first and written last,
-  // with the new states, after every run has moved its own.
+  // is overwritten before it is moved), in two walks over its slots; the few whose new place is
+  // outside the range (about as many as states formed or dropped before the run) are copied
+  // aside in the first walk and written last, with the new states placed outside the range,
+  // after every run has moved its own. Each walk reads the 120-byte slots of the run: walks
+  // are memory traffic, which a second core barely shortens.
   const int threads = thread_count();
   if (threads < 2 || slots_.size() < 256 || !settle_contacts_parallel(threads))
     settle_contacts_serial();
@@ -452,35 +454,52 @@ bool World::settle_contacts_parallel(int threads) {
     if (!all_new) {
       const std::size_t from = range[t], to = range[t + 1];
       const auto inside = [&](std::size_t w) { return w >= from && w < to; };
-      // 2. Kept states whose new place is outside the run's range, aside.
+      // The new state of pending slot k, taken from its run's list.
+      const auto take_new = [&](std::size_t k, std::size_t w) {
+        std::vector<PendingContact>& list = pending_[k / pending_run_];
+        const auto it = std::lower_bound(
+            list.begin(), list.end(), k,
+            [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
+        if (it == list.end() || it->slot != k) {
+#pragma omp atomic write
+          missing = true;
+        } else {
+          contacts_[w] = std::move(it->contact);
+        }
+      };
+      // 2. Forward: kept states whose new place is outside the run's range, aside; those going
+      // down within it, moved (in increasing order). Only the run's own range is read or
+      // written until the barrier: the states of a run's slots lie in its range.
       std::size_t w = places[t];
       for (std::size_t k = begin; k < end; ++k) {
         const PairSlot& s = slots_[k];
         if (s.pending) {
           ++w;
         } else if (s.contact >= 0 && s.active) {
-          if (!inside(w))
-            aside[t].emplace_back(w, std::move(contacts_[static_cast<std::size_t>(s.contact)]));
-          ++w;
-        }
-      }
-#pragma omp barrier
-      // 3. Within the range: down in increasing order, then up in decreasing order.
-      w = places[t];
-      for (std::size_t k = begin; k < end; ++k) {
-        PairSlot& s = slots_[k];
-        if (s.pending) {
-          ++w;
-        } else if (s.contact >= 0 && s.active) {
           const auto o = static_cast<std::size_t>(s.contact);
-          if (inside(w) && w < o) contacts_[w] = std::move(contacts_[o]);
+          if (!inside(w)) {
+            aside[t].emplace_back(w, std::move(contacts_[o]));
+          } else if (w < o) {
+            contacts_[w] = std::move(contacts_[o]);
+          }
           ++w;
         }
       }
+      // 3. Backward: those going up (in decreasing order), and the new states whose place is
+      // in the range (every state of a later slot has left it or reached its place by then;
+      // one of an earlier slot there has moved down or aside). The slots take their places.
+      std::vector<std::pair<std::size_t, std::size_t>> new_outside;  // (slot, place)
       for (std::size_t k = end; k-- > begin;) {
         PairSlot& s = slots_[k];
         if (s.pending) {
           --w;
+          if (inside(w)) {
+            take_new(k, w);
+          } else {
+            new_outside.emplace_back(k, w);
+          }
+          s.pending = false;
+          s.contact = static_cast<std::int32_t>(w);
         } else if (s.contact >= 0 && s.active) {
           const auto o = static_cast<std::size_t>(s.contact);
           --w;
@@ -491,29 +510,9 @@ bool World::settle_contacts_parallel(int threads) {
         }
       }
 #pragma omp barrier
-      // 4. The states set aside and the new states.
+      // 4. The states set aside and the new states placed outside the range.
       for (auto& [place, state] : aside[t]) contacts_[place] = std::move(state);
-      w = places[t];
-      for (std::size_t k = begin; k < end; ++k) {
-        PairSlot& s = slots_[k];
-        if (s.pending) {
-          std::vector<PendingContact>& list = pending_[k / pending_run_];
-          const auto it = std::lower_bound(
-              list.begin(), list.end(), k,
-              [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
-          if (it == list.end() || it->slot != k) {
-#pragma omp atomic write
-            missing = true;
-          } else {
-            contacts_[w] = std::move(it->contact);
-          }
-          s.pending = false;
-          s.contact = static_cast<std::int32_t>(w);
-          ++w;
-        } else if (s.contact >= 0) {
-          ++w;  // kept: placed in step 3
-        }
-      }
+      for (const auto& [k, place] : new_outside) take_new(k, place);
     }
   }
   if (all_new) return false;
