@@ -62,6 +62,37 @@ std::int64_t count_in_parallel(std::size_t n, int threads, const Pred& pred) {
   return count;
 }
 
+// How many slots are open bonds (`open`), and how many differ from the pair at their index.
+template <typename Slot, typename Open>
+std::pair<std::int64_t, std::int64_t> count_open_and_moved(
+    const std::vector<Slot>& slots, const std::vector<std::pair<int, int>>& pairs, int threads,
+    const Open& is_open) {
+  const auto m = static_cast<std::int64_t>(slots.size());
+  // 1 for an open bond, 2 for a slot that is not the pair's (the counts' own variables are
+  // written in the loop: a lambda capturing them would bypass the reduction's private copies).
+  const auto tally = [&](std::int64_t k) {
+    const auto i = static_cast<std::size_t>(k);
+    return (is_open(i) ? 1 : 0) |
+           (slots[i].a != pairs[i].first || slots[i].b != pairs[i].second ? 2 : 0);
+  };
+  std::int64_t open = 0, differ = 0;
+  if (threads < 2 || m <= 4096) {
+    for (std::int64_t k = 0; k < m; ++k) {
+      const int t = tally(k);
+      open += t & 1;
+      differ += t >> 1;
+    }
+    return {open, differ};
+  }
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : open, differ)
+  for (std::int64_t k = 0; k < m; ++k) {
+    const int t = tally(k);
+    open += t & 1;
+    differ += t >> 1;
+  }
+  return {open, differ};
+}
+
 // The pair merge in parallel: the slots of `pairs` (sorted by (a, b), no repeats) take their
 // places in `slots` (sorted, the pairs of the last step), each kept slot moved once; a pair
 // that had no slot gets fresh(a, b). The arrangement is the serial merge's, for any thread
@@ -192,9 +223,23 @@ void World::compute_contacts(double dt, int threads) {
   pairs_.reserve(slots_.size());
   broad_phase_.find_pairs(
       block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
-  keep_open_bonds();
-  take_primed_slots();  // the set-up's narrow phase, at the first step
-  merge_pairs();
+  // The common case of a settled scene, found in one pass over the slots (the pair store is
+  // the largest array: each pass over it costs memory traffic that a second core barely
+  // shortens): no open bond, and the same pairs as last step, whose slots then stay as they are.
+  // Else no more passes than the open bonds' count and the merge's own comparison.
+  bool same = false, no_open = false;
+  if (!slots_.empty() && pairs_.size() == slots_.size()) {
+    const auto [open, differ] = count_open_and_moved(slots_, pairs_, threads, [&](std::size_t k) {
+      return slots_[k].active && !contact_of(slots_[k]).touching;
+    });
+    no_open = open == 0;
+    same = no_open && differ == 0 && slots_rules_version_ == rules_version_;
+  }
+  if (!same) {
+    if (!no_open) keep_open_bonds();
+    take_primed_slots();  // the set-up's narrow phase, at the first step
+    merge_pairs();
+  }
   // The slots now hold these pairs, in order: the list is not read again before the next broad
   // phase refills it, and freed it is not held through the step's peak (8 bytes per pair).
   std::vector<std::pair<int, int>>().swap(pairs_);
