@@ -459,7 +459,7 @@ bool World::settle_contacts_parallel(int threads) {
   std::vector<std::size_t> formed(kept.size(), 0), old_first(kept.size(), contacts_.size());
   std::vector<std::size_t> places(kept.size() + 1, 0), range(kept.size() + 1, contacts_.size());
   std::vector<std::vector<std::pair<std::size_t, Contact>>> aside(kept.size());
-  bool all_new = false, missing = false;
+  bool all_new = false, unchanged = false, missing = false;
 #pragma omp parallel num_threads(threads)
   {
     const auto runs = static_cast<std::size_t>(team_size());
@@ -491,12 +491,15 @@ bool World::settle_contacts_parallel(int threads) {
       all_new = kept_total == 0;
       runs_used = runs;
       const std::size_t total = places[runs];
-      if (!all_new) {
+      // Every state kept and none formed (a scene at rest): each stays at its index, as
+      // the store is in slot order, and the walks below would move nothing.
+      unchanged = !all_new && total == kept_total && kept_total == contacts_.size();
+      if (!all_new && !unchanged) {
         if (total > contacts_.capacity()) contacts_.reserve(total + total / 8);
         if (total > contacts_.size()) contacts_.resize(total);
       }
     }
-    if (!all_new) {
+    if (!all_new && !unchanged) {
       const std::size_t from = range[t], to = range[t + 1];
       const auto inside = [&](std::size_t w) { return w >= from && w < to; };
       // The new state of pending slot k, taken from its run's list.
