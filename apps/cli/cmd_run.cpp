@@ -210,9 +210,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     // needs the output folder. A checkpoint it refuses stops every process (exit code 2).
     if (!control.restart.empty()) {
       std::string why;
+      control.restart_payload = std::make_shared<std::string>();
       if (mpi.rank() == 0) {
         try {
-          control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
+          *control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
         } catch (const CheckpointError& e) {
           why = e.what();
         }
@@ -221,7 +222,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
         if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
         return 2;
       }
-      mpi.broadcast(control.restart_payload, 0);
+      mpi.broadcast(*control.restart_payload, 0);
     }
     install_stop_handlers();
     // After every step, one reduction over the processes: the largest stop signal any of them
