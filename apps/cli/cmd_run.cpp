@@ -152,11 +152,28 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   // the failure): then what the run wrote is removed, so that nothing is left.
   const bool existed = std::filesystem::exists(opt.out);
   const bool restarting = !opt.restart.empty() || opt.resume;
+  // A restart checkpoint that the run wrote before the error is kept: it is the run's progress
+  // (hours of it, maybe), not a result, and a corrected program or input may go on from it.
+  const auto checkpoint_kept = [&] {
+    std::error_code ec;
+    return !restarting &&
+           std::filesystem::exists(std::filesystem::path(opt.out) / kCheckpointName, ec);
+  };
   auto remove_outputs = [&] {
     std::error_code ec;
     if (restarting) return;  // the folder holds the run being continued: leave it as it is
-    if (!existed) {
+    if (!existed && !checkpoint_kept()) {
       std::filesystem::remove_all(opt.out, ec);
+      return;
+    }
+    if (!existed) {
+      std::vector<std::filesystem::path> written;
+      for (const auto& entry : std::filesystem::directory_iterator(opt.out, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name != kCheckpointName && name != kPreviousCheckpointName)
+          written.push_back(entry.path());
+      }
+      for (const auto& path : written) std::filesystem::remove_all(path, ec);
       return;
     }
     for (const char* f : {"history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
@@ -170,6 +187,18 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     if (agreed) return ok;
     agreed = true;
     return mpi.all_ok(ok, why);
+  };
+  // An input error found while running (every process alike): the outputs go, the message once.
+  const auto stop_on_error = [&](std::string why) {
+    agree(false, why);
+    remove_outputs();
+    if (mpi.rank() == 0) {
+      std::cerr << "blockdem: error: " << why << "\n";
+      if (checkpoint_kept())
+        std::cerr << "blockdem: the run's last checkpoint is kept: "
+                  << (std::filesystem::path(opt.out) / kCheckpointName).string() << "\n";
+    }
+    return 2;
   };
   int agreed_signal = 0;  // the stop signal the processes agreed on
   try {
@@ -210,9 +239,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     // needs the output folder. A checkpoint it refuses stops every process (exit code 2).
     if (!control.restart.empty()) {
       std::string why;
+      control.restart_payload = std::make_shared<std::string>();
       if (mpi.rank() == 0) {
         try {
-          control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
+          *control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
         } catch (const CheckpointError& e) {
           why = e.what();
         }
@@ -221,7 +251,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
         if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
         return 2;
       }
-      mpi.broadcast(control.restart_payload, 0);
+      mpi.broadcast(*control.restart_payload, 0);
     }
     install_stop_handlers();
     // After every step, one reduction over the processes: the largest stop signal any of them
@@ -243,17 +273,9 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     if (mpi.rank() == 0) std::cerr << "blockdem: error: " << e.what() << "\n";
     return 2;
   } catch (const ScenarioError& e) {
-    std::string why = e.what();
-    agree(false, why);
-    remove_outputs();
-    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
-    return 2;
+    return stop_on_error(e.what());
   } catch (const std::invalid_argument& e) {
-    std::string why = opt.scenario + ": " + e.what();
-    agree(false, why);
-    remove_outputs();
-    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
-    return 2;
+    return stop_on_error(opt.scenario + ": " + e.what());
   }
   if (r.interrupted) {
     // 128 + the signal, as a shell reports a program ended by it (130 SIGINT, 143 SIGTERM); under

@@ -106,9 +106,15 @@ void CheckpointFileWriter::flush() {
 }
 
 void CheckpointFileWriter::append(std::string_view bytes) {
-  buffer_.append(bytes);
   size_ += bytes.size();
-  if (buffer_.size() >= kBufferBytes) flush();
+  if (buffer_.size() + bytes.size() < kBufferBytes) {
+    buffer_.append(bytes);
+    return;
+  }
+  // A large piece goes to the file as it is, not through the buffer (no copy of it is held).
+  flush();
+  write_at(kHeader + written_, bytes);
+  written_ += bytes.size();
 }
 
 void CheckpointFileWriter::patch(std::uint64_t at, std::string_view bytes) {
@@ -199,7 +205,10 @@ std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_
     throw CheckpointError(file,
                           "written for another scenario file or other run options (--max-steps); "
                           "restart with the scenario and options of the run that wrote it");
-  return bytes.substr(kHeader, static_cast<std::size_t>(size));
+  // The payload in place (no second copy of a file that can hold a large world).
+  bytes.resize(body);
+  bytes.erase(0, kHeader);
+  return bytes;
 }
 
 }  // namespace blockdem

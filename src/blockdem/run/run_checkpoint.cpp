@@ -40,7 +40,7 @@ std::string encode_run_point(const RunPoint& p) {
   return head;
 }
 
-RunPoint decode_run_point(const std::string& bytes) {
+RunPoint decode_run_point(std::string bytes) {
   StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   RunPoint p;
   p.level = r.pod<std::int32_t>();
@@ -49,7 +49,11 @@ RunPoint decode_run_point(const std::string& bytes) {
   p.stage.gravity_before = r.vec();
   r.pod(p.stage.start_time);
   p.monitor = r.str();
-  p.world = r.str();
+  // The world's state (nearly all of the bytes) is cut out of `bytes` in place at the end, not
+  // copied: a restart of a large world holds its state once.
+  const std::size_t world_size = r.size();
+  const std::size_t world_at = r.position();
+  r.skip(world_size);
   p.before = r.str();
   p.summary = r.str();
   p.stages = r.str();
@@ -68,6 +72,9 @@ RunPoint decode_run_point(const std::string& bytes) {
   p.outputs = r.str();
   if (!r.done()) throw StateError("saved state is corrupt (bytes left over)");
   if (p.level < 0 || p.stage.steps_done < 0) throw StateError("saved state is corrupt");
+  bytes.resize(world_at + world_size);
+  bytes.erase(0, world_at);
+  p.world = std::move(bytes);
   return p;
 }
 

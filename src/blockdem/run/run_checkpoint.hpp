@@ -36,7 +36,8 @@ std::string encode_run_point(const RunPoint& point);
 /// encoding is head, the world's length (8 bytes) and bytes, tail. For a writer that streams the
 /// world's state into the file as it comes (a distributed run's, docs/restart.md).
 std::pair<std::string, std::string> encode_run_point_around_world(const RunPoint& point);
-/// Throws StateError for bytes that are not a RunPoint.
-RunPoint decode_run_point(const std::string& bytes);
+/// Throws StateError for bytes that are not a RunPoint. The world's state is taken out of
+/// `bytes` (pass them moved: a large world's state is then never copied).
+RunPoint decode_run_point(std::string bytes);
 
 }  // namespace blockdem

@@ -63,11 +63,11 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
   // Everything is read and checked before anything is written: the restart file first.
   std::optional<RunPoint> resume;
   if (!control.restart.empty()) {
-    const std::string payload = !control.restart_payload.empty()
-                                    ? control.restart_payload
-                                    : read_checkpoint_file(control.restart, control.scenario_hash);
+    std::string payload = control.restart_payload
+                              ? std::move(*control.restart_payload)
+                              : read_checkpoint_file(control.restart, control.scenario_hash);
     try {
-      resume = decode_run_point(payload);
+      resume = decode_run_point(std::move(payload));
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
     }
@@ -96,6 +96,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       // scenario's blocks may have been moved into the world).
       if (resume->in_stage && search) resumed_before.emplace(world);
       load_bytes(world, resume->world);
+      std::string().swap(resume->world);  // the world holds it now (a large world's state)
       if (resume->in_stage) {
         if (at.kind == Stage::Kind::strength_reduction || search != !resume->before.empty())
           throw StateError("saved stage state does not fit the scenario's stage");
@@ -103,6 +104,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
                       resume->monitor.size());
         resumed_monitor.emplace(r);
         if (search) load_bytes(*resumed_before, resume->before);
+        std::string().swap(resume->before);
       }
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
@@ -115,9 +117,10 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     if (!is_checkpoint(rel)) res.foreign_files.insert(rel);
   }
   if (resume) {
-    for (const auto& [rel, content] : resume->files) {
+    for (auto& [rel, content] : resume->files) {
       std::filesystem::create_directories((out / rel).parent_path());
       write_file_atomically(out / rel, content);
+      std::string().swap(content);  // in the folder now
     }
   }
   RunRecorder recorder(out, sc.output.vtk, !beam, resume.has_value(),

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -58,8 +59,9 @@ struct RunControl {
   /// Continue the run saved in this checkpoint (empty: a fresh run).
   std::filesystem::path restart;
   /// The payload of `restart`, already read and checked (read_checkpoint_file) by one process
-  /// of an MPI run and sent to the others; empty: the runner reads `restart` itself.
-  std::string restart_payload;
+  /// of an MPI run and sent to the others; null: the runner reads `restart` itself. The runner
+  /// moves the bytes out (they hold a large world's state, which is then not kept twice).
+  std::shared_ptr<std::string> restart_payload;
   /// Identifies the scenario file and the options that change results; a checkpoint written
   /// under another hash is refused.
   std::uint64_t scenario_hash = 0;

@@ -92,7 +92,11 @@ double face_pressure_radial_bound(std::span<const ClosureCell> cells, const Norm
 
 double face_radial_normal_moment(std::span<const ClosureCell> cells, const NormalLaw& law,
                                  const Eigen::Vector3d& centre) {
-  return face_twist_moments(cells, law, centre).radial_normal_moment;
+  // ∫ σ_n r dA >= 0 (σ_n >= 0, r >= 0), but the cells' closed forms cancel terms: a contact
+  // barely closed, metres from the origin, can sum to a little below zero, which is round-off
+  // for zero (update_twist refuses a negative value: it stopped a 1e5-block pile's settling in
+  // mode face_integrated).
+  return std::max(0.0, face_twist_moments(cells, law, centre).radial_normal_moment);
 }
 
 TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stress) {

@@ -6,8 +6,10 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -20,13 +22,25 @@ class StateError : public std::runtime_error {
 };
 
 /// Appends values to a byte buffer in the machine's byte order (the file header records it).
+/// Made with a sink, it hands its bytes on in pieces of about `chunk` bytes as they are written
+/// (a restart checkpoint of a large world goes to its file without being held whole in memory)
+/// and flush() hands on the rest; without one, bytes() holds everything written.
 class StateWriter {
  public:
+  using Sink = std::function<void(std::string_view)>;
+  StateWriter() = default;
+  explicit StateWriter(Sink sink, std::size_t chunk = std::size_t{1} << 20)
+      : sink_(std::move(sink)), chunk_(chunk) {
+    bytes_.reserve(chunk_ + 4096);
+  }
+
   template <class T>
   requires std::is_trivially_copyable_v<T>
   void pod(const T& value) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof(T));
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + sizeof(T));
+    std::memcpy(bytes_.data() + at, &value, sizeof(T));
+    if (sink_ && bytes_.size() >= chunk_) flush();
   }
   void vec(const Eigen::Vector3d& v) {
     for (int i = 0; i < 3; ++i) pod(v[i]);
@@ -37,14 +51,25 @@ class StateWriter {
   void str(const std::string& s) {
     pod(static_cast<std::uint64_t>(s.size()));
     bytes_.insert(bytes_.end(), s.begin(), s.end());
+    if (sink_ && bytes_.size() >= chunk_) flush();
   }
   void size(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
 
+  /// With a sink: hands the bytes held on to it (none are held after). Without: nothing.
+  void flush() {
+    if (!sink_ || bytes_.empty()) return;
+    sink_(std::string_view(reinterpret_cast<const char*>(bytes_.data()), bytes_.size()));
+    bytes_.clear();
+  }
+
+  /// The bytes written (with a sink: since its last piece).
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
   std::vector<std::uint8_t>& bytes() { return bytes_; }
 
  private:
   std::vector<std::uint8_t> bytes_;
+  Sink sink_;
+  std::size_t chunk_ = 0;
 };
 
 /// Reads what a StateWriter wrote; throws StateError past the end.
@@ -88,6 +113,13 @@ class StateReader {
     return static_cast<std::size_t>(n);
   }
   bool done() const { return at_ == size_; }
+  /// Bytes read so far.
+  std::size_t position() const { return at_; }
+  /// Passes over `n` bytes (throws past the end).
+  void skip(std::size_t n) {
+    need(n);
+    at_ += n;
+  }
 
  private:
   void need(std::size_t n) const {

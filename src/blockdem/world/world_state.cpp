@@ -379,6 +379,9 @@ void World::load_state(StateReader& r) {
   slots_.clear();
   slots_.resize(r.size());
   contacts_.clear();
+  // Room for a state per slot (a settled pile has nearly one): pages that no state fills are
+  // never touched, and the store does not grow by doubling (3 times its size for a moment).
+  contacts_.reserve(slots_.size());
   active_count_ = 0;
   for (PairSlot& s : slots_) {
     Boon2012Cache cache;

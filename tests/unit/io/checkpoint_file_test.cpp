@@ -56,6 +56,33 @@ TEST(CheckpointFileWriter, PiecesWithAPatchGiveTheWholeWritersBytes) {
   fs::remove_all(dir);
 }
 
+// Pieces larger than the buffer go to the file without it, between small buffered ones; a
+// patch into such a piece (on disk) and one into the buffered tail both land. Oracle: the
+// whole-payload writer's bytes. Tolerance: none (bytes).
+TEST(CheckpointFileWriter, PiecesLargerThanTheBufferGiveTheWholeWritersBytes) {
+  const fs::path dir = fresh("large");
+  const std::string p = payload();
+  write_checkpoint_file(dir / "whole.bdck", 7, p);
+  {
+    CheckpointFileWriter w(dir / "pieces.bdck", 7);
+    const std::size_t cut1 = 1000, cut2 = cut1 + (std::size_t{5} << 19), cut3 = cut2 + 3;
+    const std::size_t hole = cut1 + 123'457;  // 16 bytes left to patch inside the large piece
+    std::string large = p.substr(cut1, cut2 - cut1);
+    large.replace(hole - cut1, 16, 16, '#');
+    w.append(p.substr(0, cut1));    // buffered
+    w.append(large);                // 2.5 MiB: past the buffer
+    w.append(std::string(3, '#'));  // buffered again
+    w.append(p.substr(cut3));       // the rest (buffered)
+    EXPECT_EQ(w.size(), p.size());
+    w.patch(hole, p.substr(hole, 16));         // inside the large piece, on disk
+    w.patch(cut2 - 2, p.substr(cut2 - 2, 5));  // across from it into the small piece
+    w.finish();
+  }
+  EXPECT_EQ(read_file_bytes(dir / "pieces.bdck"), read_file_bytes(dir / "whole.bdck"));
+  EXPECT_EQ(read_checkpoint_file(dir / "pieces.bdck", 7), p);
+  fs::remove_all(dir);
+}
+
 // A writer destroyed before finish() (an error while the state was merged) leaves the last
 // checkpoint as it was and no temporary file.
 TEST(CheckpointFileWriter, UnfinishedLeavesTheLastCheckpoint) {

@@ -149,5 +149,43 @@ TEST(ContactTwist, BoundAboutThePressureCentreStaysBelowTheExact) {
   }
 }
 
+// A contact barely closed, 4 m from the origin: a pentagon whose closures are zero or ~1e-16 m
+// at its vertices (found by a random search over such cells; the closed forms of the cells
+// cancel terms and summed to -2.2e-21 N m). ∫ σ_n r dA is not negative (σ_n >= 0, r >= 0) and at
+// most σ_max r_max A; the torsional spring takes it (a negative value stopped a 1e5-block pile's
+// settling in mode face_integrated). Tolerance: the bounds themselves.
+TEST(ContactTwist, ExactRadialMomentOfABarelyClosedCellIsNotNegative) {
+  ClosureCell cell;
+  const double v[5][4] = {
+      {0x1.8cad3bb2ab212p+1, 0x1.b6498b50fafa7p+1, 0x1.bea38246b1192p-3, 0.0},
+      {0x1.8cad8038ef527p+1, 0x1.b649a09ea870ap+1, 0x1.be9e1f89f3d84p-3, 0x1.b61aeb40add9cp-53},
+      {0x1.8cad44327cabdp+1, 0x1.b64a5b6887bdp+1, 0x1.bea38269db0ccp-3, 0.0},
+      {0x1.8cad042ef981cp+1, 0x1.b64a16776af36p+1, 0x1.bea8618a47c08p-3, 0x1.82fdd733174cbp-51},
+      {0x1.8cacf1bbf0f4p+1, 0x1.b649755ba6e9ep+1, 0x1.bea95351351d6p-3, 0.0}};
+  for (const auto& x : v) {
+    cell.vertices.push_back(Eigen::Vector3d(x[0], x[1], x[2]));
+    cell.closures.push_back(x[3]);
+  }
+  const Eigen::Vector3d centre(0x1.8cad41d93f70ep+1, 0x1.b649a5cbb87c2p+1, 0x1.bea31afcb5f62p-3);
+  const NormalLaw law = LinearNormal{10e9};
+  const double m = face_radial_normal_moment(std::span<const ClosureCell>(&cell, 1), law, centre);
+  double r_max = 0.0, g_max = 0.0;
+  for (std::size_t k = 0; k < 5; ++k) {
+    r_max = std::max(r_max, (cell.vertices[k] - centre).norm());
+    g_max = std::max(g_max, cell.closures[k]);
+  }
+  Eigen::Vector3d twice_area = Eigen::Vector3d::Zero();
+  for (std::size_t k = 1; k + 1 < 5; ++k)
+    twice_area +=
+        (cell.vertices[k] - cell.vertices[0]).cross(cell.vertices[k + 1] - cell.vertices[0]);
+  EXPECT_GE(m, 0.0);
+  EXPECT_LE(m, 10e9 * g_max * r_max * 0.5 * twice_area.norm());
+  TwistState state;
+  TwistIncrement inc;
+  inc.radial_normal_moment = m;
+  inc.friction_coefficient = 0.8;
+  EXPECT_NO_THROW(update_twist(state, inc));
+}
+
 }  // namespace
 }  // namespace blockdem

@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string_view>
+#include <vector>
 
 #include "validation/scenes.hpp"
 
@@ -53,6 +55,38 @@ TEST(WorldState, AFreshWorldLoadedWithTheStateContinuesBitIdentically) {
     restarted.step();
   }
   EXPECT_EQ(saved(restarted), saved(w));
+}
+
+// A state handed on in pieces (a sink, as a restart checkpoint streams it into its file) is the
+// in-memory writer's bytes, whatever the piece size: pieces smaller than one value (1 byte), a
+// block's record (97) and larger than the whole state. Oracle: the in-memory writer, byte for
+// byte; World::save_state_to_root (one process) gives the same bytes.
+TEST(WorldState, AStateHandedOnInPiecesIsTheWholeWritersBytes) {
+  World w = pushed_cubes();
+  for (int k = 0; k < 250; ++k) w.step();
+  const auto whole = saved(w);
+  for (const std::size_t chunk : {std::size_t{1}, std::size_t{97}, std::size_t{1} << 20}) {
+    std::vector<std::uint8_t> pieces;
+    std::size_t calls = 0;
+    StateWriter out(
+        [&](std::string_view bytes) {
+          ++calls;
+          EXPECT_FALSE(bytes.empty());
+          pieces.insert(pieces.end(), bytes.begin(), bytes.end());
+        },
+        chunk);
+    w.save_state(out);
+    out.flush();
+    EXPECT_TRUE(out.bytes().empty());
+    EXPECT_EQ(pieces, whole) << "chunk " << chunk;
+    if (chunk < whole.size()) {
+      EXPECT_GT(calls, whole.size() / (chunk + 64));
+    }
+  }
+  std::vector<std::uint8_t> root;
+  w.save_state_to_root(
+      [&](std::string_view bytes) { root.insert(root.end(), bytes.begin(), bytes.end()); });
+  EXPECT_EQ(root, whole);
 }
 
 // A block that stops (prescribed, at rest) and later moves freely again reads the impulses of
