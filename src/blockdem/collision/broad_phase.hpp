@@ -14,8 +14,8 @@ namespace blockdem {
 
 /// Axis-aligned boxes read in place: box i's min and max corners are three doubles each, at
 /// byte offset i * stride from `min` and `max`. The boxes of a vector of corners (stride 24
-/// bytes), or those kept in larger records such as Block::aabb_min/aabb_max (stride
-/// sizeof(Block)), without a copy of every box.
+/// bytes), or those kept in larger records (stride the record's size), without a copy of
+/// every box.
 struct BoxView {
   const unsigned char* min = nullptr;
   const unsigned char* max = nullptr;

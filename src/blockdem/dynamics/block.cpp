@@ -47,23 +47,46 @@ Block make_block(const Polyhedron& world_shape, double density, std::string name
   return b;
 }
 
-void Block::update_world_geometry() {
-  const Eigen::Matrix3d r = rotation();
-  const auto& planes = shape.planes();
-  world_planes.resize(planes.size());
-  bounding_radius = shape.bounding_radius();
+namespace {
+
+// World planes and bounding radius of block b at rotation r (its orientation's matrix).
+void refresh_planes(Block& b, const Eigen::Matrix3d& r) {
+  const auto& planes = b.shape.planes();
+  b.world_planes.resize(planes.size());
+  b.bounding_radius = b.shape.bounding_radius();
   for (std::size_t i = 0; i < planes.size(); ++i) {
     const Eigen::Vector3d n = r * planes[i].normal;
-    world_planes[i].normal = n;
-    world_planes[i].offset = planes[i].offset + n.dot(position);
+    b.world_planes[i].normal = n;
+    b.world_planes[i].offset = planes[i].offset + n.dot(b.position);
   }
-  aabb_min.setConstant(std::numeric_limits<double>::infinity());
-  aabb_max.setConstant(-std::numeric_limits<double>::infinity());
+}
+
+// The box of a block's vertices at the pose (position, r).
+void box_of(const Polyhedron& shape, const Eigen::Vector3d& position, const Eigen::Matrix3d& r,
+            Eigen::Vector3d& box_min, Eigen::Vector3d& box_max) {
+  box_min.setConstant(std::numeric_limits<double>::infinity());
+  box_max.setConstant(-std::numeric_limits<double>::infinity());
   for (const auto& v : shape.vertices()) {
     const Eigen::Vector3d w = position + r * v;
-    aabb_min = aabb_min.cwiseMin(w);
-    aabb_max = aabb_max.cwiseMax(w);
+    box_min = box_min.cwiseMin(w);
+    box_max = box_max.cwiseMax(w);
   }
+}
+
+}  // namespace
+
+void Block::update_world_geometry() {
+  refresh_planes(*this, rotation());
+}
+
+void Block::update_world_geometry(Eigen::Vector3d& box_min, Eigen::Vector3d& box_max) {
+  const Eigen::Matrix3d r = rotation();
+  refresh_planes(*this, r);
+  box_of(shape, position, r, box_min, box_max);
+}
+
+void Block::world_box(Eigen::Vector3d& box_min, Eigen::Vector3d& box_max) const {
+  box_of(shape, position, rotation(), box_min, box_max);
 }
 
 const BlockExtras Block::kNoExtras{};

@@ -112,9 +112,6 @@ struct Block {
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond initial_orientation = Eigen::Quaterniond::Identity();
 
-  Eigen::Vector3d aabb_min = Eigen::Vector3d::Zero();
-  Eigen::Vector3d aabb_max = Eigen::Vector3d::Zero();
-
   std::string name;
 
   /// The rarely set fields: the defaults (BlockExtras{}) for a block that has none.
@@ -141,8 +138,14 @@ struct Block {
   bool is_dynamic() const { return motion == Motion::free; }
   /// Rotation matrix body -> world.
   Eigen::Matrix3d rotation() const { return orientation.toRotationMatrix(); }
-  /// Refreshes world_planes, bounding_radius and the bounding box from the pose.
+  /// Refreshes world_planes and bounding_radius from the pose.
   void update_world_geometry();
+  /// The same, and the world-frame bounding box of the pose into box_min, box_max (m). The box
+  /// is not a member: the world keeps every block's box in its own compact arrays (the broad
+  /// phase reads them), and a copy here would cost 48 bytes per block.
+  void update_world_geometry(Eigen::Vector3d& box_min, Eigen::Vector3d& box_max);
+  /// The world-frame bounding box of the pose (m), the same bits as update_world_geometry's.
+  void world_box(Eigen::Vector3d& box_min, Eigen::Vector3d& box_max) const;
   /// World position of a body-frame point.
   Eigen::Vector3d to_world(const Eigen::Vector3d& body_point) const {
     return position + orientation * body_point;

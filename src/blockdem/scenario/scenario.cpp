@@ -738,8 +738,7 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   const auto& blocks = w.blocks();
   std::vector<Eigen::Vector3d> lo(blocks.size()), hi(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) {
-    lo[i] = blocks[i].aabb_min;
-    hi[i] = blocks[i].aabb_max;
+    blocks[i].world_box(lo[i], hi[i]);
   }
   // The stress an initial overlap may carry: 100 times the weight of a column of rock as high as
   // the model, at the largest density and gravity of the run (at least 1 g). Closing a deeper
@@ -749,10 +748,10 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
     if (st.gravity) g_max = std::max(g_max, st.gravity->norm());
   }
   double rho_max = 0.0, z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
-  for (const auto& b : blocks) {
-    rho_max = std::max(rho_max, b.density);
-    z_lo = std::min(z_lo, b.aabb_min.z());
-    z_hi = std::max(z_hi, b.aabb_max.z());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    rho_max = std::max(rho_max, blocks[i].density);
+    z_lo = std::min(z_lo, lo[i].z());
+    z_hi = std::max(z_hi, hi[i].z());
   }
   const double stress_limit = 100.0 * rho_max * g_max * std::max(z_hi - z_lo, 0.0);
   auto initial_stress = [&](int i, int j, double overlap) {

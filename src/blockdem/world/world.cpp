@@ -52,7 +52,11 @@ int World::add_block(Block block) {
   block.index = static_cast<int>(blocks_.size());
   if (block.motion == Motion::free)
     block.angular_momentum = block.world_inertia() * block.angular_velocity;
-  block.update_world_geometry();
+  box_min_.resize(blocks_.size());
+  box_max_.resize(blocks_.size());
+  box_min_.emplace_back();
+  box_max_.emplace_back();
+  block.update_world_geometry(box_min_.back(), box_max_.back());
   max_face_area_.push_back(largest_face_area(block.shape));
   blocks_.push_back(std::move(block));
   return blocks_.back().index;
@@ -61,6 +65,8 @@ int World::add_block(Block block) {
 void World::reserve_blocks(std::size_t count) {
   blocks_.reserve(count);
   max_face_area_.reserve(count);
+  box_min_.reserve(count);
+  box_max_.reserve(count);
 }
 
 int World::add_joint_law(JointLaw law) {
@@ -134,9 +140,8 @@ void World::update_geometry(int threads) {
   box_max_.resize(blocks_.size());
   const auto refresh = [&](std::int64_t i) {
     Block& b = blocks_[static_cast<std::size_t>(i)];
-    b.update_world_geometry();
-    box_min_[static_cast<std::size_t>(i)] = b.aabb_min;
-    box_max_[static_cast<std::size_t>(i)] = b.aabb_max;
+    b.update_world_geometry(box_min_[static_cast<std::size_t>(i)],
+                            box_max_[static_cast<std::size_t>(i)]);
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
@@ -421,7 +426,7 @@ void World::restore_checkpoint() {
     const auto& servos = checkpoint_.servos;
     b.set_servo(servo < servos.size() && servos[servo].first == i ? servos[servo++].second
                                                                   : Servo{});
-    b.update_world_geometry();
+    b.update_world_geometry(box_min_[i], box_max_[i]);
   }
   // Contacts come back with their shear history; geometry and normal forces are re-derived at
   // the restored pose (the narrow-phase warm starts of the other pairs are dropped).

@@ -318,9 +318,9 @@ class World {
   };
 
   void update_geometry(int threads);
-  /// The blocks' boxes for the broad phase: a compact copy (48 bytes per block) that the grid
-  /// reads many times per box; read in place from the blocks (576-byte records) the step at
-  /// 1e5 blocks was about 4 % slower (cache misses).
+  /// The blocks' boxes for the broad phase: compact arrays (48 bytes per block) that the grid
+  /// reads many times per box; read in place from the blocks (576-byte records then) the step
+  /// at 1e5 blocks was about 4 % slower (cache misses). A block keeps no box of its own.
   BoxView block_boxes() const { return BoxView(box_min_, box_max_); }
   void compute_contacts(double dt, int threads);
   /// A pair the step evaluates: at least one block can move (boxes of fixed blocks alone meet
@@ -455,7 +455,9 @@ class World {
     Eigen::Vector3d position, velocity, angular_velocity, angular_momentum;
     Eigen::Quaterniond orientation;
   };
-  std::vector<Eigen::Vector3d> box_min_, box_max_;  ///< the blocks' boxes (see block_boxes)
+  /// Every block's world-frame box (see block_boxes), refreshed with its world planes: one
+  /// entry per block from add_block on (restart files write them with the block).
+  std::vector<Eigen::Vector3d> box_min_, box_max_;
   /// What a contact needs to go on after a restore (its geometry is re-derived).
   struct ContactHistory {
     int a = -1, b = -1;

@@ -1013,8 +1013,8 @@ void World::synchronize() {
     r.rotational_stiffness = i < rotational_stiffness_.size() ? rotational_stiffness_[i] : 0.0;
     energy_.block_record(i, r.energy);
     for (int k = 0; k < 3; ++k) {
-      r.aabb_min[k] = b.aabb_min[k];
-      r.aabb_max[k] = b.aabb_max[k];
+      r.aabb_min[k] = box_min_[i][k];
+      r.aabb_max[k] = box_max_[i][k];
     }
     r.planes = b.world_planes.size();
     put(out, r);
@@ -1068,8 +1068,8 @@ void World::synchronize() {
           at += 32;
         }
         for (int c = 0; c < 3; ++c) {
-          b.aabb_min[c] = rb.aabb_min[c];
-          b.aabb_max[c] = rb.aabb_max[c];
+          box_min_[i][c] = rb.aabb_min[c];
+          box_max_[i][c] = rb.aabb_max[c];
         }
         set_ghost(b, rb.state);
         for (int c = 0; c < 3; ++c) {
@@ -1256,9 +1256,7 @@ void World::step_distributed(double dt, int threads) {
   for (std::size_t i = 0; i < n; ++i) {
     if (local_[i] == 0) continue;
     Block& b = blocks_[i];
-    b.update_world_geometry();
-    box_min_[i] = b.aabb_min;
-    box_max_[i] = b.aabb_max;
+    b.update_world_geometry(box_min_[i], box_max_[i]);
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();

@@ -222,8 +222,8 @@ void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loa
     w.vec(h.normal);
     w.pod(h.offset);
   }
-  w.vec(b.aabb_min);
-  w.vec(b.aabb_max);
+  w.vec(box_min_[i]);
+  w.vec(box_max_[i]);
 }
 
 void World::save_counters(StateWriter& w, std::int64_t overlap_violation) const {
@@ -297,6 +297,7 @@ void World::load_state(StateReader& r) {
   // Blocks removed by earlier stages (an excavation) are removed here too, matched by name.
   const std::size_t n = r.size();
   std::vector<Block> saved(n);
+  std::vector<Eigen::Vector3d> saved_min(n), saved_max(n);
   for (std::size_t i = 0; i < n; ++i) {
     Block& b = saved[i];
     b.name = r.str();
@@ -315,8 +316,8 @@ void World::load_state(StateReader& r) {
       h.normal = r.vec();
       r.pod(h.offset);
     }
-    b.aabb_min = r.vec();
-    b.aabb_max = r.vec();
+    saved_min[i] = r.vec();
+    saved_max[i] = r.vec();
   }
   if (n != blocks_.size()) {
     std::vector<int> gone;
@@ -349,8 +350,8 @@ void World::load_state(StateReader& r) {
     b.torque = s.torque;
     b.contact_force = s.contact_force;
     b.world_planes = std::move(s.world_planes);
-    b.aabb_min = s.aabb_min;
-    b.aabb_max = s.aabb_max;
+    box_min_[i] = saved_min[i];
+    box_max_[i] = saved_max[i];
   }
   stiffness_ = read_doubles(r);
   rotational_stiffness_ = read_doubles(r);
