@@ -362,7 +362,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       continue;
     }
     StageResult result;
-    bool diverged = false;
+    bool diverged = false, refused = false;  // refused: a StepFailure
     std::optional<MotionMonitor> monitor;
     if (resuming) monitor = std::move(resumed_monitor);
     // After every step: a checkpoint when one is due or a stop is asked for.
@@ -397,6 +397,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
           &sync);
     } catch (const DivergenceError& e) {
       diverged = true;
+      refused = dynamic_cast<const StepFailure*>(&e) != nullptr;
       result.name = stage.name;
       result.time = world.time();
       result.measures = world.equilibrium();
@@ -417,8 +418,10 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     const bool failed = diverged || !result.converged;
     // Collective, on every process alike (a no-op on a whole world).
     if (failed || !stage.remove.empty() || beam) world.synchronize();
-    const FailureKind kind =
-        failed ? classify_failure(*monitor, diverged) : FailureKind::not_converged;
+    // A value refused inside a step is numerical whatever the motion before it looked like.
+    const FailureKind kind = refused  ? FailureKind::diverged
+                             : failed ? classify_failure(*monitor, diverged)
+                                      : FailureKind::not_converged;
     if (failed) result.message += ". " + explain_failure(kind, result.motion, world);
     stages.push_back({{"name", stage.name},
                       {"converged", result.converged},

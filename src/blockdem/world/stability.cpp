@@ -44,6 +44,9 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter) {
     t.motion = r.motion;
     t.stable = r.converged && !r.motion.mechanism;
     t.outcome = t.stable ? "stable" : to_string(classify_failure(*monitor, false));
+  } catch (const StepFailure&) {
+    t.motion = monitor->report();
+    t.outcome = to_string(FailureKind::diverged);  // numerical, whatever the motion said
   } catch (const DivergenceError&) {
     t.motion = monitor->report();
     t.outcome = to_string(classify_failure(*monitor, true));

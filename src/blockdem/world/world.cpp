@@ -254,6 +254,20 @@ void World::check_divergence() {
   }
 }
 
+void World::fail_step(const std::string& why) {
+  const std::int64_t failed_step = step_count_ + 1;
+  const double failed_time = time_;
+  restore_checkpoint();
+  std::ostringstream msg;
+  msg << "the run failed at step " << failed_step << " (t = " << failed_time
+      << " s): a check inside the step refused a value: " << why
+      << ". The world was reset to its last good state (step " << step_count_
+      << "). A numerical breakdown the divergence checks did not catch first, or a defect of "
+         "blockdem (please report it with the scenario): try a smaller safety_factor or "
+         "time_step, more damping, or check the joint laws.";
+  throw StepFailure(msg.str());
+}
+
 void World::step() {
   if (!checkpoint_.valid) {
     synchronize();
@@ -269,7 +283,14 @@ void World::step() {
   // 1. World planes, boxes and the loads that do not come from contacts (parallel per block).
   update_geometry(threads);
   // 2-5. Contacts: broad phase, per-pair work in parallel, loads scattered in a fixed order.
-  compute_contacts(dt, threads);
+  // A law or the narrow phase that refuses a value here (a stress that overflowed, a moment
+  // below zero) met a state the divergence checks had not caught yet, or a defect: not bad
+  // input, which was checked before the first step. The run is reset as after a blow-up.
+  try {
+    compute_contacts(dt, threads);
+  } catch (const std::invalid_argument& e) {
+    fail_step(e.what());
+  }
   // 6. Servos, then integration (parallel per block).
   apply_servos(dt);
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());

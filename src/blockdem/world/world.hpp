@@ -97,6 +97,15 @@ class DivergenceError : public std::runtime_error {
   explicit DivergenceError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// A divergence of another kind: a law or the narrow phase refused a value inside a step (a
+/// stress that overflowed, a moment below zero), a numerical breakdown or a defect, never a
+/// physical collapse. Thrown, as DivergenceError, after the world was reset to its last good
+/// state; a stage that ends with it is `diverged` whatever the motion before it.
+class StepFailure : public DivergenceError {
+ public:
+  explicit StepFailure(const std::string& what) : DivergenceError(what) {}
+};
+
 /// Scalar measures of how far the world is from static equilibrium.
 struct EquilibriumMeasures {
   /// Mean over free blocks of |F_net| + |T_net|/R (R: bounding radius), divided by the mean
@@ -162,7 +171,10 @@ class World {
   /// The number of threads a step uses (settings().threads, or OpenMP's default when 0).
   int thread_count() const;
 
-  /// Advances one time step. Throws DivergenceError (after restoring the last good state).
+  /// Advances one time step. Throws DivergenceError (after restoring the last good state) when
+  /// the step blows up, and StepFailure when a law or the narrow phase refuses a value inside it
+  /// (a std::invalid_argument of theirs; in a distributed world such a failure still stops every
+  /// process with a std::runtime_error, the failing one with the std::invalid_argument).
   void step();
 
   double time() const { return time_; }  ///< (s)
@@ -382,6 +394,9 @@ class World {
   /// `only`: servos of these blocks only (per block, nonzero: apply); null: every block.
   void apply_servos(double dt, const std::vector<char>* only = nullptr);
   void check_divergence();
+  /// Resets the world to the divergence checkpoint and throws StepFailure for a step whose
+  /// contact pass refused a value (`why`, the check's message).
+  [[noreturn]] void fail_step(const std::string& why);
   double a_priori_time_step() const;
 
   WorldSettings settings_;
