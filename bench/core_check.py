@@ -23,8 +23,8 @@ def loop(n):
     return s
 
 
-def main():
-    n = int(sys.argv[1]) if len(sys.argv) > 1 else 20_000_000
+def core_times(n=20_000_000):
+    """Seconds of the loop of n additions on each core this process may run on, in order."""
     cores = sorted(os.sched_getaffinity(0))
     times = []
     for c in cores:
@@ -33,6 +33,13 @@ def main():
         loop(n)
         times.append(time.perf_counter() - t)
     os.sched_setaffinity(0, set(cores))
+    return times
+
+
+def main():
+    n = int(sys.argv[1]) if len(sys.argv) > 1 else 20_000_000
+    cores = sorted(os.sched_getaffinity(0))
+    times = core_times(n)
     fastest = min(times)
     for c, t in zip(cores, times):
         print(f"core {c}: {t:.3f} s ({t / fastest:.2f} x the fastest)")

@@ -4,19 +4,26 @@
 Restarts SCENARIO from CHECKPOINT with `blockdem run --restart`, reads the progress lines that
 the run prints to stderr every 5 s when stderr is not a terminal ("step N, ..."), and after
 SECONDS stops the run and prints the seconds per step between the second progress line and the
-last one: the checkpoint's load and the first steps after it are left out.
+last one: the checkpoint's load and the first steps after it are left out. Before and after, the
+same fixed loop pinned to each core (bench/core_check.py) says whether the cores ran alike: on a
+shared virtual machine one of them can be much slower for minutes, which a two-thread timing
+feels.
 
     python3 bench/settled_rate.py build/blockdem pile.toml settle/checkpoint.bdck 1 60 /tmp/rate
 
 Standard library only (runs with any python3).
 """
 import argparse
+import os
 import re
 import shutil
 import signal
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from core_check import core_times  # noqa: E402
 
 
 def main():
@@ -28,6 +35,7 @@ def main():
     p.add_argument("seconds", type=float, help="how long to let the run go on")
     p.add_argument("out", help="an output folder (emptied first)")
     a = p.parse_args()
+    before = core_times()
     shutil.rmtree(a.out, ignore_errors=True)
     run = subprocess.Popen([a.binary, "run", a.scenario, "--out", a.out, "--threads",
                             str(a.threads), "--restart", a.checkpoint],
@@ -45,7 +53,10 @@ def main():
     if len(points) < 3 or points[-1][1] == points[1][1]:
         sys.exit(f"settled_rate: too few progress lines in {a.seconds} s: {points}")
     (t0, s0), (t1, s1) = points[1], points[-1]
-    print(f"threads {a.threads}: steps {s0}-{s1}, {(t1 - t0) / (s1 - s0):.4f} s per step")
+    after = core_times()
+    print(f"threads {a.threads}: steps {s0}-{s1}, {(t1 - t0) / (s1 - s0):.4f} s per step; "
+          f"cores' loop times before {' '.join(f'{t:.3f}' for t in before)} s, "
+          f"after {' '.join(f'{t:.3f}' for t in after)} s")
 
 
 if __name__ == "__main__":
