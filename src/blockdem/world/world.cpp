@@ -197,9 +197,11 @@ double World::critical_time_step() const {
 }
 
 void World::apply_servos(double dt, const std::vector<char>* only) {
-  for (auto& b : blocks_) {
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    // The flag first: a block another process holds needs no visit to its record.
+    if (only && (*only)[i] == 0) continue;
+    Block& b = blocks_[i];
     if (b.motion != Motion::servo) continue;
-    if (only && (*only)[static_cast<std::size_t>(b.index)] == 0) continue;
     const Servo& s = b.servo();
     if (s.hold) {
       b.velocity.setZero();

@@ -390,7 +390,9 @@ class World {
   void mark_resting();
   void sum_resting_loads();
 
-  void scatter_loads();
+  /// `counted`: the contacts' energy terms of these slots only (per slot, nonzero: count;
+  /// a distributed step's own pairs); null: every slot.
+  void scatter_loads(const std::vector<char>* counted = nullptr);
   /// `only`: servos of these blocks only (per block, nonzero: apply); null: every block.
   void apply_servos(double dt, const std::vector<char>* only = nullptr);
   void check_divergence();

@@ -810,7 +810,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   ct.stiffness = kn + sr.stiffness;
 }
 
-void World::scatter_loads() {
+void World::scatter_loads(const std::vector<char>* counted) {
   // Every block's sums are formed in (a, b) order, as a serial pass over the slots would form
   // them, for any number of threads. The slots are split into T runs of whole blocks (run t:
   // the slots whose a is in [first_[t], first_[t+1])). A block's terms in slot order are those
@@ -944,7 +944,8 @@ void World::scatter_loads() {
       load_a(s);
       if (static_cast<std::size_t>(s.b) < last) load_b(s);
       const Contact& ct = contact_of(s);
-      mine.energy.add_contact(ct, ct.twist_stiffness, ct.slip_work);
+      if (counted == nullptr || (*counted)[k] != 0)
+        mine.energy.add_contact(ct, ct.twist_stiffness, ct.slip_work);
       if (mine.violation < 0) {
         const double size = std::min(blocks_[ct.a].bounding_radius, blocks_[ct.b].bounding_radius);
         if (ct.geometry.overlap > settings_.max_overlap_fraction * size)
@@ -953,8 +954,11 @@ void World::scatter_loads() {
     }
     // 3. This run's blocks are complete: their time-step bound.
     for (std::size_t i = first; i < last; ++i) {
+      // The stiffness first: a block with no contact here (one that another process holds)
+      // needs no visit to its record.
+      if (stiffness_[i] <= 0.0) continue;
       const Block& bl = blocks_[i];
-      if (!bl.is_dynamic() || stiffness_[i] <= 0.0) continue;
+      if (!bl.is_dynamic()) continue;
       mine.dt_min = std::min(mine.dt_min, std::sqrt(bl.mass / stiffness_[i]));
       mine.dt_min =
           std::min(mine.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));

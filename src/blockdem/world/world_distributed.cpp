@@ -1250,43 +1250,88 @@ void World::step_distributed(double dt, int threads) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
 
-  // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts).
+  // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts), listed
+  // in index order: the step's broad phase and its per-block loops cover them alone, not the
+  // whole world. Independent per block, so in parallel over the threads.
+  std::vector<int> held;
+  held.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (local_[i] != 0) held.push_back(static_cast<int>(i));
+  const auto n_held = static_cast<std::int64_t>(held.size());
   box_min_.resize(n);
   box_max_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (local_[i] == 0) continue;
+  std::vector<Eigen::Vector3d> held_min(held.size()), held_max(held.size());
+  std::vector<char> moves(n, 0);  // per exact block: is_dynamic(), read per pair below
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n_held > 1024)
+  for (std::int64_t k = 0; k < n_held; ++k) {
+    const auto i = static_cast<std::size_t>(held[static_cast<std::size_t>(k)]);
     Block& b = blocks_[i];
     b.update_world_geometry(box_min_[i], box_max_[i]);
+    held_min[static_cast<std::size_t>(k)] = box_min_[i];
+    held_max[static_cast<std::size_t>(k)] = box_max_[i];
+    moves[i] = b.is_dynamic() ? 1 : 0;
     b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
                              : Eigen::Vector3d::Zero();
     b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
     b.contact_force.setZero();
   }
   // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots; a
-  // resting block's pairs only where the other block is this process's.
+  // resting block's pairs only where the other block is this process's. The broad phase runs
+  // over the exact blocks' boxes; as they are listed in index order, its pairs (i, j) of list
+  // places map to pairs of blocks in the same order.
   const auto keeps = [&](int i) { return own_[i] != 0 && resting_[i] == 0; };
   broad_phase_.find_pairs(
-      block_boxes(),
-      [&](int a, int b) {
-        return local_[a] != 0 && local_[b] != 0 && (keeps(a) || keeps(b)) &&
+      held_min, held_max,
+      [&](int i, int j) {
+        const int a = held[static_cast<std::size_t>(i)], b = held[static_cast<std::size_t>(j)];
+        return (keeps(a) || keeps(b)) &&
                (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
-               (blocks_[a].is_dynamic() || blocks_[b].is_dynamic());
+               (moves[a] != 0 || moves[b] != 0);
       },
       pairs_, threads);
-  keep_open_bonds();
-  std::erase_if(pairs_,
-                [&](const std::pair<int, int>& p) { return !keeps(p.first) && !keeps(p.second); });
-  merge_pairs();
+  for (auto& [a, b] : pairs_) {
+    a = held[static_cast<std::size_t>(a)];
+    b = held[static_cast<std::size_t>(b)];
+  }
+  std::vector<Eigen::Vector3d>().swap(held_min);
+  std::vector<Eigen::Vector3d>().swap(held_max);
+  // The common case, found in one pass over the slots: no open bond (a settled scene has none;
+  // keep_open_bonds and the filter below then change nothing), and the same pairs as last step,
+  // whose slots then stay as they are (merge_pairs would change nothing).
+  bool no_open = false, same = false;
+  {
+    const auto m = static_cast<std::int64_t>(slots_.size());
+    const bool sized = pairs_.size() == slots_.size();
+    std::int64_t open = 0, differ = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : open, differ) if (threads > 1 && m > 4096)
+    for (std::int64_t k = 0; k < m; ++k) {
+      const PairSlot& s = slots_[static_cast<std::size_t>(k)];
+      if (s.active && !contact_of(s).touching) ++open;
+      if (sized && (s.a != pairs_[static_cast<std::size_t>(k)].first ||
+                    s.b != pairs_[static_cast<std::size_t>(k)].second))
+        ++differ;
+    }
+    no_open = open == 0;
+    same = no_open && sized && differ == 0 && slots_rules_version_ == rules_version_;
+  }
+  if (!no_open) {
+    keep_open_bonds();
+    std::erase_if(
+        pairs_, [&](const std::pair<int, int>& p) { return !keeps(p.first) && !keeps(p.second); });
+  }
+  if (!same) merge_pairs();
 
   // 4. This process's pairs (in parallel over its threads; each writes only its own slot).
-  std::vector<int> slot_owner(slots_.size());
+  const auto owner_of = [&](const PairSlot& c) {
+    return pair_owner_process(owner_, c.a, moves[static_cast<std::size_t>(c.a)] != 0, c.b,
+                              moves[static_cast<std::size_t>(c.b)] != 0);
+  };
   std::vector<std::int64_t> mine;
   std::vector<char> ghost(n, 0);
   std::vector<char> is_mine(slots_.size(), 0);
   for (std::size_t k = 0; k < slots_.size(); ++k) {
     const PairSlot& c = slots_[k];
-    slot_owner[k] = pair_owner(c);
-    if (slot_owner[k] != rank) continue;
+    if (owner_of(c) != rank) continue;
     mine.push_back(static_cast<std::int64_t>(k));
     is_mine[k] = 1;
     if (own_[c.a] == 0) ghost[c.a] = 1;
@@ -1297,7 +1342,8 @@ void World::step_distributed(double dt, int threads) {
   const std::int64_t count = static_cast<std::int64_t>(mine.size());
   const std::exception_ptr error = evaluate_slots(dt, true, threads, &is_mine);
   const auto t1 = std::chrono::steady_clock::now();
-  settle_contacts();
+  // The new contact states wait in pending_ (in slot order per run) for one settle_contacts,
+  // after the received slots have joined them.
 
   // Every process's figures (pair time and count, failure): all decide alike on failures and
   // on rebalancing.
@@ -1315,6 +1361,7 @@ void World::step_distributed(double dt, int threads) {
   for (std::size_t r = 0; r < k_ranks; ++r) {
     const auto h = get<StepHeader>(heads, r * sizeof(StepHeader));
     if (h.failed != 0) {
+      settle_contacts();
       if (error) std::rethrow_exception(error);
       throw std::runtime_error("contact evaluation failed on process " + std::to_string(r));
     }
@@ -1326,21 +1373,36 @@ void World::step_distributed(double dt, int threads) {
 
   // Each evaluated slot to the owner of the pair's other block, byte for byte (not to a resting
   // block's owner: its loads wait for the whole world, sum_resting_loads).
+  // A slot that formed a contact this step finds its state in its run's list.
+  const auto state_of = [&](std::size_t k) -> const Contact* {
+    const PairSlot& s = slots_[k];
+    if (!s.active) return nullptr;
+    if (!s.pending) return &contact_of(s);
+    const std::vector<PendingContact>& list = pending_[k / pending_run_];
+    const auto it =
+        std::lower_bound(list.begin(), list.end(), k,
+                         [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
+    if (it == list.end() || it->slot != k)
+      throw std::logic_error("pair exchange: a new contact state is missing");
+    return &it->contact;
+  };
   std::vector<std::vector<char>> to(k_ranks);
   for (std::int64_t i : mine) {
     const PairSlot& s = slots_[static_cast<std::size_t>(i)];
     for (int block : {s.a, s.b}) {
       const int r = owner_[static_cast<std::size_t>(block)];
       if (r == rank || resting_[static_cast<std::size_t>(block)] != 0) continue;
-      put_slot(to[static_cast<std::size_t>(r)], s, s.active ? &contact_of(s) : nullptr);
+      put_slot(to[static_cast<std::size_t>(r)], s, state_of(static_cast<std::size_t>(i)));
     }
   }
   tw = Clock::now();
   const std::vector<std::vector<char>> from = dist.exchange(to);
   waiting += seconds_since(tw);
-  // The received slots replace this process's; their contact states wait in pending_, in slot
-  // order, for a second settle_contacts.
-  pending_.assign((slots_.size() + pending_run_ - 1) / pending_run_, {});
+  // The received slots replace this process's (none of its own pairs); their contact states
+  // join the new ones in pending_, each run's list then put back in slot order.
+  if (pending_.size() != (slots_.size() + pending_run_ - 1) / pending_run_)
+    throw std::logic_error("pair exchange: the new contact states are not the slots'");
+  std::vector<char> joined(pending_.size(), 0);
   for (std::size_t r = 0; r < k_ranks; ++r) {
     std::size_t at = 0;
     while (at < from[r].size()) {
@@ -1362,14 +1424,17 @@ void World::step_distributed(double dt, int threads) {
       if (received.active) {
         const auto k = static_cast<std::size_t>(it - slots_.begin());
         pending_[k / pending_run_].push_back({k, state});
+        joined[k / pending_run_] = 1;
       }
     }
     dist_stats_.bytes_sent += static_cast<std::int64_t>(to[r].size());
     dist_stats_.bytes_received += static_cast<std::int64_t>(from[r].size());
   }
-  for (auto& list : pending_)
-    std::sort(list.begin(), list.end(),
+  for (std::size_t r = 0; r < pending_.size(); ++r) {
+    if (joined[r] == 0) continue;
+    std::sort(pending_[r].begin(), pending_[r].end(),
               [](const PendingContact& x, const PendingContact& y) { return x.slot < y.slot; });
+  }
   settle_contacts();
   dist_stats_.bytes_sent += static_cast<std::int64_t>(head.size());
   dist_stats_.bytes_received += static_cast<std::int64_t>(heads.size() - head.size());
@@ -1377,7 +1442,7 @@ void World::step_distributed(double dt, int threads) {
   // 5. Loads: every slot of an own block is exact here, so its sums are the serial ones. The
   // counts over pairs and the time-step minimum count only what this process owns.
   const std::int64_t broken_before = broken_bonds_;
-  scatter_loads();
+  scatter_loads(&is_mine);  // the contacts' energy terms of this process's pairs only
   std::int64_t active = 0, broke = 0;
   double overlap_key = std::numeric_limits<double>::infinity();
   for (std::int64_t i : mine) {
@@ -1385,17 +1450,17 @@ void World::step_distributed(double dt, int threads) {
     broke += s.broke ? 1 : 0;
     if (!s.active) continue;
     ++active;
-    const Block& a = blocks_[s.a];
-    const Block& b = blocks_[s.b];
-    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-    if (std::isinf(overlap_key) &&
-        contact_of(s).geometry.overlap > settings_.max_overlap_fraction * size)
+    if (!std::isinf(overlap_key)) continue;
+    // The blocks' copies of their shapes' radii, refreshed with their planes this step.
+    const double size = std::min(blocks_[s.a].bounding_radius, blocks_[s.b].bounding_radius);
+    if (contact_of(s).geometry.overlap > settings_.max_overlap_fraction * size)
       overlap_key = static_cast<double>(s.a) * static_cast<double>(n) + s.b;
   }
   double dt_min = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const int h : held) {
+    const auto i = static_cast<std::size_t>(h);
+    if (own_[i] == 0 || stiffness_[i] <= 0.0 || moves[i] == 0) continue;
     const Block& bl = blocks_[i];
-    if (own_[i] == 0 || !bl.is_dynamic() || stiffness_[i] <= 0.0) continue;
     dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[i]));
     dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
   }
@@ -1416,17 +1481,11 @@ void World::step_distributed(double dt, int threads) {
   // 7. The energy budget: exact sums over the own blocks and pairs, reduced as integers (the
   // accumulators' limbs), so every process adds the step of one process, bit for bit.
   energy_.prepare(n);
-  EnergyStepSums step_sums;
+  EnergyStepSums step_sums = std::move(contact_energy_);  // scatter_loads's, of its own pairs
+  contact_energy_ = EnergyStepSums{};
   for (std::int64_t i : own_list) {
     const auto bi = static_cast<std::size_t>(i);
     step_sums.add_block(energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt));
-  }
-  for (std::int64_t i : mine) {
-    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    if (s.active) {
-      const Contact& ct = contact_of(s);
-      step_sums.add_contact(ct, ct.twist_stiffness, ct.slip_work);
-    }
   }
   tw = Clock::now();
   const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());
