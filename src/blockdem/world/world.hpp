@@ -173,8 +173,8 @@ class World {
 
   /// Advances one time step. Throws DivergenceError (after restoring the last good state) when
   /// the step blows up, and StepFailure when a law or the narrow phase refuses a value inside it
-  /// (a std::invalid_argument of theirs; in a distributed world such a failure still stops every
-  /// process with a std::runtime_error, the failing one with the std::invalid_argument).
+  /// (a std::invalid_argument of theirs; in a distributed world on every process alike, with the
+  /// message of the first process that met it and the whole world reset).
   void step();
 
   double time() const { return time_; }  ///< (s)

@@ -27,7 +27,7 @@ namespace {
 struct StepHeader {
   double seconds = 0.0;      ///< time in this step's own pair work (s)
   std::uint64_t slots = 0;   ///< pairs it evaluated (-)
-  std::uint64_t failed = 0;  ///< 1: a pair of this process threw
+  std::uint64_t failed = 0;  ///< 1: a pair of this process refused a value; 2: another error
 };
 
 /// A block's state as a ghost needs it: the pose and the velocities at the half step.
@@ -1350,7 +1350,17 @@ void World::step_distributed(double dt, int threads) {
   StepHeader header;
   header.seconds = std::chrono::duration<double>(t1 - t0).count();
   header.slots = static_cast<std::uint64_t>(count);
-  header.failed = error ? 1 : 0;
+  // A refused value (std::invalid_argument of a law or the narrow phase) and its message.
+  std::string refused;
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::invalid_argument& e) {
+      refused = e.what();
+    } catch (...) {
+    }
+  }
+  header.failed = !error ? 0 : !refused.empty() ? 1 : 2;
   std::vector<char> head;
   put(head, header);
   std::vector<std::size_t> counts;
@@ -1360,6 +1370,20 @@ void World::step_distributed(double dt, int threads) {
   double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
   for (std::size_t r = 0; r < k_ranks; ++r) {
     const auto h = get<StepHeader>(heads, r * sizeof(StepHeader));
+    if (h.failed == 1) {
+      // A value refused on process r (the first in process order): its message to every
+      // process, the whole world on every process, and the one-process reset and StepFailure.
+      settle_contacts();
+      std::vector<std::size_t> sizes;
+      const std::vector<char> texts =
+          dist.all_gather(std::vector<char>(refused.begin(), refused.end()), sizes);
+      std::size_t at = 0;
+      for (std::size_t q = 0; q < r; ++q) at += sizes[q];
+      const std::string why(texts.begin() + static_cast<std::ptrdiff_t>(at),
+                            texts.begin() + static_cast<std::ptrdiff_t>(at + sizes[r]));
+      synchronize();
+      fail_step(why);
+    }
     if (h.failed != 0) {
       settle_contacts();
       if (error) std::rethrow_exception(error);

@@ -4,10 +4,15 @@
 // does; a stage that ends with it is `diverged`, never `collapsed`.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "blockdem/world/stability.hpp"
+#include "support/thread_distribution.hpp"
 #include "validation/scenes.hpp"
 
 namespace blockdem::test {
@@ -15,8 +20,9 @@ namespace {
 
 // A cube resting on a fixed base through the exponential law (a = 0.5405e5 Pa, b = 3.7e4 1/m):
 // its stress a (exp(b d) - 1) overflows a double once the closure d passes ~19 mm.
-World exponential_cube(ContactMode mode) {
+World exponential_cube(ContactMode mode, std::shared_ptr<PairDistribution> distribution = nullptr) {
   WorldSettings s;
+  s.distribution = std::move(distribution);
   s.gravity = Eigen::Vector3d(0, 0, -9.81);
   s.damping = 0.7;
   s.contact_mode = mode;
@@ -79,6 +85,58 @@ TEST(StepFailure, AStabilityTrialThatMeetsItIsDivergedNotCollapsed) {
   EXPECT_FALSE(t.stable);
   EXPECT_EQ(t.outcome, "diverged");
   EXPECT_EQ(w.step_count(), 0) << "reset to the state before the first step";
+}
+
+// Distributed over two processes (threads here, as MPI processes would be): the cube's owner
+// meets the refused value, the other process has no pair of its own. Both reset the whole world
+// and throw the same StepFailure, and the world each holds is the one-process world's after
+// its reset, bit for bit.
+TEST(StepFailure, EveryProcessOfADistributedWorldResetsAndThrowsTheSameMessage) {
+  World alone = exponential_cube(ContactMode::boon2012);
+  for (int k = 0; k < 30; ++k) alone.step();
+  alone.blocks()[1].position.z() -= 0.03;
+  std::string alone_message;
+  try {
+    alone.step();
+  } catch (const StepFailure& e) {
+    alone_message = e.what();
+  }
+  ASSERT_FALSE(alone_message.empty());
+
+  const int parts = 2;
+  auto meeting = std::make_shared<Meeting>(parts);
+  std::vector<std::string> messages(parts);
+  std::vector<Eigen::Vector3d> positions(parts), velocities(parts);
+  std::vector<std::int64_t> steps(parts, -1);
+  std::vector<std::thread> threads;
+  for (int r = 0; r < parts; ++r) {
+    threads.emplace_back([&, r] {
+      const auto k = static_cast<std::size_t>(r);
+      World w =
+          exponential_cube(ContactMode::boon2012, std::make_shared<ThreadDistribution>(meeting, r));
+      try {
+        for (int step = 0; step < 30; ++step) w.step();
+        w.synchronize();
+        w.blocks()[1].position.z() -= 0.03;  // alike on every process
+        w.step();
+        messages[k] = "no failure";
+      } catch (const StepFailure& e) {
+        messages[k] = e.what();
+      } catch (const std::exception& e) {
+        messages[k] = std::string("another error: ") + e.what();
+      }
+      positions[k] = w.blocks()[1].position;
+      velocities[k] = w.blocks()[1].velocity;
+      steps[k] = w.step_count();
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (std::size_t k = 0; k < parts; ++k) {
+    EXPECT_EQ(messages[k], alone_message) << "process " << k;
+    EXPECT_EQ(steps[k], alone.step_count()) << "process " << k;
+    EXPECT_EQ(positions[k], alone.blocks()[1].position) << "process " << k;
+    EXPECT_EQ(velocities[k], alone.blocks()[1].velocity) << "process " << k;
+  }
 }
 
 }  // namespace
