@@ -1,5 +1,6 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +25,16 @@
 
 namespace blockdem::cli {
 namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string one_decimal(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
 
 struct RunOptions {
   std::string scenario;
@@ -145,6 +156,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   cb.stage_done = [&](const std::string& s) {
     if (!opt.quiet) progress.message(s);
   };
+  cb.setup_done = [&](const std::string& s) {
+    if (!opt.quiet) progress.message("blockdem: " + s);
+  };
+  const auto command0 = std::chrono::steady_clock::now();
   RunResult r;
   bool beam = false;
   bool rock_mass = false;
@@ -203,7 +218,14 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   int agreed_signal = 0;  // the stop signal the processes agreed on
   try {
     // Read and check everything before anything is written.
+    progress.update("blockdem: reading " + opt.scenario);
     Scenario sc = load_scenario(opt.scenario);
+    if (const double s = seconds_since(command0); s >= 1.0) {
+      // A large scene: reading it (and cutting its rock mass) takes a while.
+      cb.setup_done("read " + opt.scenario + " (" + std::to_string(sc.blocks.size()) + " blocks" +
+                    (rock_mass_scene(sc) ? ", its rock mass cut" : "") + ") in " + one_decimal(s) +
+                    " s");
+    }
     if (opt.max_steps > 0) {
       for (auto& stage : sc.stages) {
         stage.max_steps = std::min(stage.max_steps, opt.max_steps);
@@ -328,8 +350,9 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
               << " (summary.json status \"" << r.status << "\")\n";
   } else if (!opt.quiet) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ", r.wall_time,
-                  static_cast<long long>(r.steps));
+    // The whole command's time: reading the scenario (a large one's rock mass cut) and the run.
+    std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ",
+                  seconds_since(command0), static_cast<long long>(r.steps));
     std::cerr << buf << opt.out << "\n";
   }
   return r.exit_code;

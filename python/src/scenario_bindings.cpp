@@ -123,6 +123,7 @@ void bind_scenario(py::module_& m) {
             progress(s);
           };
           cb.stage_done = cb.progress;
+          cb.setup_done = cb.progress;
         }
         RunResult r;
         {

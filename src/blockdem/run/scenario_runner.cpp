@@ -73,7 +73,18 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     }
     if (resume->level >= n) throw CheckpointError(control.restart, "saved stage index is corrupt");
   }
+  // A set-up part that took a second or more is reported with its wall time.
+  auto setup_done = [&cb](const std::chrono::steady_clock::time_point since,
+                          const std::string& what) {
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+    if (cb.setup_done && s >= 1.0) cb.setup_done(what + " in " + fmt("%.1f", s) + " s");
+  };
+  auto setup0 = std::chrono::steady_clock::now();
+  if (cb.progress) cb.progress("setting up the world (initial-overlap check, first contacts)");
   World world = build();  // may throw ScenarioError: nothing written yet
+  setup_done(setup0, "world of " + std::to_string(world.blocks().size()) +
+                         " blocks set up (initial-overlap check, first contacts' narrow phase)");
   check_time_step(sc, world);
   const auto& distribution = world.settings().distribution;
   const int ranks = distribution ? distribution->size() : 1;
@@ -91,6 +102,8 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
   if (resume) {
     const Stage& at = sc.stages[resume->level];
     const bool search = at.find_collapse && at.kind == Stage::Kind::equilibrium;
+    setup0 = std::chrono::steady_clock::now();
+    if (cb.progress) cb.progress("loading the checkpoint's state");
     try {
       // The world before the searching stage starts from the world as built (a copy: the
       // scenario's blocks may have been moved into the world).
@@ -109,6 +122,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
     }
+    setup_done(setup0, "checkpoint's state loaded");
   }
   RunResult res;
   // The folder: what an earlier run left goes; a restart puts back the files written so far.

@@ -44,6 +44,10 @@ struct RunCallbacks {
   std::function<void(const std::string&)> progress;
   /// One line when a stage ends.
   std::function<void(const std::string&)> stage_done;
+  /// One line when a part of the set-up that took at least a second ends (the world built from
+  /// the scenario's blocks, a checkpoint loaded), with its wall time: a large scene spends tens
+  /// of seconds there, before the first status line.
+  std::function<void(const std::string&)> setup_done;
 };
 
 /// What a run does after a step or between stages: stop, and write a timed checkpoint.
