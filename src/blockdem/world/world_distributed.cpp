@@ -1367,7 +1367,7 @@ void World::step_distributed(double dt, int threads) {
   // slots: an own block to the owner of its pair's other block (an open bond keeps a pair whose
   // boxes have parted), neither block resting.
   std::vector<std::int64_t> mine;
-  std::vector<char> ghost(n, 0);
+  std::vector<int> ghost;  // the other processes' blocks in this process's pairs
   std::vector<char> is_mine(slots_.size(), 0);
   pair_sends_.clear();
   for (std::size_t k = 0; k < slots_.size(); ++k) {
@@ -1380,10 +1380,11 @@ void World::step_distributed(double dt, int threads) {
     if (owner_of(c) != rank) continue;
     mine.push_back(static_cast<std::int64_t>(k));
     is_mine[k] = 1;
-    if (own_[c.a] == 0) ghost[c.a] = 1;
-    if (own_[c.b] == 0) ghost[c.b] = 1;
+    if (own_[ca] == 0) ghost.push_back(ca);
+    if (own_[cb] == 0) ghost.push_back(cb);
   }
-  for (char g : ghost) dist_stats_.ghost_blocks += g;
+  std::sort(ghost.begin(), ghost.end());
+  dist_stats_.ghost_blocks += std::unique(ghost.begin(), ghost.end()) - ghost.begin();
   const auto t0 = std::chrono::steady_clock::now();
   const std::int64_t count = static_cast<std::int64_t>(mine.size());
   const std::exception_ptr error = evaluate_slots(dt, true, threads, &is_mine);
