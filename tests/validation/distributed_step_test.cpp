@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "brick_pile.hpp"
@@ -232,6 +233,54 @@ TEST(DistributedStep, BasePlateOwnerReceivesNoMoreThanTheOthers) {
                 parts, plate_owner, others);
     EXPECT_GT(others, 0.0);
     EXPECT_LT(plate_owner, 1.25 * others) << parts << " parts";
+  }
+}
+
+// The world made whole only every 75 steps and never partitioned again, the pile sliding on its
+// tilted base: over each stretch the processes keep their lists of own blocks and of the ghosts
+// the last exchange brought, while blocks slide into pairs with another process's blocks. Every
+// refresh is still one world's bits, and between the refreshes contacts across the boundaries
+// formed that were not there before (pairs whose blocks reached each other's process as ghosts;
+// a rebalance, which the measured pair times could still call for, would make the world whole).
+TEST(DistributedStep, GhostListsFollowTheBlocksBetweenRareRefreshes) {
+  WorldSettings s;
+  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);
+  s.contact_mode = ContactMode::boon2012;
+  s.threads = 1;
+  s.damping = 0.1;
+  const BrickPile pile;
+  const int steps = 150, every = 75;
+  const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr, every);
+  // The contacts (a, b) of one world at the two refreshes.
+  std::vector<std::vector<std::pair<int, int>>> touching;
+  {
+    World w = pile.world(s, 20.0);
+    for (int k = 1; k <= steps; ++k) {
+      w.step();
+      if (k % every != 0) continue;
+      touching.emplace_back();
+      for (const Contact* c : w.contacts()) touching.back().emplace_back(c->a, c->b);
+    }
+  }
+  ASSERT_EQ(touching.size(), 2u);
+  for (int parts : {2, 3}) {
+    const PartRuns runs = run_parts(pile, s, 20.0, parts, steps, every, 0);
+    for (int r = 0; r < parts; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      ASSERT_TRUE(runs.records[k] == oracle) << parts << " parts, part " << r;
+    }
+    // Contacts across the boundaries at the last refresh that were not contacts at the first.
+    const std::vector<int>& owner = runs.owners[0];
+    const auto across = [&](const std::pair<int, int>& p) {
+      return owner[static_cast<std::size_t>(p.first)] != owner[static_cast<std::size_t>(p.second)];
+    };
+    std::size_t formed = 0;
+    for (const auto& p : touching[1]) {
+      if (across(p) && !std::binary_search(touching[0].begin(), touching[0].end(), p)) ++formed;
+    }
+    std::printf("%d parts: %zu contacts across the boundaries formed between the refreshes\n",
+                parts, formed);
+    EXPECT_GT(formed, 0u) << parts << " parts";
   }
 }
 

@@ -110,6 +110,29 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
   }
 }
 
+void EnergyLedger::before_integration(const std::vector<Block>& blocks, std::span<const int> only) {
+  if (!(started_ && previous_.size() == blocks.size())) {
+    before_integration(blocks);
+    return;
+  }
+  // A record's bytes (full_record) do not depend on which kind it is kept as, so a block
+  // whose kind is left stale here reads the same when its owner's record replaces it.
+  for (const int k : only) {
+    const auto i = static_cast<std::size_t>(k);
+    if (free_[i] != static_cast<std::uint8_t>(blocks[i].is_dynamic())) swap_kind(i);
+  }
+  // loads_ only holds +0.0 until made: made for the blocks here as the whole world's pass would.
+  if (loads_.empty()) {
+    for (const int k : only) {
+      const Block& b = blocks[static_cast<std::size_t>(k)];
+      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
+        keep_loads();
+        break;
+      }
+    }
+  }
+}
+
 void EnergyLedger::keep_loads() {
   if (loads_.empty())
     loads_.assign(previous_.size(), {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});

@@ -84,6 +84,10 @@ class EnergyLedger {
  public:
   /// Before the blocks are integrated in a step (after the servos set their velocities).
   void before_integration(const std::vector<Block>& blocks);
+  /// before_integration for the blocks `only` (index order) of a world spread over processes,
+  /// once the accounting has started: the other blocks' records are kept by the processes that
+  /// own them (block_record, set_block_record move them). Before the start, as above, over all.
+  void before_integration(const std::vector<Block>& blocks, std::span<const int> only);
   /// After integration: `dt` the step just taken, `gravity` and `damping` those it used,
   /// `contacts` the joints' energy at level n and the energy dissipated by slip in the step
   /// (EnergyStepSums::add_contact for every active contact).

@@ -388,10 +388,15 @@ class World {
   void exchange_ghosts();
   void require_replica(const char* what) const;
   void mark_resting();
+  /// Lists the blocks by own_ and resting_ (own_list_, moving_list_, kept_list_, keeps_loads_),
+  /// after either changed.
+  void list_own_blocks();
   void sum_resting_loads();
 
-  /// `counted`: the contacts' energy terms of these slots only (per slot, nonzero: count;
-  /// a distributed step's own pairs); null: every slot.
+  /// `counted`: the contacts' energy terms, contact and broken-bond counts and the first too-deep
+  /// overlap of these slots only (per slot, nonzero: count; a distributed step's own pairs), and
+  /// loads summed only on the blocks of keeps_loads_ (the others' are not read), without the
+  /// time-step minimum (the step takes it over its own blocks); null: every slot and block.
   void scatter_loads(const std::vector<char>* counted = nullptr);
   /// `only`: servos of these blocks only (per block, nonzero: apply); null: every block.
   void apply_servos(double dt, const std::vector<char>* only = nullptr);
@@ -441,6 +446,20 @@ class World {
   /// on every process; its pairs and slots stay with the other blocks' owners, and its loads are
   /// summed only when the world is made whole (sum_resting_loads).
   std::vector<char> resting_;
+  // Lists kept from the partition and mark_resting (list_own_blocks), in index order: the own
+  // blocks; those of them not resting (what the ghost exchange sends); the blocks exact here
+  // in every step (own or resting); and per block, whether its loads are summed here (the same).
+  std::vector<int> own_list_, moving_list_, kept_list_;
+  std::vector<char> keeps_loads_;
+  /// The ghosts received by the last ghost exchange, in index order; valid when ghosts_listed_
+  /// (local_ is then kept_list_ and these), not after local_ was set whole.
+  std::vector<int> ghosts_;
+  bool ghosts_listed_ = false;
+  /// The ghost exchange's buffers, kept between steps: the moving own blocks' boxes at their new
+  /// poses (per moving_list_ entry), the (own block, process) sends, and those that the step's
+  /// slots ask for (an own block in a pair with another process's block), listed by the step.
+  std::vector<Eigen::Vector3d> next_min_, next_max_;
+  std::vector<std::pair<std::int64_t, int>> ghost_sends_, pair_sends_;
   double overlap_key_ =
       std::numeric_limits<double>::infinity();  ///< a N + b of the first too-deep contact
 

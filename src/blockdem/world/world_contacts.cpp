@@ -819,10 +819,26 @@ void World::scatter_loads(const std::vector<char>* counted) {
   // in slot order), then run t's own slots in order. The pass also counts contacts and broken
   // bonds, finds the first too-deep overlap, sums the contacts' energies (exact sums) and the
   // automatic time step's minimum over blocks (a minimum is exact).
+  //
+  // A distributed step (`counted` set) sums the loads and stiffnesses of the blocks of
+  // keeps_loads_ alone (its own and the resting ones): a ghost's are not read (its owner sums
+  // its own), nor are any of a block this process does not hold. Each kept block's terms are
+  // the same, in the same order. Its counts, energy terms and overlap check cover the counted
+  // slots, and it takes its time-step minimum over its own blocks.
   const std::size_t n_blocks = blocks_.size();
   const std::size_t m = slots_.size();
-  stiffness_.assign(n_blocks, 0.0);
-  rotational_stiffness_.assign(n_blocks, 0.0);
+  const char* keeps = counted != nullptr ? keeps_loads_.data() : nullptr;
+  if (keeps == nullptr) {
+    stiffness_.assign(n_blocks, 0.0);
+    rotational_stiffness_.assign(n_blocks, 0.0);
+  } else {
+    stiffness_.resize(n_blocks, 0.0);
+    rotational_stiffness_.resize(n_blocks, 0.0);
+    for (const int i : kept_list_) {
+      stiffness_[static_cast<std::size_t>(i)] = 0.0;
+      rotational_stiffness_[static_cast<std::size_t>(i)] = 0.0;
+    }
+  }
   const int threads = thread_count();
 
   // The loads of one slot on its block b, and on its block a.
@@ -924,7 +940,7 @@ void World::scatter_loads(const std::vector<char>* counted) {
       for (const std::size_t k : scatter_cross_[r]) {
         const PairSlot& s = slots_[k];
         const auto b = static_cast<std::size_t>(s.b);
-        if (b >= first && b < last) load_b(s);
+        if (b >= first && b < last && (keeps == nullptr || keeps[b] != 0)) load_b(s);
       }
     }
     RunTotals mine;  // local: no cache line shared with another run's totals
@@ -938,14 +954,16 @@ void World::scatter_loads(const std::vector<char>* counted) {
         }
       }
       const PairSlot& s = slots_[k];
-      if (s.broke) ++mine.broken;  // a bond that broke in tension leaves its slot inactive
+      const bool counts = counted == nullptr || (*counted)[k] != 0;
+      // A bond that broke in tension leaves its slot inactive.
+      if (s.broke && counts) ++mine.broken;
       if (!s.active) continue;
+      if (keeps == nullptr || keeps[s.a] != 0) load_a(s);
+      if (static_cast<std::size_t>(s.b) < last && (keeps == nullptr || keeps[s.b] != 0)) load_b(s);
+      if (!counts) continue;
       ++mine.active;
-      load_a(s);
-      if (static_cast<std::size_t>(s.b) < last) load_b(s);
       const Contact& ct = contact_of(s);
-      if (counted == nullptr || (*counted)[k] != 0)
-        mine.energy.add_contact(ct, ct.twist_stiffness, ct.slip_work);
+      mine.energy.add_contact(ct, ct.twist_stiffness, ct.slip_work);
       if (mine.violation < 0) {
         const double size = std::min(blocks_[ct.a].bounding_radius, blocks_[ct.b].bounding_radius);
         if (ct.geometry.overlap > settings_.max_overlap_fraction * size)
@@ -953,7 +971,7 @@ void World::scatter_loads(const std::vector<char>* counted) {
       }
     }
     // 3. This run's blocks are complete: their time-step bound.
-    for (std::size_t i = first; i < last; ++i) {
+    for (std::size_t i = first; i < last && keeps == nullptr; ++i) {
       // The stiffness first: a block with no contact here (one that another process holds)
       // needs no visit to its record.
       if (stiffness_[i] <= 0.0) continue;

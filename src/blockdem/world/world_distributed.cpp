@@ -392,6 +392,26 @@ void World::mark_resting() {
                       ? 1
                       : 0;
   }
+  list_own_blocks();
+}
+
+void World::list_own_blocks() {
+  const std::size_t n = blocks_.size();
+  own_list_.clear();
+  moving_list_.clear();
+  kept_list_.clear();
+  keeps_loads_.assign(n, 0);
+  // Before the first partition (mark_resting runs first), own_ is not yet the world's.
+  if (own_.size() != n || resting_.size() != n) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int b = static_cast<int>(i);
+    if (own_[i] != 0) own_list_.push_back(b);
+    if (own_[i] != 0 && resting_[i] == 0) moving_list_.push_back(b);
+    if (own_[i] != 0 || resting_[i] != 0) {
+      kept_list_.push_back(b);
+      keeps_loads_[i] = 1;
+    }
+  }
 }
 
 void World::sum_resting_loads() {
@@ -475,6 +495,7 @@ void World::partition_blocks() {
   const int rank = settings_.distribution->rank();
   own_.assign(blocks_.size(), 0);
   for (std::size_t i = 0; i < blocks_.size(); ++i) own_[i] = owner_[i] == rank ? 1 : 0;
+  list_own_blocks();
   partition_step_ = step_count_;
   ++dist_stats_.partitions;
 }
@@ -1129,6 +1150,7 @@ void World::synchronize() {
     }
   }
   local_.assign(n, 1);
+  ghosts_listed_ = false;
   replica_complete_ = true;
   dist_stats_.replica_refreshes += 1;
   dist_stats_.replica_bytes_sent += static_cast<std::int64_t>(out_bytes);
@@ -1140,8 +1162,10 @@ void World::synchronize() {
 void World::exchange_ghosts() {
   // After integration: each process's own blocks to every process whose subdomain box (the union
   // of its blocks' boxes) their box touches, and to the owners of their pairs' other blocks (an
-  // open bond keeps a pair whose boxes have parted). A process then holds, exactly, every block
-  // whose box can touch one of its own: its next broad phase and pair work need no other.
+  // open bond keeps a pair whose boxes have parted; listed by the step in pair_sends_). A
+  // process then holds, exactly, every block whose box can touch one of its own: its next broad
+  // phase and pair work need no other. The walks cover the moving own blocks and the received
+  // ghosts only, in buffers kept between steps.
   PairDistribution& dist = *settings_.distribution;
   const int rank = dist.rank();
   const auto k = static_cast<std::size_t>(dist.size());
@@ -1153,23 +1177,24 @@ void World::exchange_ghosts() {
   // model. A resting block is exact on every process: it is neither sent nor needs ghosts.
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf), hi = Eigen::Vector3d::Constant(-inf);
-  std::vector<Eigen::Vector3d> next_min(n, lo), next_max(n, hi);
+  const std::size_t moving = moving_list_.size();
+  next_min_.assign(moving, lo);
+  next_max_.assign(moving, hi);
   std::vector<char> box;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (own_[i] == 0 || resting_[i] != 0) continue;
-    const Block& b = blocks_[i];
+  for (std::size_t m = 0; m < moving; ++m) {
+    const Block& b = blocks_[static_cast<std::size_t>(moving_list_[m])];
     const Eigen::Matrix3d rot = b.rotation();
     for (const auto& v : b.shape.vertices()) {
       const Eigen::Vector3d w = b.position + rot * v;
-      next_min[i] = next_min[i].cwiseMin(w);
-      next_max[i] = next_max[i].cwiseMax(w);
+      next_min_[m] = next_min_[m].cwiseMin(w);
+      next_max_[m] = next_max_[m].cwiseMax(w);
     }
     if (b.motion == Motion::fixed) {
-      put3(box, next_min[i]);
-      put3(box, next_max[i]);
+      put3(box, next_min_[m]);
+      put3(box, next_max_[m]);
     } else {
-      lo = lo.cwiseMin(next_min[i]);
-      hi = hi.cwiseMax(next_max[i]);
+      lo = lo.cwiseMin(next_min_[m]);
+      hi = hi.cwiseMax(next_max_[m]);
     }
   }
   put3(box, lo);
@@ -1185,32 +1210,33 @@ void World::exchange_ghosts() {
   }
   // (own block, destination) pairs: by the boxes, then the other owners of its pairs; each
   // message lists its blocks in index order.
-  std::vector<std::pair<std::int64_t, int>> sends;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (own_[i] == 0 || resting_[i] != 0) continue;
+  std::vector<std::pair<std::int64_t, int>>& sends = ghost_sends_;
+  sends.clear();
+  for (std::size_t m = 0; m < moving; ++m) {
     for (std::size_t r = 0; r < k; ++r) {
       if (static_cast<int>(r) == rank) continue;
       for (const auto& [box_lo, box_hi] : subdomain[r]) {
-        if (boxes_overlap(next_min[i], next_max[i], box_lo, box_hi)) {
-          sends.emplace_back(static_cast<std::int64_t>(i), static_cast<int>(r));
+        if (boxes_overlap(next_min_[m], next_max_[m], box_lo, box_hi)) {
+          sends.emplace_back(static_cast<std::int64_t>(moving_list_[m]), static_cast<int>(r));
           break;
         }
       }
     }
   }
-  for (const auto& s : slots_) {
-    const int a = s.a, b = s.b;
-    if (resting_[a] != 0 || resting_[b] != 0) continue;
-    if (own_[a] != 0 && owner_[b] != rank) sends.emplace_back(a, owner_[b]);
-    if (own_[b] != 0 && owner_[a] != rank) sends.emplace_back(b, owner_[a]);
-  }
+  sends.insert(sends.end(), pair_sends_.begin(), pair_sends_.end());
   std::sort(sends.begin(), sends.end());
   sends.erase(std::unique(sends.begin(), sends.end()), sends.end());
   std::vector<std::vector<char>> to(k);
   for (const auto& [i, r] : sends)
     put(to[static_cast<std::size_t>(r)], ghost_of(blocks_[static_cast<std::size_t>(i)]));
   const std::vector<std::vector<char>> from = dist.exchange(to);
-  for (std::size_t i = 0; i < n; ++i) local_[i] = own_[i] != 0 || resting_[i] != 0 ? 1 : 0;
+  // The last step's ghosts are exact here no more (every block, after a refresh).
+  if (ghosts_listed_) {
+    for (const int g : ghosts_) local_[static_cast<std::size_t>(g)] = 0;
+  } else {
+    for (std::size_t i = 0; i < n; ++i) local_[i] = own_[i] != 0 || resting_[i] != 0 ? 1 : 0;
+  }
+  ghosts_.clear();
   for (std::size_t r = 0; r < k; ++r) {
     if (from[r].size() % sizeof(GhostState) != 0)
       throw std::logic_error("ghost exchange: a process sent a malformed part");
@@ -1221,9 +1247,13 @@ void World::exchange_ghosts() {
         throw std::logic_error("ghost exchange: a block came from a process that does not own it");
       set_ghost(blocks_[i], g);
       local_[i] = 1;
+      ghosts_.push_back(static_cast<int>(i));
     }
     dist_stats_.bytes_received += static_cast<std::int64_t>(from[r].size());
   }
+  // Each process's list is in index order, and the processes own disjoint blocks.
+  std::sort(ghosts_.begin(), ghosts_.end());
+  ghosts_listed_ = true;
   for (std::size_t r = 0; r < k; ++r)
     dist_stats_.bytes_sent += static_cast<std::int64_t>(to[r].size());
   dist_stats_.bytes_sent += static_cast<std::int64_t>(box.size());
@@ -1241,6 +1271,7 @@ void World::step_distributed(double dt, int threads) {
   }
   if (replica_complete_) {
     local_.assign(n, 1);
+    ghosts_listed_ = false;
     mark_resting();
   }
   // Time spent in the exchanges and reductions, waiting included (s).
@@ -1254,9 +1285,15 @@ void World::step_distributed(double dt, int threads) {
   // in index order: the step's broad phase and its per-block loops cover them alone, not the
   // whole world. Independent per block, so in parallel over the threads.
   std::vector<int> held;
-  held.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (local_[i] != 0) held.push_back(static_cast<int>(i));
+  if (ghosts_listed_) {
+    // The exact blocks are the kept ones and the last exchange's ghosts (disjoint lists).
+    held.resize(kept_list_.size() + ghosts_.size());
+    std::merge(kept_list_.begin(), kept_list_.end(), ghosts_.begin(), ghosts_.end(), held.begin());
+  } else {
+    held.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (local_[i] != 0) held.push_back(static_cast<int>(i));
+  }
   const auto n_held = static_cast<std::int64_t>(held.size());
   box_min_.resize(n);
   box_max_.resize(n);
@@ -1326,18 +1363,28 @@ void World::step_distributed(double dt, int threads) {
     return pair_owner_process(owner_, c.a, moves[static_cast<std::size_t>(c.a)] != 0, c.b,
                               moves[static_cast<std::size_t>(c.b)] != 0);
   };
+  // The same walk lists the (own block, process) pairs that the ghost exchange sends for the
+  // slots: an own block to the owner of its pair's other block (an open bond keeps a pair whose
+  // boxes have parted), neither block resting.
   std::vector<std::int64_t> mine;
-  std::vector<char> ghost(n, 0);
+  std::vector<int> ghost;  // the other processes' blocks in this process's pairs
   std::vector<char> is_mine(slots_.size(), 0);
+  pair_sends_.clear();
   for (std::size_t k = 0; k < slots_.size(); ++k) {
     const PairSlot& c = slots_[k];
+    const int ca = c.a, cb = c.b;
+    if ((own_[ca] == 0 || own_[cb] == 0) && resting_[ca] == 0 && resting_[cb] == 0) {
+      if (own_[ca] != 0 && owner_[cb] != rank) pair_sends_.emplace_back(ca, owner_[cb]);
+      if (own_[cb] != 0 && owner_[ca] != rank) pair_sends_.emplace_back(cb, owner_[ca]);
+    }
     if (owner_of(c) != rank) continue;
     mine.push_back(static_cast<std::int64_t>(k));
     is_mine[k] = 1;
-    if (own_[c.a] == 0) ghost[c.a] = 1;
-    if (own_[c.b] == 0) ghost[c.b] = 1;
+    if (own_[ca] == 0) ghost.push_back(ca);
+    if (own_[cb] == 0) ghost.push_back(cb);
   }
-  for (char g : ghost) dist_stats_.ghost_blocks += g;
+  std::sort(ghost.begin(), ghost.end());
+  dist_stats_.ghost_blocks += std::unique(ghost.begin(), ghost.end()) - ghost.begin();
   const auto t0 = std::chrono::steady_clock::now();
   const std::int64_t count = static_cast<std::int64_t>(mine.size());
   const std::exception_ptr error = evaluate_slots(dt, true, threads, &is_mine);
@@ -1465,25 +1512,23 @@ void World::step_distributed(double dt, int threads) {
 
   // 5. Loads: every slot of an own block is exact here, so its sums are the serial ones. The
   // counts over pairs and the time-step minimum count only what this process owns.
+  // scatter_loads counts, of this process's pairs only, the contacts' energy terms, the active
+  // contacts and broken bonds, and finds the first too-deep overlap among them (the blocks'
+  // copies of their shapes' radii, refreshed with their planes this step); it sums the loads
+  // of the own and resting blocks only.
   const std::int64_t broken_before = broken_bonds_;
-  scatter_loads(&is_mine);  // the contacts' energy terms of this process's pairs only
-  std::int64_t active = 0, broke = 0;
+  scatter_loads(&is_mine);
+  const auto active = static_cast<std::int64_t>(active_count_);
+  const std::int64_t broke = broken_bonds_ - broken_before;
   double overlap_key = std::numeric_limits<double>::infinity();
-  for (std::int64_t i : mine) {
-    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    broke += s.broke ? 1 : 0;
-    if (!s.active) continue;
-    ++active;
-    if (!std::isinf(overlap_key)) continue;
-    // The blocks' copies of their shapes' radii, refreshed with their planes this step.
-    const double size = std::min(blocks_[s.a].bounding_radius, blocks_[s.b].bounding_radius);
-    if (contact_of(s).geometry.overlap > settings_.max_overlap_fraction * size)
-      overlap_key = static_cast<double>(s.a) * static_cast<double>(n) + s.b;
+  if (overlap_violation_ >= 0) {
+    const PairSlot& s = slots_[static_cast<std::size_t>(overlap_violation_)];
+    overlap_key = static_cast<double>(s.a) * static_cast<double>(n) + s.b;
   }
   double dt_min = std::numeric_limits<double>::infinity();
-  for (const int h : held) {
+  for (const int h : own_list_) {
     const auto i = static_cast<std::size_t>(h);
-    if (own_[i] == 0 || stiffness_[i] <= 0.0 || moves[i] == 0) continue;
+    if (stiffness_[i] <= 0.0 || moves[i] == 0) continue;
     const Block& bl = blocks_[i];
     dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[i]));
     dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
@@ -1491,10 +1536,10 @@ void World::step_distributed(double dt, int threads) {
 
   // 6. Servos and integration of the own blocks.
   apply_servos(dt, &own_);
-  energy_.before_integration(blocks_);
-  std::vector<std::int64_t> own_list;
-  for (std::size_t i = 0; i < n; ++i)
-    if (own_[i] != 0) own_list.push_back(static_cast<std::int64_t>(i));
+  // The ledger's records of the own blocks only: another process keeps the others' (a refresh
+  // sets them here from their owners).
+  energy_.before_integration(blocks_, own_list_);
+  const std::vector<int>& own_list = own_list_;
   const std::int64_t n_own = static_cast<std::int64_t>(own_list.size());
   const double damping = settings_.damping;
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n_own > 256)
@@ -1507,7 +1552,7 @@ void World::step_distributed(double dt, int threads) {
   energy_.prepare(n);
   EnergyStepSums step_sums = std::move(contact_energy_);  // scatter_loads's, of its own pairs
   contact_energy_ = EnergyStepSums{};
-  for (std::int64_t i : own_list) {
+  for (const int i : own_list) {
     const auto bi = static_cast<std::size_t>(i);
     step_sums.add_block(energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt));
   }
@@ -1527,8 +1572,8 @@ void World::step_distributed(double dt, int threads) {
   tw = Clock::now();
   exchange_ghosts();
   double first_bad = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n && std::isinf(first_bad); ++i) {
-    if (own_[i] == 0) continue;
+  for (std::size_t k = 0; k < own_list.size() && std::isinf(first_bad); ++k) {
+    const auto i = static_cast<std::size_t>(own_list[k]);
     const Block& b = blocks_[i];
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
         !b.orientation.coeffs().allFinite() || b.velocity.norm() > settings_.max_speed)
