@@ -22,6 +22,16 @@ struct BrickPile {
   double preclose = 5e-8;   ///< (m)
   double kick = 0.05;       ///< amplitude of the initial velocities (m/s)
 
+  /// Settings under which the pile slides on its base, so that blocks cross the boundaries of
+  /// a distributed world's parts: gravity tilted to about 10 g, mode boon2012, one thread.
+  static WorldSettings sliding_settings() {
+    WorldSettings s;
+    s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);
+    s.contact_mode = ContactMode::boon2012;
+    s.threads = 1;
+    return s;
+  }
+
   int block_count() const {
     int c = 1;
     for (int l = 0; l < layers; ++l) c += (l % 2 == 0 ? n * n : (n - 1) * (n - 1));

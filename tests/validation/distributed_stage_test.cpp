@@ -88,10 +88,7 @@ Outcome run(World w, const Stage& stage) {
 // parts must not have made the world whole at the checks: one refresh at most, at the stage's
 // end, against one per check (24) when the checks read the whole world.
 TEST(DistributedStage, ChecksFromReductionsBitIdenticalWithoutRefreshes) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: blocks slide and move
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
   const BrickPile pile;
   Stage stage;
@@ -174,10 +171,7 @@ Files write_outputs(World w, const Stage& stage, const std::filesystem::path& di
 // every part's own blocks and contacts (World::merge_to_root), are one world's files byte for
 // byte, and no part made the world whole: not for the rows, nor at the stage's end.
 TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted: blocks slide across the boundaries
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   const BrickPile pile;
   Stage stage;
   stage.name = "slide";
@@ -267,10 +261,7 @@ Diverged diverge(World w) {
 // reset to the checkpoint are one world's bit for bit, on 2 and 3 parts, with 2 refreshes (one
 // at step 450, one at the divergence) where each checkpoint made one (3 more here).
 TEST(DistributedStage, CheckpointInPartsGatheredAndResetBitIdentical) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted: blocks slide across the boundaries
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
   const BrickPile pile;
   const Diverged oracle = diverge(pile.world(s, 20.0));
@@ -306,10 +297,7 @@ TEST(DistributedStage, CheckpointInPartsGatheredAndResetBitIdentical) {
 // from parts) continues on one world and on 2 parts to the state of the run that never stopped
 // (step 650, whose checkpoint of step 600 was again kept in parts on 2).
 TEST(DistributedStage, RestartFromTwoPartsContinuesOnOneAndTwoBitIdentically) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
   const BrickPile pile;
   World straight = pile.world(s, 20.0);

@@ -115,10 +115,7 @@ PartRuns run_parts(const BrickPile& pile, const WorldSettings& s, double frictio
 }
 
 TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: the pile slides on its base
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   const BrickPile pile;
   const int steps = 150;
   const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr);
@@ -161,10 +158,7 @@ TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
 // equilibrium measures that reductions of the parts give at every step in between. The per-step
 // exchange must be smaller than the whole-world gather it replaces.
 TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);  // tilted 10 g: blocks cross the boundaries
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
   const BrickPile pile;
   const int steps = 150, every = 10;
@@ -243,10 +237,7 @@ TEST(DistributedStep, BasePlateOwnerReceivesNoMoreThanTheOthers) {
 // formed that were not there before (pairs whose blocks reached each other's process as ghosts;
 // a rebalance, which the measured pair times could still call for, would make the world whole).
 TEST(DistributedStep, GhostListsFollowTheBlocksBetweenRareRefreshes) {
-  WorldSettings s;
-  s.gravity = Eigen::Vector3d(60.0, 25.0, -98.1);
-  s.contact_mode = ContactMode::boon2012;
-  s.threads = 1;
+  WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
   const BrickPile pile;
   const int steps = 150, every = 75;
