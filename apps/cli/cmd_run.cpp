@@ -258,8 +258,9 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
       return 2;
     }
     // The first process reads and checks the checkpoint and sends it to the others: only it
-    // needs the output folder. A checkpoint it refuses stops every process (exit code 2).
-    if (!control.restart.empty()) {
+    // needs the output folder. A checkpoint it refuses stops every process (exit code 2). One
+    // process alone leaves it to the runner, which maps the file instead of reading it whole.
+    if (!control.restart.empty() && mpi.size() > 1) {
       std::string why;
       control.restart_payload = std::make_shared<std::string>();
       if (mpi.rank() == 0) {

@@ -5,11 +5,14 @@
 #include "blockdem/io/checkpoint_file.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
@@ -28,13 +31,6 @@ void put(std::string& s, T v) {
   char b[sizeof(T)];
   std::memcpy(b, &v, sizeof(T));
   s.append(b, sizeof(T));
-}
-
-template <class T>
-T get(const std::string& s, std::size_t at) {
-  T v;
-  std::memcpy(&v, s.data() + at, sizeof(T));
-  return v;
 }
 
 std::string header(std::uint64_t scenario_hash, std::uint64_t payload_size) {
@@ -67,6 +63,9 @@ void keep_previous(const std::filesystem::path& file) {
 }
 
 constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
+/// A reader's checksum goes over the file in chunks of this size (a mapped file's pages are
+/// given back after each).
+constexpr std::size_t kHashChunkBytes = std::size_t{16} << 20;
 
 }  // namespace
 
@@ -175,6 +174,53 @@ void write_checkpoint_file(const std::filesystem::path& file, std::uint64_t scen
   write_file_atomically(file, bytes);
 }
 
+namespace {
+
+// The envelope's checks in read_checkpoint_file's order, on the file's bytes; returns the
+// payload's size. `hashed` is told after each chunk of the checksum (the bytes before that file
+// offset are not read again).
+std::size_t check_envelope(const std::filesystem::path& file, std::string_view bytes,
+                           std::uint64_t scenario_hash,
+                           const std::function<void(std::size_t)>& hashed) {
+  const auto get_at = [&bytes]<class T>(T, std::size_t at) {
+    T v;
+    std::memcpy(&v, bytes.data() + at, sizeof(T));
+    return v;
+  };
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw CheckpointError(file, "not a blockdem checkpoint (wrong magic number)");
+  if (bytes.size() < kHeader + 8) throw CheckpointError(file, "truncated (shorter than a header)");
+  if (get_at(std::uint32_t{}, 8) != kByteOrder)
+    throw CheckpointError(file, "written on a machine of the other byte order");
+  const auto version = get_at(std::uint32_t{}, 12);
+  if (version != kCheckpointVersion)
+    throw CheckpointError(file, "format version " + std::to_string(version) +
+                                    "; this blockdem reads version " +
+                                    std::to_string(kCheckpointVersion));
+  const auto size = get_at(std::uint64_t{}, 24);
+  if (size != bytes.size() - kHeader - 8)
+    throw CheckpointError(file, "truncated or padded: the header announces " +
+                                    std::to_string(size) + " bytes of state, the file holds " +
+                                    std::to_string(bytes.size() - kHeader - 8));
+  const std::size_t body = kHeader + static_cast<std::size_t>(size);
+  std::uint64_t hash = fnv1a64({});
+  for (std::size_t at = 0; at < body;) {
+    const std::size_t n = std::min(kHashChunkBytes, body - at);
+    hash = fnv1a64(bytes.substr(at, n), hash);
+    at += n;
+    if (hashed) hashed(at);
+  }
+  if (get_at(std::uint64_t{}, body) != hash)
+    throw CheckpointError(file, "corrupt (checksum mismatch)");
+  if (get_at(std::uint64_t{}, 16) != scenario_hash)
+    throw CheckpointError(file,
+                          "written for another scenario file or other run options (--max-steps); "
+                          "restart with the scenario and options of the run that wrote it");
+  return static_cast<std::size_t>(size);
+}
+
+}  // namespace
+
 std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash) {
   std::string bytes;
   try {
@@ -182,33 +228,62 @@ std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_
   } catch (const std::runtime_error&) {
     throw CheckpointError(file, "cannot be read");
   }
-  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-    throw CheckpointError(file, "not a blockdem checkpoint (wrong magic number)");
-  if (bytes.size() < kHeader + 8) throw CheckpointError(file, "truncated (shorter than a header)");
-  const auto order = get<std::uint32_t>(bytes, 8);
-  if (order != kByteOrder)
-    throw CheckpointError(file, "written on a machine of the other byte order");
-  const auto version = get<std::uint32_t>(bytes, 12);
-  if (version != kCheckpointVersion)
-    throw CheckpointError(file, "format version " + std::to_string(version) +
-                                    "; this blockdem reads version " +
-                                    std::to_string(kCheckpointVersion));
-  const auto size = get<std::uint64_t>(bytes, 24);
-  if (size != bytes.size() - kHeader - 8)
-    throw CheckpointError(file, "truncated or padded: the header announces " +
-                                    std::to_string(size) + " bytes of state, the file holds " +
-                                    std::to_string(bytes.size() - kHeader - 8));
-  const std::size_t body = kHeader + static_cast<std::size_t>(size);
-  if (get<std::uint64_t>(bytes, body) != fnv1a64(std::string_view(bytes.data(), body)))
-    throw CheckpointError(file, "corrupt (checksum mismatch)");
-  if (get<std::uint64_t>(bytes, 16) != scenario_hash)
-    throw CheckpointError(file,
-                          "written for another scenario file or other run options (--max-steps); "
-                          "restart with the scenario and options of the run that wrote it");
+  const std::size_t size = check_envelope(file, bytes, scenario_hash, {});
   // The payload in place (no second copy of a file that can hold a large world).
-  bytes.resize(body);
+  bytes.resize(kHeader + size);
   bytes.erase(0, kHeader);
   return bytes;
+}
+
+MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file,
+                                   std::uint64_t scenario_hash) {
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
+    throw CheckpointError(file, "cannot be read");
+  }
+  size_ = static_cast<std::size_t>(st.st_size);
+  if (size_ > 0) {
+    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (p == MAP_FAILED) {
+      ::close(fd);
+      throw CheckpointError(file, "cannot be read");
+    }
+    base_ = static_cast<const char*>(p);
+    ::madvise(p, size_, MADV_SEQUENTIAL);
+  }
+  ::close(fd);  // the mapping keeps the file
+  try {
+    payload_size_ = check_envelope(file, std::string_view(base_, size_), scenario_hash,
+                                   [this](std::size_t at) { release_file_before(at); });
+  } catch (...) {
+    if (base_) ::munmap(const_cast<char*>(base_), size_);
+    throw;
+  }
+  released_ = 0;  // the checksum's pass gave back every page: a reader's pass starts again
+}
+
+MappedCheckpoint::~MappedCheckpoint() {
+  if (base_) ::munmap(const_cast<char*>(base_), size_);
+}
+
+std::string_view MappedCheckpoint::payload() const {
+  return std::string_view(base_ ? base_ + kHeader : base_, payload_size_);
+}
+
+void MappedCheckpoint::release_before(std::size_t offset) {
+  release_file_before(kHeader + std::min(offset, payload_size_));
+}
+
+void MappedCheckpoint::release_file_before(std::size_t at) {
+  // Whole pages only; a page the reader is still in stays. Given back, a page is read from the
+  // file again if it is touched again (the mapping is private and never written).
+  const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  const std::size_t end = std::min(at, size_) / page * page;
+  if (end <= released_) return;
+  ::madvise(const_cast<char*>(base_) + released_, end - released_, MADV_DONTNEED);
+  released_ = end;
 }
 
 }  // namespace blockdem

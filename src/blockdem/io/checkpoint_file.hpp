@@ -59,4 +59,29 @@ class CheckpointFileWriter {
 /// CheckpointError with the reason.
 std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash);
 
+/// A checkpoint file mapped into memory (read only) and checked as read_checkpoint_file checks
+/// it, with the same errors. Its payload is read in place, and the pages a reader has passed can
+/// be given back (release_before): a restart of a large world then never holds the file's bytes
+/// and the world's state in memory at once (read_checkpoint_file's string held both). The
+/// checksum's pass gives back its pages as it goes. The file must not change in place while it is
+/// mapped (blockdem replaces a checkpoint by a rename: the mapping keeps the old file).
+class MappedCheckpoint {
+ public:
+  MappedCheckpoint(const std::filesystem::path& file, std::uint64_t scenario_hash);
+  ~MappedCheckpoint();
+  MappedCheckpoint(const MappedCheckpoint&) = delete;
+  MappedCheckpoint& operator=(const MappedCheckpoint&) = delete;
+  std::string_view payload() const;
+  /// Gives back the whole pages of the payload before payload offset `offset` (bytes read there
+  /// again are read from the file again).
+  void release_before(std::size_t offset);
+
+ private:
+  void release_file_before(std::size_t at);
+  const char* base_ = nullptr;
+  std::size_t size_ = 0;          ///< the file's bytes
+  std::size_t payload_size_ = 0;  ///< the payload's bytes
+  std::size_t released_ = 0;      ///< file bytes given back so far (whole pages)
+};
+
 }  // namespace blockdem

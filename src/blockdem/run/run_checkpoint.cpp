@@ -40,7 +40,8 @@ std::string encode_run_point(const RunPoint& p) {
   return head;
 }
 
-RunPoint decode_run_point(std::string bytes) {
+RunPoint decode_run_point(std::string_view bytes, std::string_view& world,
+                          std::string_view& before) {
   StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   RunPoint p;
   p.level = r.pod<std::int32_t>();
@@ -49,12 +50,15 @@ RunPoint decode_run_point(std::string bytes) {
   p.stage.gravity_before = r.vec();
   r.pod(p.stage.start_time);
   p.monitor = r.str();
-  // The world's state (nearly all of the bytes) is cut out of `bytes` in place at the end, not
-  // copied: a restart of a large world holds its state once.
-  const std::size_t world_size = r.size();
-  const std::size_t world_at = r.position();
-  r.skip(world_size);
-  p.before = r.str();
+  // The world's states (nearly all of the bytes) are passed over, not copied.
+  const auto view = [&r, bytes] {
+    const std::size_t n = r.size();
+    const std::size_t at = r.position();
+    r.skip(n);
+    return bytes.substr(at, n);
+  };
+  world = view();
+  before = view();
   p.summary = r.str();
   p.stages = r.str();
   p.steps_per_stage.resize(r.size());
@@ -72,6 +76,17 @@ RunPoint decode_run_point(std::string bytes) {
   p.outputs = r.str();
   if (!r.done()) throw StateError("saved state is corrupt (bytes left over)");
   if (p.level < 0 || p.stage.steps_done < 0) throw StateError("saved state is corrupt");
+  return p;
+}
+
+RunPoint decode_run_point(std::string bytes) {
+  std::string_view world, before;
+  RunPoint p = decode_run_point(bytes, world, before);
+  p.before = std::string(before);
+  // The world's state is cut out of `bytes` in place, not copied: a restart of a large world
+  // holds its state once.
+  const auto world_at = static_cast<std::size_t>(world.data() - bytes.data());
+  const std::size_t world_size = world.size();
   bytes.resize(world_at + world_size);
   bytes.erase(0, world_at);
   p.world = std::move(bytes);

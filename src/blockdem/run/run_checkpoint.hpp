@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -39,5 +40,9 @@ std::pair<std::string, std::string> encode_run_point_around_world(const RunPoint
 /// Throws StateError for bytes that are not a RunPoint. The world's state is taken out of
 /// `bytes` (pass them moved: a large world's state is then never copied).
 RunPoint decode_run_point(std::string bytes);
+/// The same over bytes it does not own, without copying the world's states: `point.world` and
+/// `point.before` stay empty, and `world` and `before` view their bytes in `bytes`.
+RunPoint decode_run_point(std::string_view bytes, std::string_view& world,
+                          std::string_view& before);
 
 }  // namespace blockdem

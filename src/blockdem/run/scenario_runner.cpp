@@ -37,8 +37,12 @@ std::string state_bytes(const World& world) {
   return std::string(w.bytes().begin(), w.bytes().end());
 }
 
-void load_bytes(World& world, const std::string& bytes) {
+/// `passed`: told every few MB how far the reader has come (a mapped checkpoint gives back the
+/// pages behind it).
+void load_bytes(World& world, std::string_view bytes,
+                const std::function<void(std::size_t)>& passed = {}) {
   StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  if (passed) r.on_progress(std::size_t{16} << 20, passed);
   world.load_state(r);
   if (!r.done()) throw StateError("saved world state is corrupt (bytes left over)");
 }
@@ -61,13 +65,22 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
     throw std::invalid_argument(
         "checkpoints and restarts are not available for voussoir beam scenarios yet");
   // Everything is read and checked before anything is written: the restart file first.
+  // A restart file read by this process is mapped, not read into memory: the world's states are
+  // read in place and the pages behind the reader given back, so that the file's bytes and the
+  // loaded world are never both resident (a payload handed over by the caller is a string).
   std::optional<RunPoint> resume;
+  std::optional<MappedCheckpoint> mapped;
+  std::string_view saved_world, saved_before;
   if (!control.restart.empty()) {
-    std::string payload = control.restart_payload
-                              ? std::move(*control.restart_payload)
-                              : read_checkpoint_file(control.restart, control.scenario_hash);
     try {
-      resume = decode_run_point(std::move(payload));
+      if (control.restart_payload) {
+        resume = decode_run_point(std::move(*control.restart_payload));
+        saved_world = resume->world;
+        saved_before = resume->before;
+      } else {
+        mapped.emplace(control.restart, control.scenario_hash);
+        resume = decode_run_point(mapped->payload(), saved_world, saved_before);
+      }
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
     }
@@ -108,17 +121,25 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       // The world before the searching stage starts from the world as built (a copy: the
       // scenario's blocks may have been moved into the world).
       if (resume->in_stage && search) resumed_before.emplace(world);
-      load_bytes(world, resume->world);
-      std::string().swap(resume->world);  // the world holds it now (a large world's state)
+      const auto passed = [&](std::string_view part) -> std::function<void(std::size_t)> {
+        if (!mapped) return {};
+        const auto from = static_cast<std::size_t>(part.data() - mapped->payload().data());
+        return [&mapped, from](std::size_t read) { mapped->release_before(from + read); };
+      };
+      load_bytes(world, saved_world, passed(saved_world));
       if (resume->in_stage) {
-        if (at.kind == Stage::Kind::strength_reduction || search != !resume->before.empty())
+        if (at.kind == Stage::Kind::strength_reduction || search != !saved_before.empty())
           throw StateError("saved stage state does not fit the scenario's stage");
         StateReader r(reinterpret_cast<const std::uint8_t*>(resume->monitor.data()),
                       resume->monitor.size());
         resumed_monitor.emplace(r);
-        if (search) load_bytes(*resumed_before, resume->before);
-        std::string().swap(resume->before);
+        if (search) load_bytes(*resumed_before, saved_before, passed(saved_before));
       }
+      // The worlds hold their states now (a large world's state): the bytes go.
+      saved_world = saved_before = {};
+      std::string().swap(resume->world);
+      std::string().swap(resume->before);
+      mapped.reset();
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());
     }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -120,14 +121,28 @@ class StateReader {
     need(n);
     at_ += n;
   }
+  /// Calls `passed(position())` whenever the reader has gone at least `every` bytes on since the
+  /// last call (a reader of a mapped file gives back the pages behind it).
+  void on_progress(std::size_t every, std::function<void(std::size_t)> passed) {
+    every_ = every;
+    passed_ = std::move(passed);
+    next_ = at_ + every_;
+  }
 
  private:
-  void need(std::size_t n) const {
+  void need(std::size_t n) {
     if (n > size_ - at_) throw StateError("saved state is truncated");
+    if (at_ >= next_) {
+      next_ = at_ + every_;
+      passed_(at_);
+    }
   }
   const std::uint8_t* data_;
   std::size_t size_;
   std::size_t at_ = 0;
+  std::size_t every_ = 0;
+  std::size_t next_ = std::numeric_limits<std::size_t>::max();  ///< no calls until on_progress
+  std::function<void(std::size_t)> passed_;
 };
 
 }  // namespace blockdem

@@ -1,6 +1,6 @@
 // The restart file's envelope written in pieces (CheckpointFileWriter, as a distributed run
-// streams its state into it) against the whole-payload writer, and the reader's refusals of a
-// damaged file.
+// streams its state into it) against the whole-payload writer, the readers' refusals of a
+// damaged file, and the mapped reader against the whole-file reader.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -124,6 +124,71 @@ TEST(CheckpointFileWriter, DamagedFileIsRefusedWithItsReason) {
   std::string flipped = good;
   flipped[1000] ^= 1;
   EXPECT_NE(refusal(flipped).find("corrupt (checksum mismatch)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// The mapped reader gives the payload read_checkpoint_file gives, byte for byte, also after
+// pages were given back behind a reader (they are read from the file again) and across the
+// checksum's 16 MiB chunks. Tolerance: none (bytes).
+TEST(MappedCheckpoint, PayloadIsTheReadersAlsoAfterPagesAreGivenBack) {
+  const fs::path dir = fresh("mapped");
+  std::string p;
+  for (std::int64_t k = 0; p.size() < (std::size_t{40} << 20); ++k)
+    p += std::to_string(k * 104729) + ',';
+  write_checkpoint_file(dir / "c.bdck", 11, p);
+  const MappedCheckpoint empty_one = [&] {
+    write_checkpoint_file(dir / "e.bdck", 11, "");
+    return MappedCheckpoint(dir / "e.bdck", 11);
+  }();
+  EXPECT_TRUE(empty_one.payload().empty());
+  MappedCheckpoint m(dir / "c.bdck", 11);
+  ASSERT_EQ(m.payload().size(), p.size());
+  EXPECT_TRUE(m.payload() == p);
+  m.release_before(p.size() / 2);
+  EXPECT_TRUE(m.payload() == p);
+  m.release_before(p.size() + 4096);  // past the end: clamped
+  EXPECT_TRUE(m.payload() == p);
+  EXPECT_TRUE(m.payload() == read_checkpoint_file(dir / "c.bdck", 11));
+  fs::remove_all(dir);
+}
+
+// Bad input: the mapped reader refuses what read_checkpoint_file refuses, with the same message
+// (file name and reason): a missing file, an empty one, a damaged magic, a truncated one, one
+// byte changed, another scenario.
+TEST(MappedCheckpoint, RefusesWhatTheReaderRefusesWithTheSameMessage) {
+  const fs::path dir = fresh("mapped_bad");
+  write_checkpoint_file(dir / "c.bdck", 7, payload());
+  const std::string good = read_file_bytes(dir / "c.bdck");
+  const auto message = [](const auto& read) {
+    try {
+      read();
+    } catch (const CheckpointError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const auto both = [&](const std::string& bytes, std::uint64_t hash, const char* reason) {
+    write_file_atomically(dir / "c.bdck", bytes);
+    const std::string read = message([&] { read_checkpoint_file(dir / "c.bdck", hash); });
+    const std::string mapped = message([&] { MappedCheckpoint(dir / "c.bdck", hash); });
+    EXPECT_EQ(mapped, read);
+    EXPECT_NE(read.find((dir / "c.bdck").string() + ": " + reason), std::string::npos) << read;
+  };
+  both("", 7, "not a blockdem checkpoint");
+  std::string magic = good;
+  magic[1] = 'X';
+  both(magic, 7, "not a blockdem checkpoint");
+  both(good.substr(0, 20), 7, "truncated (shorter than a header)");
+  both(good.substr(0, good.size() - 1), 7, "truncated or padded");
+  std::string flipped = good;
+  flipped[good.size() / 2] ^= 1;
+  both(flipped, 7, "corrupt (checksum mismatch)");
+  both(good, 8, "written for another scenario file");
+  fs::remove(dir / "c.bdck");
+  EXPECT_EQ(message([&] { MappedCheckpoint(dir / "c.bdck", 7); }),
+            (dir / "c.bdck").string() + ": cannot be read");
+  EXPECT_EQ(message([&] { read_checkpoint_file(dir / "c.bdck", 7); }),
+            (dir / "c.bdck").string() + ": cannot be read");
   fs::remove_all(dir);
 }
 
