@@ -235,8 +235,7 @@ std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_
   return bytes;
 }
 
-MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file,
-                                   std::uint64_t scenario_hash) {
+MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file, std::uint64_t scenario_hash) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat st {};
   if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
