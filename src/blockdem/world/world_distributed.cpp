@@ -5,7 +5,8 @@
 // them, and sends their new states to the processes that hold them as ghosts. Global quantities
 // are reduced exactly (minima, integer sums, exact accumulators of doubles). Every
 // exact block and slot is bit for bit what one process computes; synchronize() gathers the
-// whole world when a caller reads it.
+// whole world when a caller reads it. A new partition moves only the blocks that change owner,
+// point to point, with their slots (migrate_blocks).
 #include <algorithm>
 #include <array>
 #include <chrono>
