@@ -10,10 +10,13 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "blockdem/world/state_stream.hpp"
 #include "brick_pile.hpp"
 #include "support/thread_distribution.hpp"
 
@@ -175,8 +178,9 @@ TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
             << parts << " parts, part " << r << ": first difference at step " << (q + 1) * every;
       const DistributionStats& d = stats[k];
       EXPECT_EQ(d.steps, steps);
-      // Refreshes: one per record, plus the partitions every 25 steps and the 200-step
-      // checkpoint (none within 150 steps).
+      // Refreshes: at most one per record (the partitions every 25 steps migrate blocks point
+      // to point, and there is no 200-step checkpoint within 150 steps); the bound also allows
+      // a refresh per partition.
       EXPECT_LE(d.replica_refreshes, steps / every + steps / 25);
       // A whole-world refresh moves every block and slot; a step moves only a boundary's worth.
       const double per_step = static_cast<double>(d.bytes_received) / static_cast<double>(d.steps);
@@ -272,6 +276,127 @@ TEST(DistributedStep, GhostListsFollowTheBlocksBetweenRareRefreshes) {
     std::printf("%d parts: %zu contacts across the boundaries formed between the refreshes\n",
                 parts, formed);
     EXPECT_GT(formed, 0u) << parts << " parts";
+  }
+}
+
+/// A world's saved state (World::save_state: every block with its loads, every pair slot with
+/// its contact state and warm start, the counters, the divergence checkpoint, the energy
+/// ledger's budget and per-block records) as bytes.
+std::string saved_state(const World& w) {
+  std::string out;
+  StateWriter writer([&](std::string_view bytes) { out.append(bytes); });
+  w.save_state(writer);
+  writer.flush();
+  return out;
+}
+
+/// One distributed world's run for the migration test: the saved state merged to process 0 at
+/// `every` steps without making the world whole (save_state_to_root; empty on the other
+/// processes), the state after a final synchronize(), the owners after each step, its figures.
+struct MigrationRun {
+  std::vector<std::string> merged;
+  std::string whole;
+  std::vector<std::vector<int>> owners;
+  DistributionStats stats;
+};
+
+std::vector<MigrationRun> run_migration(const BrickPile& pile, const WorldSettings& s, int parts,
+                                        int steps, int every, std::int64_t repartition,
+                                        bool deferred) {
+  auto meeting = std::make_shared<Meeting>(parts);
+  std::vector<MigrationRun> out(static_cast<std::size_t>(parts));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < parts; ++r) {
+    WorldSettings sr = s;
+    sr.distribution = std::make_shared<ThreadDistribution>(meeting, r, repartition);
+    threads.emplace_back([&, r, sr] {
+      MigrationRun& o = out[static_cast<std::size_t>(r)];
+      World w = pile.world(sr, 20.0);
+      w.set_deferred_replica(deferred);
+      for (int k = 1; k <= steps; ++k) {
+        w.step();
+        o.owners.push_back(w.block_owners());
+        if (k % every != 0) continue;
+        std::string bytes;
+        w.save_state_to_root([&](std::string_view piece) { bytes.append(piece); });
+        o.merged.push_back(std::move(bytes));
+      }
+      o.stats = w.distribution_stats();
+      w.synchronize();
+      o.whole = saved_state(w);
+    });
+  }
+  for (auto& t : threads) t.join();
+  return out;
+}
+
+// The pile sliding on its tilted base, partitioned again every 15 steps while the caller defers
+// the refresh (as `blockdem run` does): blocks cross the subdomain boundaries, and at each
+// rebalance those whose owner changes go point to point to their new owners with their state,
+// loads, energy records and the pair slots the new owners lack (World::migrate_blocks), without
+// the whole world on any process. Oracles: one world alone, whose complete saved state (every
+// block, slot, contact state, warm start, energy record and the divergence checkpoint of step
+// 200, kept in parts from before the last rebalances) must be the distributed one's, byte for
+// byte, when merged to process 0 from the owners at steps 70, 140 and 210 and when made whole
+// at the end; and the same processes with the world made whole after every step, whose
+// partitions (computed by partition_blocks on the whole world) must be the migrated ones at
+// every step. No rebalance may make the world whole: one refresh only, the final one.
+TEST(DistributedStep, RebalancesMigrateBlocksPointToPointBitIdentically) {
+  WorldSettings s = BrickPile::sliding_settings();
+  s.damping = 0.1;
+  const BrickPile pile;
+  const int steps = 210, every = 70, interval = 15;
+  std::vector<std::string> oracle;
+  std::string oracle_whole;
+  {
+    World w = pile.world(s, 20.0);
+    for (int k = 1; k <= steps; ++k) {
+      w.step();
+      if (k % every == 0) oracle.push_back(saved_state(w));
+    }
+    oracle_whole = saved_state(w);
+  }
+  for (int parts : {2, 3}) {
+    const std::vector<MigrationRun> migrated =
+        run_migration(pile, s, parts, steps, every, interval, true);
+    const std::vector<MigrationRun> whole =
+        run_migration(pile, s, parts, steps, every, interval, false);
+    std::int64_t blocks_moved = 0, slots_moved = 0;
+    for (int r = 0; r < parts; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      const MigrationRun& m = migrated[k];
+      ASSERT_EQ(m.merged.size(), oracle.size());
+      for (std::size_t q = 0; q < oracle.size(); ++q) {
+        if (r == 0)
+          EXPECT_TRUE(m.merged[q] == oracle[q])
+              << parts << " parts: merged state differs at step " << (q + 1) * every;
+        else
+          EXPECT_TRUE(m.merged[q].empty());
+      }
+      EXPECT_TRUE(m.whole == oracle_whole) << parts << " parts, part " << r;
+      EXPECT_TRUE(whole[k].whole == oracle_whole) << parts << " parts, part " << r;
+      // The same partition at every step as the one computed on the whole world.
+      ASSERT_EQ(m.owners.size(), whole[k].owners.size());
+      for (std::size_t step = 0; step < m.owners.size(); ++step)
+        ASSERT_TRUE(m.owners[step] == whole[k].owners[step])
+            << parts << " parts, part " << r << ": partitions differ after step " << step + 1;
+      const DistributionStats& d = m.stats;
+      EXPECT_EQ(d.partitions, 1 + steps / interval) << parts << " parts";
+      EXPECT_EQ(d.migrations, steps / interval) << parts << " parts";
+      EXPECT_EQ(d.replica_refreshes, 0) << parts << " parts";
+      EXPECT_EQ(d.checkpoint_gathers, 1) << parts << " parts";
+      EXPECT_GT(d.migration_bytes_received, 0) << parts << " parts";
+      blocks_moved += d.migrated_blocks;
+      slots_moved += d.migrated_slots;
+    }
+    // Blocks changed owner: the partitions at the first and last rebalance differ.
+    const std::vector<std::vector<int>>& owners = migrated[0].owners;
+    EXPECT_NE(owners[interval - 1], owners.back()) << parts << " parts";
+    std::printf("%d parts: %lld blocks and %lld slots migrated in %d rebalances\n", parts,
+                static_cast<long long>(blocks_moved), static_cast<long long>(slots_moved),
+                steps / interval);
+    EXPECT_GT(blocks_moved, 0) << parts << " parts";
+    EXPECT_GT(slots_moved, 0) << parts << " parts";
   }
 }
 

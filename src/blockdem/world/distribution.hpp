@@ -60,11 +60,22 @@ struct DistributionStats {
   /// sums (B).
   std::int64_t bytes_sent = 0;
   std::int64_t bytes_received = 0;  ///< bytes it received in those exchanges (B)
-  /// Replica refreshes (every block and pair slot to every process: partitions, divergence
-  /// checkpoints, and whenever the caller reads the whole world) and their bytes (B).
+  /// Replica refreshes (every block and pair slot to every process: whenever the caller reads
+  /// the whole world, and partitions and divergence checkpoints when it does not defer the
+  /// refresh) and their bytes (B).
   std::int64_t replica_refreshes = 0;
   std::int64_t replica_bytes_sent = 0;
   std::int64_t replica_bytes_received = 0;
+  /// Rebalances that migrated blocks point to point (World::migrate_blocks) instead of making the
+  /// world whole: the rebalances, the blocks and pair slots this process sent to new owners, and
+  /// the bytes it sent and received in them (B): the partition's input (a block's centroid and
+  /// pair count from its owner, to every process), the migrated blocks and slots, and the ghost
+  /// exchange for the new subdomains.
+  std::int64_t migrations = 0;
+  std::int64_t migrated_blocks = 0;
+  std::int64_t migrated_slots = 0;
+  std::int64_t migration_bytes_sent = 0;
+  std::int64_t migration_bytes_received = 0;
   /// Outputs merged to process 0 instead of read from a whole world (World::merge_to_root):
   /// the merges, and the bytes this process sent and (process 0) received in them (B).
   std::int64_t output_merges = 0;
@@ -75,10 +86,11 @@ struct DistributionStats {
   std::int64_t checkpoint_gathers = 0;
   std::int64_t checkpoint_bytes_sent = 0;
   std::int64_t checkpoint_bytes_received = 0;
-  double pair_seconds = 0.0;      ///< time in its own pair work (s)
-  double exchange_seconds = 0.0;  ///< time in the per-step exchanges, waiting included (s)
-  double replica_seconds = 0.0;   ///< time in the replica refreshes, waiting included (s)
-  double last_imbalance = 1.0;    ///< slowest process's pair time over the mean, last step (-)
+  double pair_seconds = 0.0;       ///< time in its own pair work (s)
+  double exchange_seconds = 0.0;   ///< time in the per-step exchanges, waiting included (s)
+  double replica_seconds = 0.0;    ///< time in the replica refreshes, waiting included (s)
+  double migration_seconds = 0.0;  ///< time in the migrations, waiting included (s)
+  double last_imbalance = 1.0;     ///< slowest process's pair time over the mean, last step (-)
 };
 
 }  // namespace blockdem

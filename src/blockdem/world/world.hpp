@@ -383,6 +383,19 @@ class World {
   // world_distributed.cpp
   void step_distributed(double dt, int threads);
   void partition_blocks();
+  /// Collective, on a distributed world that is not whole (deferred_replica_), at the end of a
+  /// step: the partition partition_blocks() would compute, from each block's centroid and pair
+  /// count sent by its owner, and each block that changes owner sent point to point to its new
+  /// owner with the slots the new owner lacks; then one ghost exchange for the new subdomains.
+  /// Makes the world whole and partitions (as partition_blocks) when the resting blocks would
+  /// change.
+  void migrate_blocks();
+  /// A block's whole step state (pose, velocities, loads, stiffness sums, energy record, world
+  /// planes and box) as bytes, and its reading (the state set on block `i` of the record; the
+  /// offset past it returned), for a refresh or a migration.
+  void put_block_state(std::vector<char>& out, std::size_t i) const;
+  std::size_t take_block_state(const std::vector<char>& in, std::size_t at, std::size_t end,
+                               bool apply, std::size_t& i);
   int pair_owner(int a, int b) const;
   int pair_owner(const PairSlot& s) const { return pair_owner(s.a, s.b); }
   void exchange_ghosts();

@@ -5,7 +5,8 @@
 // them, and sends their new states to the processes that hold them as ghosts. Global quantities
 // are reduced exactly (minima, integer sums, exact accumulators of doubles). Every
 // exact block and slot is bit for bit what one process computes; synchronize() gathers the
-// whole world when a caller reads it.
+// whole world when a caller reads it. A new partition moves only the blocks that change owner,
+// point to point, with their slots (migrate_blocks).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -140,6 +141,12 @@ bool get_slot(const std::vector<char>& in, std::size_t& at, std::size_t end, Slo
   contact = contact_from_bytes(in.data() + at);
   at += kContactBytes;
   return true;
+}
+
+/// A block that mark_resting marks resting: fixed, with zero velocities.
+bool at_rest(const Block& b) {
+  return b.motion == Motion::fixed && (b.velocity.array() == 0.0).all() &&
+         (b.angular_velocity.array() == 0.0).all();
 }
 
 bool boxes_overlap(const Eigen::Vector3d& min_a, const Eigen::Vector3d& max_a,
@@ -385,13 +392,7 @@ void World::mark_resting() {
   // A fixed block keeps its pose, and its zero velocities, until a caller changes it on a whole
   // world: its state is then the same bytes on every process, and it needs no owner's loads.
   resting_.assign(blocks_.size(), 0);
-  for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    const Block& b = blocks_[i];
-    resting_[i] = b.motion == Motion::fixed && (b.velocity.array() == 0.0).all() &&
-                          (b.angular_velocity.array() == 0.0).all()
-                      ? 1
-                      : 0;
-  }
+  for (std::size_t i = 0; i < blocks_.size(); ++i) resting_[i] = at_rest(blocks_[i]) ? 1 : 0;
   list_own_blocks();
 }
 
@@ -498,6 +499,259 @@ void World::partition_blocks() {
   list_own_blocks();
   partition_step_ = step_count_;
   ++dist_stats_.partitions;
+}
+
+void World::migrate_blocks() {
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto k_ranks = static_cast<std::size_t>(dist.size());
+  const std::size_t n = blocks_.size();
+  const auto t0 = std::chrono::steady_clock::now();
+  std::int64_t sent = 0, received = 0;
+
+  // 1. The partition's input, as partition_blocks() takes it from a whole world: each block's
+  // centroid, whether it is at rest (mark_resting), and the number of slots it is in. Its owner
+  // holds them exactly: after the step's pair exchange every slot of an own block that is not
+  // resting is here, exact (the pair's owner, which is one of the two blocks' owners, sent it),
+  // and no slot is here twice. A record of 28 bytes per block, gathered to every process in the
+  // order of the owners' block lists, which every process knows (owner_).
+  std::vector<std::uint32_t> pair_count(n, 0);
+  for (const PairSlot& s : slots_) {
+    for (const int i : {s.a, s.b})
+      if (own_[static_cast<std::size_t>(i)] != 0) ++pair_count[static_cast<std::size_t>(i)];
+  }
+  constexpr std::size_t kInput = 3 * sizeof(double) + sizeof(std::uint32_t);
+  std::vector<char> input;
+  input.reserve(own_list_.size() * kInput);
+  for (const int h : own_list_) {
+    const auto i = static_cast<std::size_t>(h);
+    if (pair_count[i] > (std::numeric_limits<std::uint32_t>::max() >> 1))
+      throw std::logic_error("migration: a block in too many pairs");
+    put3(input, blocks_[i].position);
+    put(input, static_cast<std::uint32_t>(pair_count[i] << 1 | (at_rest(blocks_[i]) ? 1u : 0u)));
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<char> inputs = dist.all_gather(input, counts);
+  sent += static_cast<std::int64_t>(input.size());
+  received += static_cast<std::int64_t>(inputs.size() - input.size());
+  std::vector<std::uint32_t>().swap(pair_count);
+  std::vector<std::size_t> cursor(k_ranks, 0);
+  for (std::size_t r = 1; r < k_ranks; ++r) cursor[r] = cursor[r - 1] + counts[r - 1];
+  std::vector<Eigen::Vector3d> points(n);
+  std::vector<double> weights(n, 1.0);
+  bool rest_changed = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto r = static_cast<std::size_t>(owner_[i]);
+    std::size_t& at = cursor[r];
+    if (at + kInput > inputs.size())
+      throw std::logic_error("migration: a process sent a malformed partition input");
+    points[i] = get3(inputs, at);
+    const auto word = get<std::uint32_t>(inputs, at + 24);
+    at += kInput;
+    const bool resting = (word & 1u) != 0;
+    rest_changed = rest_changed || resting != (resting_[i] != 0);
+    // 1 + the pair count, as partition_blocks adds 1.0 per slot (exact: integers).
+    if (!resting) weights[i] += static_cast<double>(word >> 1);
+  }
+  for (std::size_t r = 0, end = 0; r < k_ranks; ++r) {
+    end += counts[r];
+    if (cursor[r] != end)
+      throw std::logic_error("migration: a process sent a malformed partition input");
+  }
+  if (rest_changed) {
+    // A block came to rest or left it (a caller's change, or a servo that stopped a fixed block):
+    // the resting blocks' loads are summed only on a whole world, so every process (all see the
+    // same flags) makes it whole and partitions it.
+    dist_stats_.migration_bytes_sent += sent;
+    dist_stats_.migration_bytes_received += received;
+    synchronize();
+    partition_blocks();
+    return;
+  }
+  std::vector<int> owners = dist.partition(points, weights);
+  if (owners.size() != n) throw std::logic_error("partition: one owner per block expected");
+  std::vector<Eigen::Vector3d>().swap(points);
+  std::vector<double>().swap(weights);
+
+  // 2. Each own block whose owner changes, to its new owner: its state, loads, stiffness sums,
+  // energy record, world planes and box (what a refresh would send; a divergence checkpoint in
+  // parts stays as it is, gathered from the parts as they were saved). Its servo and applied
+  // loads change only on a whole world, alike everywhere. With it, its slots (contact states
+  // included) that the new owner does not hold exactly: all but those whose other block that
+  // process owns and does not rest. The new owner needs every slot of its blocks that do not
+  // rest: its own pairs among them, and the others' for the loads' sums in (a, b) order.
+  std::vector<std::vector<char>> block_part(k_ranks), slot_part(k_ranks);
+  std::vector<std::uint64_t> blocks_to(k_ranks, 0), slots_to(k_ranks, 0);
+  for (const int h : own_list_) {
+    const auto i = static_cast<std::size_t>(h);
+    const auto q = static_cast<std::size_t>(owners[i]);
+    if (static_cast<int>(q) == rank) continue;
+    put_block_state(block_part[q], i);
+    ++blocks_to[q];
+  }
+  const auto moving_to = [&](int block) {
+    const auto i = static_cast<std::size_t>(block);
+    return own_[i] != 0 && resting_[i] == 0 && owners[i] != rank ? owners[i] : -1;
+  };
+  const auto holds = [&](int q, int block) {
+    const auto i = static_cast<std::size_t>(block);
+    return owner_[i] == q && resting_[i] == 0;
+  };
+  for (const PairSlot& s : slots_) {
+    const int qa = moving_to(s.a), qb = moving_to(s.b);
+    if (qa < 0 && qb < 0) continue;
+    const Contact* state = s.active ? &contact_of(s) : nullptr;
+    if (qa >= 0 && !holds(qa, s.b)) {
+      put_slot(slot_part[static_cast<std::size_t>(qa)], s, state);
+      ++slots_to[static_cast<std::size_t>(qa)];
+    }
+    if (qb >= 0 && qb != qa && !holds(qb, s.a)) {
+      put_slot(slot_part[static_cast<std::size_t>(qb)], s, state);
+      ++slots_to[static_cast<std::size_t>(qb)];
+    }
+  }
+  std::vector<std::vector<char>> to(k_ranks);
+  for (std::size_t q = 0; q < k_ranks; ++q) {
+    if (blocks_to[q] == 0 && slots_to[q] == 0) continue;
+    to[q].reserve(16 + block_part[q].size() + slot_part[q].size());
+    put(to[q], blocks_to[q]);
+    put(to[q], slots_to[q]);
+    put_bytes(to[q], block_part[q].data(), block_part[q].size());
+    put_bytes(to[q], slot_part[q].data(), slot_part[q].size());
+    std::vector<char>().swap(block_part[q]);
+    std::vector<char>().swap(slot_part[q]);
+    dist_stats_.migrated_blocks += static_cast<std::int64_t>(blocks_to[q]);
+    dist_stats_.migrated_slots += static_cast<std::int64_t>(slots_to[q]);
+    sent += static_cast<std::int64_t>(to[q].size());
+  }
+  const std::vector<std::vector<char>> from = dist.exchange(to);
+  std::vector<std::vector<char>>().swap(to);
+
+  // 3. The received blocks into place; the received slots in a list, their states apart.
+  stiffness_.resize(n, 0.0);
+  rotational_stiffness_.resize(n, 0.0);
+  energy_.prepare(n);
+  std::vector<PairSlot> arrived;
+  std::vector<Contact> arrived_states;
+  for (std::size_t r = 0; r < k_ranks; ++r) {
+    const std::vector<char>& part = from[r];
+    received += static_cast<std::int64_t>(part.size());
+    if (part.empty()) continue;
+    if (part.size() < 16) throw std::logic_error("migration: a process sent a malformed part");
+    const auto blocks_in = get<std::uint64_t>(part, 0);
+    const auto slots_in = get<std::uint64_t>(part, 8);
+    std::size_t at = 16;
+    for (std::uint64_t k = 0; k < blocks_in; ++k) {
+      std::size_t i = 0;
+      at = take_block_state(part, at, part.size(), true, i);
+      if (owner_[i] != static_cast<int>(r) || owners[i] != rank)
+        throw std::logic_error("migration: a block came from a process that did not own it");
+    }
+    for (std::uint64_t k = 0; k < slots_in; ++k) {
+      PairSlot s;
+      Contact c;
+      if (!get_slot(part, at, part.size(), s, c))
+        throw std::logic_error("migration: a process sent a malformed part");
+      s.pending = false;
+      s.contact = -1;
+      if (s.active) {
+        s.contact = static_cast<std::int32_t>(arrived_states.size());
+        arrived_states.push_back(c);
+      }
+      arrived.push_back(s);
+    }
+    if (at != part.size()) throw std::logic_error("migration: a process sent a malformed part");
+  }
+
+  // 4. The new owners.
+  owner_ = std::move(owners);
+  for (std::size_t i = 0; i < n; ++i) own_[i] = owner_[i] == rank ? 1 : 0;
+  list_own_blocks();
+  partition_step_ = step_count_;
+  ++dist_stats_.partitions;
+
+  // 5. The slots as a step leaves them: those of the blocks this process now keeps (own, not
+  // resting), in (a, b) order, every one exact; the contact states in slot order. A pair that
+  // arrived from two processes (its blocks came from both) holds the same bytes in both.
+  const auto keeps = [&](int block) {
+    const auto i = static_cast<std::size_t>(block);
+    return own_[i] != 0 && resting_[i] == 0;
+  };
+  const auto kept = [&](const PairSlot& s) { return keeps(s.a) || keeps(s.b); };
+  std::erase_if(slots_, [&](const PairSlot& s) { return !kept(s); });
+  const auto before = [](const PairSlot& x, const PairSlot& y) {
+    return x.a < y.a || (x.a == y.a && x.b < y.b);
+  };
+  std::sort(arrived.begin(), arrived.end(), before);
+  std::vector<PairSlot> slots;
+  slots.reserve(slots_.size() + arrived.size());
+  std::vector<Contact> contacts;
+  std::size_t p = 0;
+  for (std::size_t q = 0; q <= arrived.size(); ++q) {
+    // The held slots before the next arrived one (all of them after the last), then that one
+    // unless held or already taken.
+    while (p < slots_.size() && (q == arrived.size() || !before(arrived[q], slots_[p]))) {
+      PairSlot s = slots_[p++];
+      if (s.active) {
+        contacts.push_back(contact_of(s));
+        s.contact = static_cast<std::int32_t>(contacts.size() - 1);
+      } else {
+        s.contact = -1;
+      }
+      slots.push_back(s);
+    }
+    if (q == arrived.size()) break;
+    PairSlot s = arrived[q];
+    if (!slots.empty() && slots.back().a == s.a && slots.back().b == s.b) continue;
+    if (!kept(s)) throw std::logic_error("migration: a slot of no block this process keeps");
+    if (s.active) {
+      contacts.push_back(arrived_states[static_cast<std::size_t>(s.contact)]);
+      s.contact = static_cast<std::int32_t>(contacts.size() - 1);
+    }
+    slots.push_back(s);
+  }
+  slots_ = std::move(slots);
+  contacts_ = std::move(contacts);
+  std::vector<PairSlot>().swap(arrived);
+  std::vector<Contact>().swap(arrived_states);
+  pairs_.resize(slots_.size());
+  for (std::size_t k = 0; k < slots_.size(); ++k) pairs_[k] = {slots_[k].a, slots_[k].b};
+  overlap_violation_ = -1;
+  if (std::isfinite(overlap_key_)) {
+    for (std::size_t k = 0; k < slots_.size(); ++k) {
+      const PairSlot& c = slots_[k];
+      if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == overlap_key_ &&
+          pair_owner(c) == rank) {
+        overlap_violation_ = static_cast<std::int64_t>(k);
+        break;
+      }
+    }
+  }
+
+  // 6. Ghosts for the next step, for the new subdomains: the ghost exchange with the slots' sends
+  // (an own block to the owner of its pair's other block, neither resting) listed as the step
+  // lists them.
+  pair_sends_.clear();
+  for (const PairSlot& c : slots_) {
+    const auto ca = static_cast<std::size_t>(c.a), cb = static_cast<std::size_t>(c.b);
+    if ((own_[ca] != 0 && own_[cb] != 0) || resting_[ca] != 0 || resting_[cb] != 0) continue;
+    if (own_[ca] != 0) pair_sends_.emplace_back(c.a, owner_[cb]);
+    if (own_[cb] != 0) pair_sends_.emplace_back(c.b, owner_[ca]);
+  }
+  const std::int64_t ghost_sent = dist_stats_.bytes_sent,
+                     ghost_received = dist_stats_.bytes_received;
+  ghosts_listed_ = false;
+  exchange_ghosts();
+  sent += dist_stats_.bytes_sent - ghost_sent;
+  received += dist_stats_.bytes_received - ghost_received;
+  dist_stats_.bytes_sent = ghost_sent;
+  dist_stats_.bytes_received = ghost_received;
+
+  dist_stats_.migrations += 1;
+  dist_stats_.migration_bytes_sent += sent;
+  dist_stats_.migration_bytes_received += received;
+  dist_stats_.migration_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void World::save_checkpoint_part() {
@@ -1000,6 +1254,66 @@ void World::save_state_to_root(const std::function<void(std::string_view)>& emit
   flush();
 }
 
+void World::put_block_state(std::vector<char>& out, std::size_t i) const {
+  static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
+  const Block& b = blocks_[i];
+  ReplicaBlock r;
+  r.state = ghost_of(b);
+  for (int k = 0; k < 3; ++k) {
+    r.force[k] = b.force[k];
+    r.torque[k] = b.torque[k];
+    r.contact_force[k] = b.contact_force[k];
+  }
+  r.stiffness = i < stiffness_.size() ? stiffness_[i] : 0.0;
+  r.rotational_stiffness = i < rotational_stiffness_.size() ? rotational_stiffness_[i] : 0.0;
+  energy_.block_record(i, r.energy);
+  for (int k = 0; k < 3; ++k) {
+    r.aabb_min[k] = box_min_[i][k];
+    r.aabb_max[k] = box_max_[i][k];
+  }
+  r.planes = b.world_planes.size();
+  put(out, r);
+  for (const Halfspace& h : b.world_planes) {
+    put3(out, h.normal);
+    put(out, h.offset);
+  }
+}
+
+std::size_t World::take_block_state(const std::vector<char>& in, std::size_t at, std::size_t end,
+                                    bool apply, std::size_t& i) {
+  // The receiver has sized stiffness_, rotational_stiffness_ and the energy records (prepare).
+  if (at + sizeof(ReplicaBlock) > end)
+    throw std::logic_error("block state: a process sent a malformed part");
+  const auto rb = get<ReplicaBlock>(in, at);
+  at += sizeof(ReplicaBlock);
+  i = static_cast<std::size_t>(rb.state.index);
+  if (rb.state.index < 0 || i >= blocks_.size() || rb.planes != blocks_[i].shape.planes().size() ||
+      at + rb.planes * 32 > end)
+    throw std::logic_error("block state: a process sent a malformed block");
+  if (!apply) return at + rb.planes * 32;
+  Block& b = blocks_[i];
+  b.world_planes.resize(rb.planes);
+  for (Halfspace& h : b.world_planes) {
+    h.normal = get3(in, at);
+    h.offset = get<double>(in, at + 24);
+    at += 32;
+  }
+  for (int c = 0; c < 3; ++c) {
+    box_min_[i][c] = rb.aabb_min[c];
+    box_max_[i][c] = rb.aabb_max[c];
+  }
+  set_ghost(b, rb.state);
+  for (int c = 0; c < 3; ++c) {
+    b.force[c] = rb.force[c];
+    b.torque[c] = rb.torque[c];
+    b.contact_force[c] = rb.contact_force[c];
+  }
+  stiffness_[i] = rb.stiffness;
+  rotational_stiffness_[i] = rb.rotational_stiffness;
+  energy_.set_block_record(i, rb.energy);
+  return at;
+}
+
 void World::synchronize() {
   // A divergence checkpoint in parts is made whole with the world (its readers, the reset to it
   // and the restart file, read a whole world).
@@ -1021,28 +1335,7 @@ void World::synchronize() {
   put(out, own_count);
   put(out, slot_count);
   for (std::size_t i = 0; i < n; ++i) {
-    if (own_[i] == 0) continue;
-    const Block& b = blocks_[i];
-    ReplicaBlock r;
-    r.state = ghost_of(b);
-    for (int k = 0; k < 3; ++k) {
-      r.force[k] = b.force[k];
-      r.torque[k] = b.torque[k];
-      r.contact_force[k] = b.contact_force[k];
-    }
-    r.stiffness = i < stiffness_.size() ? stiffness_[i] : 0.0;
-    r.rotational_stiffness = i < rotational_stiffness_.size() ? rotational_stiffness_[i] : 0.0;
-    energy_.block_record(i, r.energy);
-    for (int k = 0; k < 3; ++k) {
-      r.aabb_min[k] = box_min_[i][k];
-      r.aabb_max[k] = box_max_[i][k];
-    }
-    r.planes = b.world_planes.size();
-    put(out, r);
-    for (const Halfspace& h : b.world_planes) {
-      put3(out, h.normal);
-      put(out, h.offset);
-    }
+    if (own_[i] != 0) put_block_state(out, i);
   }
   for (const auto& s : slots_) {
     if (pair_owner(s) != rank) continue;
@@ -1073,37 +1366,8 @@ void World::synchronize() {
     const auto slots_in = get<std::uint64_t>(all, begin + 8);
     std::size_t at = begin + 16;
     for (std::uint64_t k = 0; k < blocks_in; ++k) {
-      if (at + sizeof(ReplicaBlock) > begin + counts[r])
-        throw std::logic_error("replica refresh: a process sent a malformed part");
-      const auto rb = get<ReplicaBlock>(all, at);
-      at += sizeof(ReplicaBlock);
-      const auto i = static_cast<std::size_t>(rb.state.index);
-      Block& b = blocks_[i];
-      if (i >= n || rb.planes != b.shape.planes().size() || at + rb.planes * 32 > begin + counts[r])
-        throw std::logic_error("replica refresh: a process sent a malformed block");
-      if (static_cast<int>(r) != rank) {
-        b.world_planes.resize(rb.planes);
-        for (Halfspace& h : b.world_planes) {
-          h.normal = get3(all, at);
-          h.offset = get<double>(all, at + 24);
-          at += 32;
-        }
-        for (int c = 0; c < 3; ++c) {
-          box_min_[i][c] = rb.aabb_min[c];
-          box_max_[i][c] = rb.aabb_max[c];
-        }
-        set_ghost(b, rb.state);
-        for (int c = 0; c < 3; ++c) {
-          b.force[c] = rb.force[c];
-          b.torque[c] = rb.torque[c];
-          b.contact_force[c] = rb.contact_force[c];
-        }
-        stiffness_[i] = rb.stiffness;
-        rotational_stiffness_[i] = rb.rotational_stiffness;
-        energy_.set_block_record(i, rb.energy);
-      } else {
-        at += rb.planes * 32;
-      }
+      std::size_t i = 0;
+      at = take_block_state(all, at, begin + counts[r], static_cast<int>(r) != rank, i);
     }
     for (std::uint64_t k = 0; k < slots_in; ++k) {
       PairSlot s;
@@ -1620,8 +1884,12 @@ void World::step_distributed(double dt, int threads) {
   if ((dist_stats_.last_imbalance > kImbalanceThreshold && slowest - mean > kMinImbalanceSeconds &&
        uneven_pairs && since >= kMinStepsBetweenPartitions) ||
       (every > 0 && since >= every)) {
-    synchronize();  // migration: blocks and pairs reach their new owners with the whole world
-    partition_blocks();
+    if (deferred_replica_ && !replica_complete_) {
+      migrate_blocks();  // point to point: no whole world
+    } else {
+      synchronize();  // made whole anyway at the step's end
+      partition_blocks();
+    }
   }
   if (!deferred_replica_) synchronize();
 }
