@@ -2,10 +2,13 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -72,6 +75,13 @@ struct KillHook {
   std::int64_t step = -1;
   int signal = SIGKILL;
 };
+
+/// Test hook BLOCKDEM_TEST_RESTART_UNSEEN=R: process R of an MPI restart acts as if it could not
+/// see the checkpoint file (the first process then sends its bytes to all); -1 when unset.
+int unseen_restart_rank_from_environment() {
+  const char* text = std::getenv("BLOCKDEM_TEST_RESTART_UNSEEN");
+  return text == nullptr ? -1 : std::atoi(text);
+}
 
 KillHook kill_hook_from_environment() {
   KillHook hook;
@@ -257,15 +267,20 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
       if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
       return 2;
     }
-    // The first process reads and checks the checkpoint and sends it to the others: only it
-    // needs the output folder. A checkpoint it refuses stops every process (exit code 2). One
-    // process alone leaves it to the runner, which maps the file instead of reading it whole.
+    // The first process checks the checkpoint: one it refuses stops every process (exit code 2).
+    // Then each process maps the file itself where it sees the same file (the same checksum), so
+    // that no process holds the file's bytes beside its world; where one does not (an output
+    // folder only the first process sees), the first process sends the bytes to every process.
+    // One process alone leaves it all to the runner, which maps the file.
     if (!control.restart.empty() && mpi.size() > 1) {
       std::string why;
-      control.restart_payload = std::make_shared<std::string>();
+      std::shared_ptr<MappedCheckpoint> mine;
+      std::string checksum(sizeof(std::uint64_t), '\0');
       if (mpi.rank() == 0) {
         try {
-          *control.restart_payload = read_checkpoint_file(control.restart, control.scenario_hash);
+          mine = std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
+          const std::uint64_t sum = mine->checksum();
+          std::memcpy(checksum.data(), &sum, sizeof sum);
         } catch (const CheckpointError& e) {
           why = e.what();
         }
@@ -274,7 +289,35 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
         if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
         return 2;
       }
-      mpi.broadcast(*control.restart_payload, 0);
+      mpi.broadcast(checksum, 0);
+      if (mpi.rank() != 0 && unseen_restart_rank_from_environment() != mpi.rank()) {
+        // --resume: the checkpoint in process 0's output folder (this process's own is scratch).
+        const std::filesystem::path file =
+            opt.resume && !opt.shared_out.empty()
+                ? std::filesystem::path(opt.shared_out) / kCheckpointName
+                : control.restart;
+        try {
+          mine = std::make_shared<MappedCheckpoint>(file, control.scenario_hash);
+          std::uint64_t first = 0;
+          std::memcpy(&first, checksum.data(), sizeof first);
+          if (mine->checksum() != first)
+            mine.reset();  // another file of that name: not the first process's checkpoint
+        } catch (const CheckpointError&) {
+          mine.reset();
+        }
+      }
+      if (std::string none; mpi.all_ok(mine != nullptr, none)) {
+        control.restart_file = std::move(mine);
+      } else {
+        control.restart_payload = std::make_shared<std::string>();
+        if (mpi.rank() == 0) {
+          std::cerr << "blockdem: a process does not see " << control.restart.string()
+                    << ": process 0 sends it to every process\n";
+          control.restart_payload->assign(mine->payload());
+        }
+        mine.reset();
+        mpi.broadcast(*control.restart_payload, 0);
+      }
     }
     install_stop_handlers();
     // After every step, one reduction over the processes: the largest stop signal any of them

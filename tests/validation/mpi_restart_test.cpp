@@ -178,6 +178,34 @@ TEST_F(MpiRestart, CheckpointOfKRanksResumesOnOneTwoThreeRanksBitIdentically) {
   }
 }
 
+// A resume on 2 processes maps the checkpoint in each process; when process 1 does not see the
+// file (test hook BLOCKDEM_TEST_RESTART_UNSEEN=1), process 0 says so and sends it the bytes.
+// Either way the resumed run ends with the outputs of the run never stopped. Reference: the
+// one-process run. Tolerance: none (bytes).
+TEST_F(MpiRestart, ResumeWhereAProcessDoesNotSeeTheFileGetsItsBytesFromTheFirst) {
+  const fs::path stopped = dir("unseen_before");
+  ASSERT_EQ(run(2, scenario_, stopped, "", "BLOCKDEM_TEST_KILL_RANK",
+                "1:" + std::to_string(kStopStep) + ":TERM"),
+            143);
+  for (const bool unseen : {false, true}) {
+    SCOPED_TRACE(unseen ? "process 1 does not see the file" : "every process sees it");
+    const fs::path out = dir(unseen ? "unseen_after" : "seen_after");
+    fs::copy(stopped, out, fs::copy_options::recursive);
+    const fs::path log = out.string() + ".stderr";
+    dirs_.push_back(log);
+    std::ostringstream c;
+    c << mpirun(2, unseen ? "-x BLOCKDEM_TEST_RESTART_UNSEEN=1 " : "") << BLOCKDEM_CLI_PATH
+      << " run '" << scenario_.string() << "' --out '" << out.string()
+      << "' --no-figures --threads 1 --resume > /dev/null 2> '" << log.string() << "'";
+    const int status = std::system(c.str().c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << c.str();
+    const std::string said = read_file_bytes(log);
+    EXPECT_EQ(said.find("process 0 sends it to every process") != std::string::npos, unseen)
+        << said;
+    EXPECT_EQ(outputs(out), outputs(reference_));
+  }
+}
+
 // Process 1 of 2 killed (SIGKILL) after step 1250 of a run with checkpoints every 500 steps, in
 // a folder that held a finished run: the launcher stops process 0 and exits non-zero; there is
 // no summary.json (nothing claims a finished run); checkpoint.bdck is the whole checkpoint of

@@ -260,11 +260,18 @@ MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file, std::uint6
     if (base_) ::munmap(const_cast<char*>(base_), size_);
     throw;
   }
+  std::memcpy(&checksum_, base_ + kHeader + payload_size_, sizeof checksum_);
   released_ = 0;  // the checksum's pass gave back every page: a reader's pass starts again
 }
 
 MappedCheckpoint::~MappedCheckpoint() {
+  close();
+}
+
+void MappedCheckpoint::close() {
   if (base_) ::munmap(const_cast<char*>(base_), size_);
+  base_ = nullptr;
+  size_ = payload_size_ = released_ = 0;
 }
 
 std::string_view MappedCheckpoint::payload() const {

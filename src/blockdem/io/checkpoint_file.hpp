@@ -72,9 +72,15 @@ class MappedCheckpoint {
   MappedCheckpoint(const MappedCheckpoint&) = delete;
   MappedCheckpoint& operator=(const MappedCheckpoint&) = delete;
   std::string_view payload() const;
+  /// The file's checksum (its last 8 bytes): two mappings with the same checksum hold the same
+  /// checkpoint.
+  std::uint64_t checksum() const { return checksum_; }
   /// Gives back the whole pages of the payload before payload offset `offset` (bytes read there
   /// again are read from the file again).
   void release_before(std::size_t offset);
+  /// Unmaps the file now (the payload is empty after): a checkpoint file that the run replaces
+  /// later is then not kept on disk by the mapping.
+  void close();
 
  private:
   void release_file_before(std::size_t at);
@@ -82,6 +88,7 @@ class MappedCheckpoint {
   std::size_t size_ = 0;          ///< the file's bytes
   std::size_t payload_size_ = 0;  ///< the payload's bytes
   std::size_t released_ = 0;      ///< file bytes given back so far (whole pages)
+  std::uint64_t checksum_ = 0;
 };
 
 }  // namespace blockdem

@@ -69,7 +69,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
   // read in place and the pages behind the reader given back, so that the file's bytes and the
   // loaded world are never both resident (a payload handed over by the caller is a string).
   std::optional<RunPoint> resume;
-  std::optional<MappedCheckpoint> mapped;
+  std::shared_ptr<MappedCheckpoint> mapped;
   std::string_view saved_world, saved_before;
   if (!control.restart.empty()) {
     try {
@@ -78,7 +78,9 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
         saved_world = resume->world;
         saved_before = resume->before;
       } else {
-        mapped.emplace(control.restart, control.scenario_hash);
+        mapped = control.restart_file
+                     ? control.restart_file
+                     : std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
         resume = decode_run_point(mapped->payload(), saved_world, saved_before);
       }
     } catch (const StateError& e) {
@@ -139,6 +141,7 @@ RunResult run_built(const Scenario& sc, const std::function<World()>& build,
       saved_world = saved_before = {};
       std::string().swap(resume->world);
       std::string().swap(resume->before);
+      if (mapped) mapped->close();  // also the caller's (restart_file): the file may be replaced
       mapped.reset();
     } catch (const StateError& e) {
       throw CheckpointError(control.restart, e.what());

@@ -17,6 +17,8 @@
 
 namespace blockdem {
 
+class MappedCheckpoint;
+
 struct RunResult {
   /// "completed", "collapsed" (physical: a mechanism formed), "diverged" (numerical blow-up),
   /// "not_converged" (no equilibrium and no mechanism within the step limit), "interrupted"
@@ -66,6 +68,10 @@ struct RunControl {
   /// of an MPI run and sent to the others; null: the runner reads `restart` itself. The runner
   /// moves the bytes out (they hold a large world's state, which is then not kept twice).
   std::shared_ptr<std::string> restart_payload;
+  /// `restart`, already mapped and checked by this process (each process of an MPI run that
+  /// sees the file maps it itself); null: see restart_payload. The runner loads the world from
+  /// it in place and releases it once loaded.
+  std::shared_ptr<MappedCheckpoint> restart_file;
   /// Identifies the scenario file and the options that change results; a checkpoint written
   /// under another hash is refused.
   std::uint64_t scenario_hash = 0;
