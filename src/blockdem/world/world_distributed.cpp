@@ -149,6 +149,19 @@ bool at_rest(const Block& b) {
          (b.angular_velocity.array() == 0.0).all();
 }
 
+/// The slot list's index of the pair whose key (a n + b) is `key`, among the slots `counts`
+/// accepts, or -1: the first too-deep overlap a reduction found, located in a process's slots.
+template <class Slots, class Accept>
+std::int64_t slot_of_key(const Slots& slots, std::size_t n, double key, const Accept& counts) {
+  if (!std::isfinite(key)) return -1;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const auto& c = slots[k];
+    if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == key && counts(c))
+      return static_cast<std::int64_t>(k);
+  }
+  return -1;
+}
+
 bool boxes_overlap(const Eigen::Vector3d& min_a, const Eigen::Vector3d& max_a,
                    const Eigen::Vector3d& min_b, const Eigen::Vector3d& max_b) {
   return (min_a.array() <= max_b.array()).all() && (min_b.array() <= max_a.array()).all();
@@ -716,17 +729,8 @@ void World::migrate_blocks() {
   std::vector<Contact>().swap(arrived_states);
   pairs_.resize(slots_.size());
   for (std::size_t k = 0; k < slots_.size(); ++k) pairs_[k] = {slots_[k].a, slots_[k].b};
-  overlap_violation_ = -1;
-  if (std::isfinite(overlap_key_)) {
-    for (std::size_t k = 0; k < slots_.size(); ++k) {
-      const PairSlot& c = slots_[k];
-      if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == overlap_key_ &&
-          pair_owner(c) == rank) {
-        overlap_violation_ = static_cast<std::int64_t>(k);
-        break;
-      }
-    }
-  }
+  overlap_violation_ = slot_of_key(slots_, n, overlap_key_,
+                                   [&](const PairSlot& c) { return pair_owner(c) == rank; });
 
   // 6. Ghosts for the next step, for the new subdomains: the ghost exchange with the slots' sends
   // (an own block to the owner of its pair's other block, neither resting) listed as the step
@@ -1403,16 +1407,7 @@ void World::synchronize() {
   // (this process found only its own blocks' pairs; a checkpoint saves the list).
   pairs_.resize(slots_.size());
   for (std::size_t k = 0; k < slots_.size(); ++k) pairs_[k] = {slots_[k].a, slots_[k].b};
-  overlap_violation_ = -1;
-  if (std::isfinite(overlap_key_)) {
-    for (std::size_t k = 0; k < slots_.size(); ++k) {
-      const PairSlot& c = slots_[k];
-      if (static_cast<double>(c.a) * static_cast<double>(n) + c.b == overlap_key_) {
-        overlap_violation_ = static_cast<std::int64_t>(k);
-        break;
-      }
-    }
-  }
+  overlap_violation_ = slot_of_key(slots_, n, overlap_key_, [](const PairSlot&) { return true; });
   local_.assign(n, 1);
   ghosts_listed_ = false;
   replica_complete_ = true;
