@@ -399,6 +399,10 @@ class World {
   int pair_owner(int a, int b) const;
   int pair_owner(const PairSlot& s) const { return pair_owner(s.a, s.b); }
   void exchange_ghosts();
+  /// After a distributed step that leaves the world not whole: gives back the room the pair
+  /// stores kept from a whole world (a refresh, a restart, a rebalance), which this process
+  /// holds only a part of. Changes no value.
+  void release_spare_room();
   void require_replica(const char* what) const;
   void mark_resting();
   /// Lists the blocks by own_ and resting_ (own_list_, moving_list_, kept_list_, keeps_loads_),

@@ -21,6 +21,10 @@
 #include "blockdem/world/pair_owner.hpp"
 #include "blockdem/world/world.hpp"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace blockdem {
 namespace {
 
@@ -1886,7 +1890,36 @@ void World::step_distributed(double dt, int threads) {
       partition_blocks();
     }
   }
-  if (!deferred_replica_) synchronize();
+  if (!deferred_replica_) {
+    synchronize();
+  } else if (!replica_complete_) {
+    release_spare_room();
+  }
+}
+
+namespace {
+
+// Whether a store keeps much more room than it uses (a quarter more, and at least 4096 entries
+// more): after the world was whole, a process's stores hold only its part of it.
+template <class T>
+bool release_spare(std::vector<T>& store) {
+  if (store.capacity() - store.size() <= store.size() / 4 + 4096) return false;
+  store.shrink_to_fit();
+  return true;
+}
+
+}  // namespace
+
+void World::release_spare_room() {
+  bool released = release_spare(slots_);
+  released = release_spare(contacts_) || released;
+  released = release_spare(pairs_) || released;
+#if defined(__GLIBC__)
+  // The C library keeps freed blocks of the heap for later allocations; the stores just shrunk
+  // are most of what a process holds, so give their pages back to the system now (rare: after
+  // the world was whole).
+  if (released) malloc_trim(0);
+#endif
 }
 
 }  // namespace blockdem
