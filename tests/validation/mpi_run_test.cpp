@@ -6,7 +6,6 @@
 // stops every process. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +17,7 @@
 
 #include "brick_pile.hpp"
 #include "support/mpi_launcher.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 namespace {
@@ -110,14 +110,10 @@ class MpiRun : public ::testing::Test {
  protected:
   void SetUp() override {
     if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-    dir_ = fs::temp_directory_path() /
-           ("blockdem_mpi_" + std::to_string(getpid()) + "_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = temp_path("mpi_" +
+                     std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
   }
   fs::path write(const std::string& name, const std::string& text) const {
     const fs::path p = dir_ / name;
