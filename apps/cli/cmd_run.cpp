@@ -150,6 +150,8 @@ int run(const RunOptions& opt) {
     // in the next collective, so every process ends now (rank 0's files are whole or absent;
     // summary.json is not written).
     std::cerr << "blockdem: internal error on process " << mpi.rank() << ": " << e.what() << "\n";
+    // The abort ends this process without returning here: its scratch folder goes first.
+    if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);
     mpi.abort(1);
   }
   if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);

@@ -12,6 +12,8 @@
 #include <iterator>
 #include <string>
 
+#include "temp_path.hpp"
+
 namespace blockdem::test {
 
 struct CommandOutput {
@@ -25,8 +27,7 @@ struct CommandOutput {
 inline CommandOutput run_cli(const std::string& arguments) {
   static std::atomic<int> counter{0};
   const std::filesystem::path err_path =
-      std::filesystem::temp_directory_path() / ("blockdem_cli_test_" + std::to_string(::getpid()) +
-                                                "_" + std::to_string(counter++) + ".err");
+      temp_path("cli_test_" + std::to_string(counter++) + ".err");
   const std::string command =
       std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>'" + err_path.string() + "'";
   CommandOutput result;

@@ -5,8 +5,6 @@
 // result, the energy budget and the final state.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <bit>
 #include <cstdint>
 #include <filesystem>
@@ -21,6 +19,7 @@
 #include "blockdem/world/stage.hpp"
 #include "blockdem/world/state_stream.hpp"
 #include "brick_pile.hpp"
+#include "support/temp_path.hpp"
 #include "support/thread_distribution.hpp"
 
 namespace blockdem::test {
@@ -177,8 +176,7 @@ TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
   stage.name = "slide";
   stage.kind = Stage::Kind::steps;
   stage.steps = 60;
-  const auto root = std::filesystem::temp_directory_path() /
-                    ("blockdem_merged_outputs_" + std::to_string(getpid()));
+  const auto root = temp_path("merged_outputs");
   std::filesystem::remove_all(root);
   const Files oracle = write_outputs(pile.world(s, 20.0), stage, root / "one");
   for (int parts : {2, 3}) {
@@ -205,7 +203,6 @@ TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
       EXPECT_EQ(f.merges, 7 * 2 + 3) << parts << " parts";
     }
   }
-  std::filesystem::remove_all(root);
 }
 
 /// A world's complete state (World::save_state: blocks, pair slots, counters and the divergence

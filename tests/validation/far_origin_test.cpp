@@ -3,7 +3,6 @@
 // plane offsets of ~6e6 m carry round-off of ~1e-9 m, a thousandth of these joints' closures.
 // The VTK frames give the points in the user's coordinates too.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstring>
@@ -16,6 +15,7 @@
 #include "blockdem/io/vtu.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/world/stage.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 namespace {
@@ -98,8 +98,7 @@ TEST(FarFromOrigin, VtkFramesGivePointsInTheUsersCoordinates) {
   const World near = run_column(0.0, 0.0, 0.0);
   const World far = run_column(shift.x(), shift.y(), shift.z());
   ASSERT_GT(far.settings().origin.norm(), 1e6) << "the far scene runs relative to its centre";
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("blockdem_far_vtu_" + std::to_string(::getpid()));
+  const std::filesystem::path dir = temp_path("far_vtu");
   std::filesystem::create_directories(dir);
   for (const char* kind : {"blocks", "contacts"}) {
     SCOPED_TRACE(kind);
@@ -118,7 +117,6 @@ TEST(FarFromOrigin, VtkFramesGivePointsInTheUsersCoordinates) {
     ASSERT_EQ(pf.size(), pn.size());
     for (std::size_t i = 0; i < pn.size(); ++i) EXPECT_LE((pf[i] - shift - pn[i]).norm(), 3e-9);
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

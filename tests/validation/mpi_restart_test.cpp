@@ -111,17 +111,8 @@ class MpiRestart : public ::testing::Test {
     reference_ = fresh_dir("mpi_restart_reference");
     ASSERT_EQ(run(0, scenario_, reference_, ""), 0);
   }
-  void TearDown() override {
-    for (const auto& d : dirs_) fs::remove_all(d);
-    if (!reference_.empty()) fs::remove_all(reference_);
-    if (!scenario_.empty()) fs::remove(scenario_);
-  }
-  fs::path dir(const std::string& name) {
-    dirs_.push_back(fresh_dir("mpi_restart_" + name));
-    return dirs_.back();
-  }
+  static fs::path dir(const std::string& name) { return fresh_dir("mpi_restart_" + name); }
   fs::path scenario_, reference_;
-  std::vector<fs::path> dirs_;
 };
 
 // SIGTERM (2 processes) or SIGINT (3 processes) reaching process 1 alone after step 1300: every
@@ -191,8 +182,7 @@ TEST_F(MpiRestart, ResumeWhereAProcessDoesNotSeeTheFileGetsItsBytesFromTheFirst)
     SCOPED_TRACE(unseen ? "process 1 does not see the file" : "every process sees it");
     const fs::path out = dir(unseen ? "unseen_after" : "seen_after");
     fs::copy(stopped, out, fs::copy_options::recursive);
-    const fs::path log = out.string() + ".stderr";
-    dirs_.push_back(log);
+    const fs::path log = remove_at_exit(out.string() + ".stderr");
     std::ostringstream c;
     c << mpirun(2, unseen ? "-x BLOCKDEM_TEST_RESTART_UNSEEN=1 " : "") << BLOCKDEM_CLI_PATH
       << " run '" << scenario_.string() << "' --out '" << out.string()
@@ -264,8 +254,7 @@ TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
   fs::create_directories(out);
   const std::string garbage = "not a checkpoint\n";
   write_file_atomically(out / "checkpoint.bdck", garbage);
-  const fs::path log = out.string() + ".log";
-  dirs_.push_back(log);
+  const fs::path log = remove_at_exit(out.string() + ".log");
   const std::string cmd = mpirun(3) + BLOCKDEM_CLI_PATH + " run " + scenario_.string() + " --out " +
                           out.string() + " --quiet --resume 2> " + log.string();
   const int status = std::system(cmd.c_str());
@@ -336,8 +325,6 @@ void signal_from_outside(bool to_launcher, long long steps, int expected_code, b
     EXPECT_EQ(outputs(out), outputs(reference));
     expect_same_frames(reference, out);
   }
-  for (const auto& d : {reference, out, pid_file}) fs::remove_all(d);
-  fs::remove(scenario);
 }
 
 // SIGTERM to process 1 alone: both stop after the same step; mpirun passes on the exit code 143.

@@ -2,11 +2,11 @@
 // of one process started without mpirun (the oracle; the VTK frames of 2 and 3 processes, written
 // in pieces, equal through VTK's reader), for a settling brick pile, a shaken pile
 // whose blocks cross subdomain boundaries and change owner, and a voussoir beam; and bad input
-// (more processes than blocks, a scenario that one process cannot read, a process that dies)
-// stops every process. Skipped when the build has no MPI (BLOCKDEM_MPI=OFF).
+// (more processes than blocks, a scenario that one process cannot read, a process that fails
+// alone, a process that dies) stops every process. Skipped when the build has no MPI
+// (BLOCKDEM_MPI=OFF).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +18,7 @@
 
 #include "brick_pile.hpp"
 #include "support/mpi_launcher.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 namespace {
@@ -110,14 +111,10 @@ class MpiRun : public ::testing::Test {
  protected:
   void SetUp() override {
     if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-    dir_ = fs::temp_directory_path() /
-           ("blockdem_mpi_" + std::to_string(getpid()) + "_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = temp_path("mpi_" +
+                     std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
   }
   fs::path write(const std::string& name, const std::string& text) const {
     const fs::path p = dir_ / name;
@@ -233,6 +230,32 @@ TEST_F(MpiRun, ScenarioFailingOnOneRankStopsAll) {
   EXPECT_NE(err.find(bad.string()), std::string::npos) << err;
   EXPECT_NE(err.find("damping"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// A failure on process 1 alone (an exception: its scratch folder, in its temporary folder, can be
+// made, but no file in it, as the file's path would be longer than PATH_MAX, 4,096 bytes on
+// Linux): every process stops, and process 1 removes its scratch folder before it aborts.
+TEST_F(MpiRun, ProcessFailingAloneRemovesItsScratchFolder) {
+  const fs::path scenario =
+      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
+  // Process 1's temporary folder, 4,072 characters long: its scratch folder adds
+  // "/blockdem-rank1-<pid>" (17 to 23 characters; the path fits in 4,095), each output file at
+  // least 11 more ("/blocks.csv"; it does not).
+  fs::path tmp = dir_ / "tmp";
+  while (4072 - tmp.string().size() > 250) tmp /= std::string(200, 'd');
+  tmp /= std::string(4072 - tmp.string().size() - 1, 'd');
+  ASSERT_EQ(tmp.string().size(), 4072u);
+  fs::create_directories(tmp);
+  const fs::path out = dir_ / "out";
+  const fs::path log = dir_ / "log.txt";
+  const std::string tail = " --out " + out.string() + " --quiet --no-figures --threads 1";
+  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
+                          " : -np 1 env TMPDIR=" + tmp.string() + " " + BLOCKDEM_CLI_PATH +
+                          " run " + scenario.string() + tail + " 2> " + log.string();
+  EXPECT_NE(exit_code(cmd), 0);
+  const std::string err = read_file(log);
+  EXPECT_NE(err.find("internal error on process 1"), std::string::npos) << err;
+  EXPECT_TRUE(fs::is_empty(tmp)) << "process 1's scratch folder was left";
 }
 
 // A process killed in the middle of a run: the others are stopped by the launcher, the run

@@ -4,7 +4,6 @@
 // one process. Skipped when the build has no MPI.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include <string>
 
 #include "brick_pile.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 namespace {
@@ -57,12 +57,9 @@ class MpiVtk : public ::testing::Test {
  protected:
   void SetUp() override {
     if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-    dir_ = fs::temp_directory_path() / ("blockdem_mpi_vtk_" + std::to_string(getpid()));
+    dir_ = temp_path("mpi_vtk");
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
   }
   fs::path dir_;
 };

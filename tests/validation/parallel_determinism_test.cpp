@@ -2,7 +2,6 @@
 // shakes gives bit-identical states, loads and contacts with 1, 2 and 3 threads (the serial run
 // is the oracle), in the library and through `blockdem run --threads N`.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -14,6 +13,7 @@
 
 #include "brick_pile.hpp"
 #include "support/sanitized_run.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 namespace {
@@ -135,8 +135,7 @@ std::string summary_without_timing(const std::filesystem::path& p) {
 // The CLI: every output file of `blockdem run --threads N` is byte-identical for N = 1, 2, 3,
 // except summary.json's wall time and thread count; summary.json records the thread count.
 TEST(ParallelStepCli, RunOutputsByteIdenticalForOneTwoAndThreeThreads) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("blockdem_parallel_cli_" + std::to_string(::getpid()));
+  const auto dir = temp_path("parallel_cli");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto scenario = dir / "pile.toml";
@@ -174,7 +173,6 @@ TEST(ParallelStepCli, RunOutputsByteIdenticalForOneTwoAndThreeThreads) {
     ++files;
   }
   EXPECT_GE(files, 5u);  // history, blocks, contacts, summary, vtk files
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -2,8 +2,6 @@
 // incline angle psi (the same statics as a box on a plane dipping psi under vertical gravity).
 #pragma once
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -11,6 +9,7 @@
 
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 
@@ -42,11 +41,11 @@ inline std::string incline_scenario(double psi_deg, double phi_deg, double b, do
 
 /// The temporary folder of run_text's run `name` (one per process: suites run side by side).
 inline std::filesystem::path run_folder(const std::string& name) {
-  return std::filesystem::temp_directory_path() /
-         ("blockdem_" + std::to_string(::getpid()) + "_" + name);
+  return temp_path(name);
 }
 
-/// Runs scenario text into a fresh temporary folder, kept for inspection until the next run.
+/// Runs scenario text into a fresh temporary folder, removed when the process ends (kept with
+/// BLOCKDEM_KEEP_TEST_FILES).
 inline RunResult run_text(const std::string& text, const std::string& name) {
   const Scenario sc = parse_scenario(text, name + ".toml");
   const auto out = run_folder(name);

@@ -1,7 +1,6 @@
 // The voussoir beams T2-1 and T3-full in mode face_integrated without the plane constraint
 // (plane_motion = false): the joints' twisting resistance keeps the beam from buckling sideways up
 // to 40 g, and thrust and midspan deflection match the plane-constrained runs.
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +14,7 @@
 
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -37,13 +37,10 @@ RunResult run_variant(const std::string& id, bool plane_motion, bool twist) {
           std::string("[voussoir]\nplane_motion = ") + (plane_motion ? "true" : "false") + "\n");
   Scenario sc = parse_scenario(toml, path);
   sc.output.vtk = false;
-  const auto out = std::filesystem::temp_directory_path() /
-                   ("blockdem_voussoir3d_" + std::to_string(::getpid()) + "_" + id +
-                    (plane_motion ? "_plane" : "_3d") + (twist ? "" : "_notwist"));
+  const auto out = test::temp_path("voussoir3d_" + id + (plane_motion ? "_plane" : "_3d") +
+                                   (twist ? "" : "_notwist"));
   std::filesystem::remove_all(out);
-  RunResult r = run_scenario(sc, out);
-  std::filesystem::remove_all(out);
-  return r;
+  return run_scenario(sc, out);
 }
 
 class Voussoir3d : public ::testing::TestWithParam<std::string> {};

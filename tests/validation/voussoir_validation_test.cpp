@@ -3,7 +3,6 @@
 // symmetric beam (1e-5 relative; 1e-4 with the continuously-yielding law, see below), the preload
 // (within 1% of 60 N), and the ratios of midspan deflections implied by the paper's Table 3 (within
 // 5%).
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -14,6 +13,7 @@
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/studies/boon2015/cases.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -22,12 +22,9 @@ RunResult run_case(const std::string& id) {
   Scenario sc =
       load_scenario(std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/boon2015/" + id + ".toml");
   sc.output.vtk = false;
-  const auto out = std::filesystem::temp_directory_path() /
-                   ("blockdem_voussoir_" + std::to_string(::getpid()) + "_" + id);
+  const auto out = test::temp_path("voussoir_" + id);
   std::filesystem::remove_all(out);
-  RunResult r = run_scenario(sc, out);
-  std::filesystem::remove_all(out);
-  return r;
+  return run_scenario(sc, out);
 }
 
 class VoussoirCase : public ::testing::TestWithParam<std::string> {};

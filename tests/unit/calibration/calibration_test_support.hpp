@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,22 +13,18 @@
 
 #include "blockdem/calibration/calibration_data.hpp"
 #include "blockdem/calibration/calibration_report.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 
-/// A directory of this test process, created on first use and removed at exit.
+/// A directory of this test process, created on first use and removed at exit (temp_path).
 inline std::filesystem::path scratch_directory() {
-  struct Scratch {
-    std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                 ("blockdem_calibration_test_" + std::to_string(::getpid()));
-    Scratch() { std::filesystem::create_directories(path); }
-    ~Scratch() {
-      std::error_code ignored;
-      std::filesystem::remove_all(path, ignored);
-    }
-  };
-  static const Scratch scratch;
-  return scratch.path;
+  static const std::filesystem::path path = [] {
+    const std::filesystem::path p = temp_path("calibration_test");
+    std::filesystem::create_directories(p);
+    return p;
+  }();
+  return path;
 }
 
 /// Debian's /usr/bin/python3 when it exists (the script needs only the standard library).

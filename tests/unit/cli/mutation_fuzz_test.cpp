@@ -5,7 +5,6 @@
 // (an input error) must write nothing. Under a sanitizer (BLOCKDEM_TEST_SANITIZED=1), where each
 // run costs a sanitized program's start, the first 500 of the same sequence.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -18,6 +17,7 @@
 
 #include "support/cli_runner.hpp"
 #include "support/sanitized_run.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -179,8 +179,7 @@ class Mutator {
 };
 
 TEST(MutationFuzz, MutatedScenariosEndWithADefinedExitCode) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("blockdem_mutation_fuzz_" + std::to_string(::getpid()));
+  const fs::path dir = test::temp_path("mutation_fuzz");
   fs::remove_all(dir);
   fs::create_directories(dir);
   {

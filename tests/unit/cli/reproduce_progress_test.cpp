@@ -45,7 +45,6 @@ TEST(ReproduceProgress, ALineAsEachCaseStartsAndEnds) {
   }
   EXPECT_EQ(started, 1) << r.err;
   EXPECT_EQ(finished, 1) << r.err;
-  fs::remove_all(out);
 }
 
 }  // namespace

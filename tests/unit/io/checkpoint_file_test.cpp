@@ -9,6 +9,7 @@
 
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("blockdem_checkpoint_file_" + name);
+  const fs::path dir = test::temp_path("checkpoint_file_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -53,7 +54,6 @@ TEST(CheckpointFileWriter, PiecesWithAPatchGiveTheWholeWritersBytes) {
   EXPECT_EQ(read_checkpoint_file(dir / "pieces.bdck", 42), p);
   EXPECT_EQ(read_file_bytes(dir / "pieces.bdck.prev"), read_file_bytes(dir / "whole.bdck.prev"));
   EXPECT_FALSE(fs::exists(dir / ".pieces.bdck.tmp"));
-  fs::remove_all(dir);
 }
 
 // Pieces larger than the buffer go to the file without it, between small buffered ones; a
@@ -80,7 +80,6 @@ TEST(CheckpointFileWriter, PiecesLargerThanTheBufferGiveTheWholeWritersBytes) {
   }
   EXPECT_EQ(read_file_bytes(dir / "pieces.bdck"), read_file_bytes(dir / "whole.bdck"));
   EXPECT_EQ(read_checkpoint_file(dir / "pieces.bdck", 7), p);
-  fs::remove_all(dir);
 }
 
 // A writer destroyed before finish() (an error while the state was merged) leaves the last
@@ -96,7 +95,6 @@ TEST(CheckpointFileWriter, UnfinishedLeavesTheLastCheckpoint) {
   EXPECT_EQ(read_file_bytes(dir / "c.bdck"), before);
   EXPECT_FALSE(fs::exists(dir / "c.bdck.prev"));
   EXPECT_FALSE(fs::exists(dir / ".c.bdck.tmp"));
-  fs::remove_all(dir);
 }
 
 // Bad input: a file written in pieces, then truncated by one byte or with one payload byte
@@ -124,7 +122,6 @@ TEST(CheckpointFileWriter, DamagedFileIsRefusedWithItsReason) {
   std::string flipped = good;
   flipped[1000] ^= 1;
   EXPECT_NE(refusal(flipped).find("corrupt (checksum mismatch)"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 // The mapped reader gives the payload read_checkpoint_file gives, byte for byte, also after
@@ -149,7 +146,6 @@ TEST(MappedCheckpoint, PayloadIsTheReadersAlsoAfterPagesAreGivenBack) {
   m.release_before(p.size() + 4096);  // past the end: clamped
   EXPECT_TRUE(m.payload() == p);
   EXPECT_TRUE(m.payload() == read_checkpoint_file(dir / "c.bdck", 11));
-  fs::remove_all(dir);
 }
 
 // Bad input: the mapped reader refuses what read_checkpoint_file refuses, with the same message
@@ -189,7 +185,6 @@ TEST(MappedCheckpoint, RefusesWhatTheReaderRefusesWithTheSameMessage) {
             (dir / "c.bdck").string() + ": cannot be read");
   EXPECT_EQ(message([&] { read_checkpoint_file(dir / "c.bdck", 7); }),
             (dir / "c.bdck").string() + ": cannot be read");
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -82,7 +82,6 @@ TEST(TimeHistory, RowsAtTheIntervalDescribeOneTimeLevel) {
                 1e-9 * m * g * g * (t * t + dt * t) + 1e-15);
     EXPECT_LT(std::abs(num(r, "energy_residual_J")), 1e-9 * m * g * drop + 1e-12);
   }
-  std::filesystem::remove_all(dir);
 }
 
 // The cap: with max_rows = 8 and a row every step, the interval doubles when half the rows still

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../../support/cli_runner.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -23,8 +24,7 @@ namespace {
 // unbalanced-force tolerance), and each polyhedron's volume, computed by VTK, is the box's
 // (1e-9: round-off of the vertices).
 TEST(VtuOutput, VtkReadsEveryFrameWithFields) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("blockdem_vtu_test_" + std::to_string(::getpid()));
+  const auto dir = test::temp_path("vtu_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "stack.toml") << R"(title = "two stacked boxes"
@@ -109,8 +109,6 @@ vtk_interval = 200
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << command;
-
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <string>
 #include <vector>
 #include "support/cli_runner.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -102,8 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& case_info) { return std::string(case_info.param.name); });
 
 TEST(CliLab, CompressionPrintsTheKernelCurveAndTheDemComparison) {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / ("blockdem_lab_cli_" + std::to_string(::getpid()));
+  const std::filesystem::path out = test::temp_path("lab_cli");
   const CommandOutput run = run_cli(
       "lab compression --normal law=linear,stiffness=1e10 --max-stress 1e6 --steps 4 "
       "--dem --no-figures --out " +
@@ -124,7 +123,6 @@ TEST(CliLab, CompressionPrintsTheKernelCurveAndTheDemComparison) {
                          0),
             0u)
       << header;
-  std::filesystem::remove_all(out);
 }
 
 TEST(CliLab, ShearReachesTanPhiOfTheGivenFrictionAngle) {

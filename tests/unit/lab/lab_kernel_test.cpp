@@ -4,7 +4,6 @@
 // joint-law figure data.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include "blockdem/lab/joint_law_figures.hpp"
 #include "blockdem/lab/law_spec.hpp"
 #include "blockdem/lab/shear_test.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
@@ -257,8 +257,7 @@ TEST(ShearKernel, ValidateNamesTheParameter) {
 // --- figure data ----------------------------------------------------------------------------
 
 TEST(JointLawFigures, WritesTheFourTablesWithUnitsInTheHeaders) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("blockdem_lab_figures_" + std::to_string(::getpid()));
+  const std::filesystem::path dir = test::temp_path("lab_figures");
   std::filesystem::create_directories(dir);
   JointLawFiguresDef def;
   def.steps = 20;
@@ -279,7 +278,6 @@ TEST(JointLawFigures, WritesTheFourTablesWithUnitsInTheHeaders) {
     for (std::string line; std::getline(in, line);) ++rows;
     EXPECT_GT(rows, 20u) << files[i];
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

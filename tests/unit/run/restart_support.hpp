@@ -3,7 +3,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,12 +11,13 @@
 #include <string>
 
 #include "blockdem/io/atomic_file.hpp"
+#include "support/temp_path.hpp"
 
 namespace blockdem::test {
 
+/// An absent folder of this process's own, temp/blockdem_<pid>_<name>, removed at exit.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("blockdem_" + name + "_" + std::to_string(::getpid()));
+  const std::filesystem::path dir = temp_path(name);
   std::filesystem::remove_all(dir);
   return dir;
 }
@@ -30,9 +30,7 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
 /// time_history.csv row every 10 steps, capped at 60 rows (its interval doubles several times).
 inline std::filesystem::path write_restart_scenario(const std::string& name, int extra_steps,
                                                     long long last_steps = 0) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() /
-      ("blockdem_" + name + "_" + std::to_string(::getpid()) + ".toml");
+  const std::filesystem::path file = temp_path(name + ".toml");
   std::ofstream f(file);
   f << "title = \"restart test\"\n"
        "[settings]\ndamping = 0.3\n"
