@@ -1899,11 +1899,11 @@ void World::step_distributed(double dt, int threads) {
 
 namespace {
 
-// Whether a store keeps much more room than it uses (a quarter more, and at least 4096 entries
+// Whether a store keeps much more room than it uses (a quarter more, and at least 256 entries
 // more): after the world was whole, a process's stores hold only its part of it.
 template <class T>
 bool release_spare(std::vector<T>& store) {
-  if (store.capacity() - store.size() <= store.size() / 4 + 4096) return false;
+  if (store.capacity() - store.size() <= store.size() / 4 + 256) return false;
   store.shrink_to_fit();
   return true;
 }
