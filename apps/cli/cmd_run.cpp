@@ -132,13 +132,31 @@ int run(const RunOptions& opt) {
     return run_one(opt, mpi);
   }
   RunOptions mine = opt;
+  bool scratch_ok = true;
+  std::string why;
   if (mpi.rank() != 0) {
     mine.shared_out = opt.out;  // where this process writes its VTK pieces
     mine.quiet = true;
     mine.figures = false;
-    mine.out = (std::filesystem::temp_directory_path() /
-                ("blockdem-rank" + std::to_string(mpi.rank()) + "-" + std::to_string(getpid())))
-                   .string();
+    std::error_code tmp_error;
+    const std::filesystem::path tmp = std::filesystem::temp_directory_path(tmp_error);
+    if (tmp_error) {
+      // TMPDIR names no folder on this process's node: every process stops before anything is
+      // written, with this message once.
+      const char* tmpdir = std::getenv("TMPDIR");
+      scratch_ok = false;
+      why = "process " + std::to_string(mpi.rank()) +
+            " has no temporary folder for its scratch files (TMPDIR=" + (tmpdir ? tmpdir : "") +
+            "): " + tmp_error.message();
+    } else {
+      mine.out =
+          (tmp / ("blockdem-rank" + std::to_string(mpi.rank()) + "-" + std::to_string(getpid())))
+              .string();
+    }
+  }
+  if (!mpi.all_ok(scratch_ok, why)) {
+    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
+    return 2;
   }
   std::error_code ec;
   if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);

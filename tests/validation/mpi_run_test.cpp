@@ -258,6 +258,28 @@ TEST_F(MpiRun, ProcessFailingAloneRemovesItsScratchFolder) {
   EXPECT_TRUE(fs::is_empty(tmp)) << "process 1's scratch folder was left";
 }
 
+// A process whose TMPDIR names no folder (a node without it) has nowhere for its scratch files:
+// every process stops before anything is written, exit code 2, the reason printed once.
+TEST_F(MpiRun, ProcessWithoutTemporaryFolderStopsEveryProcessBeforeWriting) {
+  const fs::path scenario =
+      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
+  const fs::path missing = dir_ / "no_such_folder";
+  const fs::path out = dir_ / "out";
+  const fs::path log = dir_ / "log.txt";
+  const std::string tail = " --out " + out.string() + " --no-figures --threads 1";
+  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
+                          " : -np 1 env TMPDIR=" + missing.string() + " " + BLOCKDEM_CLI_PATH +
+                          " run " + scenario.string() + tail + " 2> " + log.string();
+  EXPECT_EQ(exit_code(cmd), 2);
+  const std::string err = read_file(log);
+  const std::string why =
+      "process 1 has no temporary folder for its scratch files (TMPDIR=" + missing.string() + ")";
+  EXPECT_NE(err.find(why), std::string::npos) << err;
+  EXPECT_EQ(err.find(why), err.rfind(why)) << "printed more than once: " << err;
+  EXPECT_FALSE(fs::exists(out)) << "an output folder was written";
+  EXPECT_FALSE(fs::exists(missing));
+}
+
 // A process killed in the middle of a run: the others are stopped by the launcher, the run
 // fails, and no summary.json claims a finished run.
 TEST_F(MpiRun, DeadRankStopsTheRunWithoutSummary) {
