@@ -121,6 +121,21 @@ class MpiRun : public ::testing::Test {
     std::ofstream(p) << text;
     return p;
   }
+  /// A 10-step pile run on two processes, process 1 with TMPDIR=`tmpdir`, into dir_/out: the
+  /// launcher's exit code, and what the processes printed on stderr in `err`.
+  int run_with_process_one_tmpdir(const fs::path& tmpdir, std::string& err) const {
+    const fs::path scenario =
+        write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
+    const fs::path log = dir_ / "log.txt";
+    const std::string tail =
+        " --out " + (dir_ / "out").string() + " --quiet --no-figures --threads 1";
+    const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
+                            " : -np 1 env TMPDIR=" + tmpdir.string() + " " + BLOCKDEM_CLI_PATH +
+                            " run " + scenario.string() + tail + " 2> " + log.string();
+    const int code = exit_code(cmd);
+    err = read_file(log);
+    return code;
+  }
   fs::path dir_;
 };
 
@@ -236,8 +251,6 @@ TEST_F(MpiRun, ScenarioFailingOnOneRankStopsAll) {
 // made, but no file in it, as the file's path would be longer than PATH_MAX, 4,096 bytes on
 // Linux): every process stops, and process 1 removes its scratch folder before it aborts.
 TEST_F(MpiRun, ProcessFailingAloneRemovesItsScratchFolder) {
-  const fs::path scenario =
-      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
   // Process 1's temporary folder, 4,072 characters long: its scratch folder adds
   // "/blockdem-rank1-<pid>" (17 to 23 characters; the path fits in 4,095), each output file at
   // least 11 more ("/blocks.csv"; it does not).
@@ -246,14 +259,8 @@ TEST_F(MpiRun, ProcessFailingAloneRemovesItsScratchFolder) {
   tmp /= std::string(4072 - tmp.string().size() - 1, 'd');
   ASSERT_EQ(tmp.string().size(), 4072u);
   fs::create_directories(tmp);
-  const fs::path out = dir_ / "out";
-  const fs::path log = dir_ / "log.txt";
-  const std::string tail = " --out " + out.string() + " --quiet --no-figures --threads 1";
-  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
-                          " : -np 1 env TMPDIR=" + tmp.string() + " " + BLOCKDEM_CLI_PATH +
-                          " run " + scenario.string() + tail + " 2> " + log.string();
-  EXPECT_NE(exit_code(cmd), 0);
-  const std::string err = read_file(log);
+  std::string err;
+  EXPECT_NE(run_with_process_one_tmpdir(tmp, err), 0);
   EXPECT_NE(err.find("internal error on process 1"), std::string::npos) << err;
   EXPECT_TRUE(fs::is_empty(tmp)) << "process 1's scratch folder was left";
 }
@@ -261,22 +268,14 @@ TEST_F(MpiRun, ProcessFailingAloneRemovesItsScratchFolder) {
 // A process whose TMPDIR names no folder (a node without it) has nowhere for its scratch files:
 // every process stops before anything is written, exit code 2, the reason printed once.
 TEST_F(MpiRun, ProcessWithoutTemporaryFolderStopsEveryProcessBeforeWriting) {
-  const fs::path scenario =
-      write("pile.toml", BrickPile{}.toml("boon2012", 30.0, Eigen::Vector3d(0, 0, -9.81), 10));
   const fs::path missing = dir_ / "no_such_folder";
-  const fs::path out = dir_ / "out";
-  const fs::path log = dir_ / "log.txt";
-  const std::string tail = " --out " + out.string() + " --no-figures --threads 1";
-  const std::string cmd = mpirun(1) + BLOCKDEM_CLI_PATH + " run " + scenario.string() + tail +
-                          " : -np 1 env TMPDIR=" + missing.string() + " " + BLOCKDEM_CLI_PATH +
-                          " run " + scenario.string() + tail + " 2> " + log.string();
-  EXPECT_EQ(exit_code(cmd), 2);
-  const std::string err = read_file(log);
+  std::string err;
+  EXPECT_EQ(run_with_process_one_tmpdir(missing, err), 2);
   const std::string why =
       "process 1 has no temporary folder for its scratch files (TMPDIR=" + missing.string() + ")";
   EXPECT_NE(err.find(why), std::string::npos) << err;
   EXPECT_EQ(err.find(why), err.rfind(why)) << "printed more than once: " << err;
-  EXPECT_FALSE(fs::exists(out)) << "an output folder was written";
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "an output folder was written";
   EXPECT_FALSE(fs::exists(missing));
 }
 
