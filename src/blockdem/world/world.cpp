@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -395,13 +396,18 @@ void World::save_checkpoint() {
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
   // Counted first and reserved exactly: near pairs with an intact bond count too, and a vector
   // grown by doubling would briefly hold three times the records.
-  const auto kept = [&](const PairSlot& s) { return checkpoint_history(s).has_value(); };
-  checkpoint_.contacts.clear();
-  checkpoint_.contacts.shrink_to_fit();
-  checkpoint_.contacts.reserve(
-      static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), kept)));
-  for (const auto& s : slots_)
-    if (const auto h = checkpoint_history(s)) checkpoint_.contacts.push_back(*h);
+  // A slot without a contact state keeps its bond alone, in 16 bytes (most of a rock mass's
+  // pairs: intact from the start, never touching).
+  std::size_t with_state = 0, bond_only = 0;
+  for (const auto& s : slots_) {
+    if (!checkpoint_history(s)) continue;
+    (s.contact < 0 ? bond_only : with_state) += 1;
+  }
+  std::vector<ContactHistory>().swap(checkpoint_.contacts);
+  std::vector<BondHistory>().swap(checkpoint_.bonds);
+  checkpoint_.contacts.reserve(with_state);
+  checkpoint_.bonds.reserve(bond_only);
+  for (const auto& s : slots_) keep_slot(s, checkpoint_.contacts, checkpoint_.bonds);
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
@@ -434,6 +440,52 @@ std::optional<World::ContactHistory> World::checkpoint_history(const PairSlot& s
                         c.compressed_area()};
 }
 
+void World::keep_slot(const PairSlot& s, std::vector<ContactHistory>& contacts,
+                      std::vector<BondHistory>& bonds) const {
+  const auto h = checkpoint_history(s);
+  if (!h) return;
+  if (s.contact < 0) {
+    bonds.push_back({h->a, h->b, h->law, h->shear.bond});
+  } else {
+    contacts.push_back(*h);
+  }
+}
+
+World::ContactHistory World::BondHistory::history() const {
+  ContactHistory h;
+  h.a = a;
+  h.b = b;
+  h.law = law;
+  h.shear.bond = bond;
+  return h;
+}
+
+namespace {
+
+template <class T>
+bool zero_bits(const T& v) {
+  const T zero{};
+  return std::memcmp(&v, &zero, sizeof(T)) == 0;
+}
+
+bool same_vector_bits(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
+  return std::memcmp(x.data(), y.data(), 3 * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+std::optional<World::BondHistory> World::BondHistory::of(const ContactHistory& h) {
+  const BondHistory r{h.a, h.b, h.law, h.shear.bond};
+  const ContactHistory d = r.history();
+  if (h.has_history || !same_vector_bits(h.shear.force, d.shear.force) ||
+      !same_vector_bits(h.shear.elastic_displacement, d.shear.elastic_displacement) ||
+      !zero_bits(h.shear.plastic_slip) || !zero_bits(h.twist.moment) ||
+      !same_vector_bits(h.previous_normal, d.previous_normal) ||
+      !same_vector_bits(h.point, d.point) || !zero_bits(h.closure) || !zero_bits(h.area))
+    return std::nullopt;
+  return r;
+}
+
 void World::restore_checkpoint() {
   if (!checkpoint_.valid) return;
   std::size_t servo = 0;  // the next of checkpoint_.servos
@@ -454,9 +506,9 @@ void World::restore_checkpoint() {
   // Contacts come back with their shear history; geometry and normal forces are re-derived at
   // the restored pose (the narrow-phase warm starts of the other pairs are dropped).
   slots_.clear();
-  slots_.reserve(checkpoint_.contacts.size());
+  slots_.reserve(checkpoint_.kept_slots());
   contacts_.clear();
-  for (const ContactHistory& h : checkpoint_.contacts) {
+  checkpoint_.for_each_kept_slot([&](const ContactHistory& h) {
     PairSlot s;
     s.a = h.a;
     s.b = h.b;
@@ -480,7 +532,7 @@ void World::restore_checkpoint() {
       contacts_.push_back(c);
     }
     slots_.push_back(s);
-  }
+  });
   slots_rules_version_ = rules_version_;
   evaluate_pairs(0.0, false, thread_count());
   active_count_ = 0;

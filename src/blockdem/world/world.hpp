@@ -528,13 +528,31 @@ class World {
   /// contact state; nothing for a pair that a fresh slot reproduces (no force, no history, no
   /// bond).
   std::optional<ContactHistory> checkpoint_history(const PairSlot& s) const;
+  /// A kept slot without a contact state: its pair, law and bond (16 bytes where its
+  /// ContactHistory takes 152). Its ContactHistory is `history()`: every other field default.
+  struct BondHistory {
+    std::int32_t a = -1, b = -1;
+    std::int32_t law = -1;
+    BondState bond = BondState::intact;
+    ContactHistory history() const;
+    /// The record of `h` when `h` is such a ContactHistory bit for bit (no contact state's
+    /// fields set), else nothing.
+    static std::optional<BondHistory> of(const ContactHistory& h);
+  };
   struct Checkpoint {
     std::vector<BlockState> blocks;
     std::vector<Motion> motions;  ///< per block, as blocks
     /// The servos that are not Servo{} bit for bit, by block index in increasing order; every
     /// other block's is Servo{} (a servo in each BlockState would add 64 bytes per block).
     std::vector<std::pair<std::size_t, Servo>> servos;
+    /// The kept slots, each in one of the two lists, each list sorted by (a, b): those with a
+    /// contact state, and the bonds of candidate pairs without one (most of a rock mass's
+    /// pairs, whose bonds are intact from the start). for_each_kept_slot walks both in order.
     std::vector<ContactHistory> contacts;
+    std::vector<BondHistory> bonds;
+    template <class F>
+    void for_each_kept_slot(F&& f) const;
+    std::size_t kept_slots() const { return contacts.size() + bonds.size(); }
     double time = 0.0;
     std::int64_t step_count = 0;
     std::int64_t broken_bonds = 0;
@@ -546,6 +564,9 @@ class World {
     std::vector<double> part_resting;  ///< the resting blocks' loads' terms (gather_checkpoint)
     bool partial = false;
   } checkpoint_;
+  /// Appends checkpoint_history(s), if any, to the list it belongs in.
+  void keep_slot(const PairSlot& s, std::vector<ContactHistory>& contacts,
+                 std::vector<BondHistory>& bonds) const;
   void save_checkpoint_part();  ///< the divergence checkpoint of a distributed step, its part
   // save_state's parts (world_state.cpp), shared with save_state_to_root: block i's record with
   // its loads (force, torque, contact force), a slot's record with its contact state (null: the
@@ -557,5 +578,21 @@ class World {
   void save_divergence_checkpoint(StateWriter& w) const;
   void gather_checkpoint();  ///< collective: the parts into the whole checkpoint
 };
+
+template <class F>
+void World::Checkpoint::for_each_kept_slot(F&& f) const {
+  std::size_t c = 0, k = 0;
+  while (c < contacts.size() || k < bonds.size()) {
+    const bool take_contact =
+        k == bonds.size() ||
+        (c < contacts.size() && (contacts[c].a < bonds[k].a ||
+                                 (contacts[c].a == bonds[k].a && contacts[c].b < bonds[k].b)));
+    if (take_contact) {
+      f(contacts[c++]);
+    } else {
+      f(bonds[k++].history());
+    }
+  }
+}
 
 }  // namespace blockdem

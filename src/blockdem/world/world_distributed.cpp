@@ -789,11 +789,11 @@ void World::save_checkpoint_part() {
   checkpoint_.part_blocks = std::move(part);
   // The slots save_checkpoint keeps, of the pairs this process owns, in (a, b) order.
   std::vector<ContactHistory> contacts;
-  for (const auto& s : slots_) {
-    if (pair_owner(s) != rank) continue;
-    if (const auto h = checkpoint_history(s)) contacts.push_back(*h);
-  }
+  std::vector<BondHistory> bonds;
+  for (const auto& s : slots_)
+    if (pair_owner(s) == rank) keep_slot(s, contacts, bonds);
   checkpoint_.contacts = std::move(contacts);
+  checkpoint_.bonds = std::move(bonds);
   // A resting block's energy record holds the step's contact impulses, which a refresh sums
   // from every process's contacts (sum_resting_loads): the terms of this process's contacts on
   // resting blocks, in (a, b) order, summed when the parts are gathered. First (kept here, alike
@@ -829,6 +829,7 @@ void World::save_checkpoint_part() {
 void World::gather_checkpoint() {
   if (!checkpoint_.partial) return;
   static_assert(std::is_trivially_destructible_v<ContactHistory>);
+  static_assert(std::is_trivially_copyable_v<BondHistory>);
   PairDistribution& dist = *settings_.distribution;
   const int rank = dist.rank();
   const auto t0 = std::chrono::steady_clock::now();
@@ -847,6 +848,7 @@ void World::gather_checkpoint() {
   put(out, static_cast<std::uint64_t>(cp.part_blocks.size()));
   put(out, static_cast<std::uint64_t>(cp.servos.size()));
   put(out, static_cast<std::uint64_t>(cp.contacts.size()));
+  put(out, static_cast<std::uint64_t>(cp.bonds.size()));
   for (std::size_t k = 0; k < cp.part_blocks.size(); ++k) {
     PartBlock p;
     p.index = cp.part_blocks[k];
@@ -867,6 +869,7 @@ void World::gather_checkpoint() {
     put_bytes(out, &servo, sizeof(Servo));
   }
   for (const ContactHistory& h : cp.contacts) put_bytes(out, &h, sizeof(ContactHistory));
+  for (const BondHistory& h : cp.bonds) put_bytes(out, &h, sizeof(BondHistory));
   const std::vector<double>& rest = cp.part_resting;
   const auto resting_count = static_cast<std::size_t>(rest.size() >= 2 ? rest[1] : 0.0);
   const std::size_t terms_at = 2 + resting_count;
@@ -885,22 +888,24 @@ void World::gather_checkpoint() {
   std::vector<char> seen(n, 0);
   std::vector<std::pair<std::size_t, Servo>> servos;
   std::vector<ContactHistory> contacts;
+  std::vector<BondHistory> bonds;
   std::vector<std::array<double, 12>> terms;  // the resting blocks' contacts' terms
   std::size_t begin = 0;
   for (std::size_t r = 0; r < counts.size(); begin += counts[r], ++r) {
     const std::size_t end = begin + counts[r];
-    if (counts[r] < 24)
+    if (counts[r] < 32)
       throw std::logic_error("checkpoint gather: a process sent a malformed part");
     const auto blocks_in = get<std::uint64_t>(all, begin);
     const auto servos_in = get<std::uint64_t>(all, begin + 8);
     const auto contacts_in = get<std::uint64_t>(all, begin + 16);
-    const std::size_t fixed_part = 24 + blocks_in * sizeof(PartBlock) +
-                                   servos_in * (8 + sizeof(Servo)) +
-                                   contacts_in * sizeof(ContactHistory);
+    const auto bonds_in = get<std::uint64_t>(all, begin + 24);
+    const std::size_t fixed_part =
+        32 + blocks_in * sizeof(PartBlock) + servos_in * (8 + sizeof(Servo)) +
+        contacts_in * sizeof(ContactHistory) + bonds_in * sizeof(BondHistory);
     if (counts[r] < fixed_part + 8 ||
         counts[r] != fixed_part + 8 + get<std::uint64_t>(all, begin + fixed_part) * 96)
       throw std::logic_error("checkpoint gather: a process sent a malformed part");
-    std::size_t at = begin + 24;
+    std::size_t at = begin + 32;
     for (std::uint64_t k = 0; k < blocks_in; ++k, at += sizeof(PartBlock)) {
       const auto p = get<PartBlock>(all, at);
       const auto i = static_cast<std::size_t>(p.index);
@@ -928,6 +933,8 @@ void World::gather_checkpoint() {
       std::memcpy(static_cast<void*>(&h), all.data() + at, sizeof(ContactHistory));
       contacts.push_back(h);
     }
+    for (std::uint64_t k = 0; k < bonds_in; ++k, at += sizeof(BondHistory))
+      bonds.push_back(get<BondHistory>(all, at));
     const auto terms_in = get<std::uint64_t>(all, at);
     at += 8;
     for (std::uint64_t k = 0; k < terms_in; ++k, at += 96) {
@@ -941,9 +948,11 @@ void World::gather_checkpoint() {
     throw std::logic_error("checkpoint gather: a block is in no process's part");
   std::sort(servos.begin(), servos.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::sort(contacts.begin(), contacts.end(), [](const ContactHistory& x, const ContactHistory& y) {
+  const auto by_pair = [](const auto& x, const auto& y) {
     return x.a < y.a || (x.a == y.a && x.b < y.b);
-  });
+  };
+  std::sort(contacts.begin(), contacts.end(), by_pair);
+  std::sort(bonds.begin(), bonds.end(), by_pair);
   // The resting blocks' records as sum_resting_loads leaves them on the whole world of the
   // checkpoint's step: the contact force and torque summed with its arithmetic in (a, b) order.
   std::sort(terms.begin(), terms.end(), [](const auto& x, const auto& y) {
@@ -991,6 +1000,7 @@ void World::gather_checkpoint() {
   cp.motions = std::move(motions);
   cp.servos = std::move(servos);
   cp.contacts = std::move(contacts);
+  cp.bonds = std::move(bonds);
   std::vector<int>().swap(cp.part_blocks);
   std::vector<double>().swap(cp.part_resting);
   cp.partial = false;

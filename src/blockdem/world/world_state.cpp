@@ -269,8 +269,8 @@ void World::save_divergence_checkpoint(StateWriter& w) const {
     write_servo(
         w, servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{});
   }
-  w.size(checkpoint_.contacts.size());
-  for (const ContactHistory& h : checkpoint_.contacts) {
+  w.size(checkpoint_.kept_slots());
+  checkpoint_.for_each_kept_slot([&](const ContactHistory& h) {
     w.pod(static_cast<std::int32_t>(h.a));
     w.pod(static_cast<std::int32_t>(h.b));
     w.pod(static_cast<std::int32_t>(h.law));
@@ -281,7 +281,7 @@ void World::save_divergence_checkpoint(StateWriter& w) const {
     w.vec(h.point);
     w.pod(h.closure);
     w.pod(h.area);
-  }
+  });
   checkpoint_.energy.save_state(w);
 }
 
@@ -426,8 +426,12 @@ void World::load_state(StateReader& r) {
     const Servo servo = read_servo(r);
     if (!same_bits(servo, Servo{})) checkpoint_.servos.emplace_back(i, servo);
   }
-  checkpoint_.contacts.resize(r.size());
-  for (ContactHistory& h : checkpoint_.contacts) {
+  checkpoint_.contacts.clear();
+  checkpoint_.bonds.clear();
+  const std::size_t kept = r.size();
+  int last_a = -1, last_b = -1;
+  for (std::size_t k = 0; k < kept; ++k) {
+    ContactHistory h;
     h.a = r.pod<std::int32_t>();
     h.b = r.pod<std::int32_t>();
     check_pair(h.a, h.b);
@@ -440,6 +444,16 @@ void World::load_state(StateReader& r) {
     h.point = r.vec();
     r.pod(h.closure);
     r.pod(h.area);
+    // In (a, b) order, as saved: each list keeps it, and restore and save walk them merged.
+    if (h.a < last_a || (h.a == last_a && h.b <= last_b))
+      throw StateError("saved checkpoint contacts are out of order");
+    last_a = h.a;
+    last_b = h.b;
+    if (const auto bond = BondHistory::of(h)) {
+      checkpoint_.bonds.push_back(*bond);
+    } else {
+      checkpoint_.contacts.push_back(h);
+    }
   }
   checkpoint_.energy.load_state(r);
   energy_.load_state(r);  // after remove_blocks above, which starts the accounting again

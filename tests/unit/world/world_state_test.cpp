@@ -167,6 +167,34 @@ TEST(WorldState, NearPairsAndContactsFormingLaterContinueBitIdentically) {
                 (contacts[k - 1]->a == contacts[k]->a && contacts[k - 1]->b < contacts[k]->b));
 }
 
+// The divergence checkpoint keeps a candidate pair without a contact state (a near pair, bonded
+// since the start) as its bond alone. Oracles: the slots it restores (the two near pairs come
+// back with the three contacts, in (a, b) order), the saved state's bytes after a load, and the
+// world it was saved from after both return to the checkpoint. Tolerance: none.
+TEST(WorldState, ADivergenceCheckpointOfNearBondedPairsComesBackWhole) {
+  World w = near_cubes(1);
+  for (int k = 0; k < 20; ++k) w.step();
+  ASSERT_EQ(w.contact_count(), 3u);
+  ASSERT_EQ(w.candidate_pair_count(), 5u);
+  w.save_checkpoint();  // now, with the near pairs
+  const auto state = saved(w);
+  World restarted = near_cubes(1);
+  load(restarted, state);
+  EXPECT_EQ(saved(restarted), state);
+  for (World* x : {&w, &restarted}) {
+    for (int k = 0; k < 30; ++k) x->step();
+    x->restore_checkpoint();
+    EXPECT_EQ(x->candidate_pair_count(), 5u);
+    EXPECT_EQ(x->step_count(), 20);
+  }
+  EXPECT_EQ(saved(restarted), saved(w));
+  for (int k = 0; k < 200; ++k) {
+    w.step();
+    restarted.step();
+  }
+  EXPECT_EQ(saved(restarted), saved(w));
+}
+
 TEST(WorldState, RemovedBlocksAreRemovedAgainByName) {
   World w = pushed_cubes();
   for (int k = 0; k < 50; ++k) w.step();
