@@ -1,7 +1,8 @@
 // `mpirun -np K blockdem run`: the outputs of K = 1, 2, 3 processes are byte-identical to those
 // of one process started without mpirun (the oracle; the VTK frames of 2 and 3 processes, written
 // in pieces, equal through VTK's reader), for a settling brick pile, a shaken pile
-// whose blocks cross subdomain boundaries and change owner, and a voussoir beam; and bad input
+// whose blocks cross subdomain boundaries and change owner, a jointed rock mass whose bonds break
+// until it collapses, and a voussoir beam; and bad input
 // (more processes than blocks, a scenario that one process cannot read, a process that fails
 // alone, a process that dies) stops every process. Skipped when the build has no MPI
 // (BLOCKDEM_MPI=OFF).
@@ -200,6 +201,78 @@ TEST_F(MpiRun, ShakenPileRepartitionedSameOutputs) {
   for (const auto& s : summaries) {
     for (const auto& rank : s.at("distribution"))
       EXPECT_GE(rank.at("partitions").get<int>(), 8);  // 400 steps / 50
+  }
+}
+
+// A rock mass cut by three joint sets (82 blocks), its joints bonded (cohesion 20 kPa, tensile
+// strength 10 kPa), under a steep sideways gravity: bonds break and blocks slide across
+// subdomain boundaries, the blocks are partitioned again every 50 steps, and the second stage's
+// stronger push makes the run diverge: the world is reset to its divergence checkpoint (kept in
+// parts, its bonded pairs as bonds alone, gathered) and the run stops as a collapse (exit 3)
+// with the outputs of the last good state.
+TEST_F(MpiRun, JointedRockMassBreakingAndCollapsingSameOutputs) {
+  const std::string toml = R"(title = "jointed rock mass under a steep sideways gravity"
+[settings]
+damping = 0.3
+contact_mode = "boon2012"
+[output]
+vtk = false
+[[materials]]
+name = "rock"
+density = 2600.0
+[[joint_laws]]
+name = "joint"
+normal = { law = "linear", stiffness = 2e7 }
+shear = { law = "linear", stiffness = 5e5, friction_deg = 20, cohesion = 2e4, tensile_strength = 1e4, residual_friction_deg = 15 }
+[rock_mass]
+region = { min = [0, 0, 0], max = [5, 3, 4] }
+material = "rock"
+law = "joint"
+min_block_volume = 0.002
+[[joint_sets]]
+dip_deg = 80
+dip_direction_deg = 10
+spacing = 1.2
+origin = [0.37, 0.37, 0.37]
+[[joint_sets]]
+dip_deg = 70
+dip_direction_deg = 100
+spacing = 1.3
+origin = [0.61, 0.61, 0.61]
+[[joint_sets]]
+dip_deg = 15
+dip_direction_deg = 230
+spacing = 1.1
+origin = [0.23, 0.23, 0.23]
+[[boundaries]]
+faces = ["z_min"]
+condition = "fixed"
+[[stages]]
+name = "shake"
+gravity = [60.0, 20.0, -98.1]
+kind = "steps"
+steps = 500
+[[stages]]
+name = "shove"
+gravity = [800.0, 240.0, -98.1]
+kind = "steps"
+steps = 1500
+)";
+  const fs::path scenario = write("rock_mass.toml", toml);
+  const auto summaries = expect_same_outputs(dir_, scenario.string() + " 2> /dev/null",
+                                             "-x BLOCKDEM_MPI_REBALANCE_STEPS=50 ", 3);
+  ASSERT_EQ(summaries.size(), 2u);
+  for (const auto& s : summaries) {
+    EXPECT_EQ(s.at("status").get<std::string>(), "collapsed");
+    EXPECT_EQ(s.at("blocks").get<int>(), 82);
+    EXPECT_GT(s.at("broken_bonds").get<int>(), 0);
+    EXPECT_NE(s.at("message").get<std::string>().find("diverged"), std::string::npos);
+    int migrated = 0;
+    for (const auto& rank : s.at("distribution")) {
+      migrated += rank.at("migrated_blocks").get<int>();
+      EXPECT_GE(rank.at("checkpoint_gathers").get<int>(), 1);  // the reset's
+    }
+    EXPECT_GT(migrated, 0);
   }
 }
 
