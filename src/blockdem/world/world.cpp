@@ -460,28 +460,18 @@ World::ContactHistory World::BondHistory::history() const {
   return h;
 }
 
-namespace {
-
-template <class T>
-bool zero_bits(const T& v) {
-  const T zero{};
-  return std::memcmp(&v, &zero, sizeof(T)) == 0;
-}
-
-bool same_vector_bits(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
-  return std::memcmp(x.data(), y.data(), 3 * sizeof(double)) == 0;
-}
-
-}  // namespace
-
 std::optional<World::BondHistory> World::BondHistory::of(const ContactHistory& h) {
   const BondHistory r{h.a, h.b, h.law, h.shear.bond};
   const ContactHistory d = r.history();
-  if (h.has_history || !same_vector_bits(h.shear.force, d.shear.force) ||
-      !same_vector_bits(h.shear.elastic_displacement, d.shear.elastic_displacement) ||
-      !zero_bits(h.shear.plastic_slip) || !zero_bits(h.twist.moment) ||
-      !same_vector_bits(h.previous_normal, d.previous_normal) ||
-      !same_vector_bits(h.point, d.point) || !zero_bits(h.closure) || !zero_bits(h.area))
+  const auto same = [](const auto& x, const auto& y) {
+    static_assert(sizeof(x) == sizeof(y));
+    return std::memcmp(&x, &y, sizeof(x)) == 0;
+  };
+  if (h.has_history || !same(h.shear.force, d.shear.force) ||
+      !same(h.shear.elastic_displacement, d.shear.elastic_displacement) ||
+      !same(h.shear.plastic_slip, d.shear.plastic_slip) || !same(h.twist.moment, d.twist.moment) ||
+      !same(h.previous_normal, d.previous_normal) || !same(h.point, d.point) ||
+      !same(h.closure, d.closure) || !same(h.area, d.area))
     return std::nullopt;
   return r;
 }
