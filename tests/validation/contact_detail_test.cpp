@@ -35,15 +35,17 @@ bool same_state(const Contact& x, const Contact& y) {
          same_bits(x.geometry.overlap, y.geometry.overlap) &&
          same_bits(x.geometry.area, y.geometry.area) && same_bits(x.shear.force, y.shear.force) &&
          same_bits(x.shear.elastic_displacement, y.shear.elastic_displacement) &&
-         same_bits(x.shear.plastic_slip, y.shear.plastic_slip) && x.shear.bond == y.shear.bond &&
-         same_bits(x.twist.moment, y.twist.moment) && same_bits(x.normal_stress, y.normal_stress) &&
-         same_bits(x.normal_force, y.normal_force) &&
-         same_bits(x.shear_stiffness, y.shear_stiffness) && same_bits(x.stiffness, y.stiffness) &&
+         same_bits(x.shear.plastic_slip, y.shear.plastic_slip) &&
+         same_bits(x.shear.elastic_energy, y.shear.elastic_energy) &&
+         x.shear.bond == y.shear.bond && same_bits(x.twist.moment, y.twist.moment) &&
+         same_bits(x.normal_stress, y.normal_stress) && same_bits(x.normal_force, y.normal_force) &&
+         same_bits(x.shear_couple, y.shear_couple) && same_bits(x.stiffness, y.stiffness) &&
          same_bits(x.twist_stiffness, y.twist_stiffness) && same_bits(x.slip_work, y.slip_work) &&
          same_bits(x.force_point(), y.force_point()) &&
          same_bits(x.compressed_area(), y.compressed_area()) &&
          same_bits(x.peak_stress(), y.peak_stress()) &&
          same_bits(x.peak_closure(), y.peak_closure()) &&
+         same_bits(x.normal_energy(), y.normal_energy()) &&
          same_bits(x.previous_normal(), y.previous_normal());
 }
 

@@ -296,4 +296,27 @@ PolygonStressResultant integrate_normal_stress_over_polygon(
   return result;
 }
 
+double normal_energy_over_polygon(const NormalLaw& law, std::span<const Eigen::Vector3d> vertices,
+                                  std::span<const double> closures, double force) {
+  // ∫ g dA and ∫ g² dA over the fan of triangles from vertex 0.
+  double first = 0.0, second = 0.0;
+  for (std::size_t i = 1; i + 1 < vertices.size(); ++i) {
+    const double area =
+        0.5 * (vertices[i] - vertices[0]).cross(vertices[i + 1] - vertices[0]).norm();
+    const double g0 = closures[0], g1 = closures[i], g2 = closures[i + 1];
+    first += area * (g0 + g1 + g2) / 3.0;
+    second += area * (g0 * g0 + g1 * g1 + g2 * g2 + g0 * g1 + g1 * g2 + g2 * g0) / 6.0;
+  }
+  return std::visit(
+      [&](const auto& l) {
+        using Law = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<Law, LinearNormal>) {
+          return 0.5 * l.stiffness * second;
+        } else {
+          return force / l.b - l.a * first;
+        }
+      },
+      law);
+}
+
 }  // namespace blockdem

@@ -47,4 +47,12 @@ PolygonStressResultant integrate_normal_stress_over_polygon(
     const NormalLaw& law, std::span<const Eigen::Vector3d> vertices,
     std::span<const double> closures);
 
+/// The energy stored in the joint over the same polygon, the integral of the strain-energy
+/// density e(g) = ∫_0^g sigma_n(s) ds (J): (k_n / 2) ∫ g² dA for the linear law, exact over each
+/// triangle of the fan (A/6 (g0² + g1² + g2² + g0 g1 + g1 g2 + g2 g0)); for the exponential law
+/// e = sigma_n / b - a g, so ∫ e dA = F / b - a ∫ g dA with `force` F = ∫ sigma_n dA of the same
+/// polygon (N). The closures must be >= 0 (a contact cell's).
+double normal_energy_over_polygon(const NormalLaw& law, std::span<const Eigen::Vector3d> vertices,
+                                  std::span<const double> closures, double force);
+
 }  // namespace blockdem

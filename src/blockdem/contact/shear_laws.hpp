@@ -114,6 +114,8 @@ double shear_stiffness_estimate(const ShearLaw& law, double normal_stress);
 /// surface; that step is then taken again with the residual strength. An intact bonded joint in
 /// tension (-sigma_t < sigma_n <= 0, F_n <= 0) keeps its shear force with the stiffness at zero
 /// normal stress while |F| <= c A_c + F_n tan(phi).
+/// The spring's energy, state.elastic_energy, changes by F·dF / k_s A over the step (zero once the
+/// force is).
 /// Throws std::invalid_argument for a non-finite increment, a non-unit normal, or a closed joint
 /// with non-positive contact area.
 ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncrement& increment);

@@ -22,6 +22,8 @@ struct ShearState {
   /// beta: accumulated magnitude of plastic slip, sum |du_p| (eqs 11-12) (m). The friction of the
   /// continuously-yielding law hardens with it; the other laws accumulate it for reporting.
   double plastic_slip = 0.0;
+  /// Energy stored in the shear spring (J), accumulated by update_shear step by step.
+  double elastic_energy = 0.0;
   /// Whether the joint's bond (cohesion, tensile strength) still holds; once broken it stays
   /// broken and the joint has the residual strength. Stays intact for a joint that cannot break.
   BondState bond = BondState::intact;

@@ -182,9 +182,9 @@ ShearResult update(const ContinuouslyYieldingShear& law, ShearState& state, cons
   return result;
 }
 
-}  // namespace
-
-ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncrement& increment) {
+/// The update of every law: the checked increment, the bond's limits, the law's own step.
+ShearResult update_shear_force(const ShearLaw& law, ShearState& state,
+                               const ShearIncrement& increment) {
   const Eigen::Vector3d& n = increment.normal;
   if (!(std::abs(n.norm() - 1.0) <= 1e-6)) {
     throw std::invalid_argument(
@@ -253,6 +253,23 @@ ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncr
   state.bond = BondState::broken_in_shear;
   ShearResult result = run(current_strength(strength, state.bond));
   result.broke = true;
+  return result;
+}
+
+}  // namespace
+
+ShearResult update_shear(const ShearLaw& law, ShearState& state, const ShearIncrement& increment) {
+  const double before = state.force.squaredNorm();
+  const ShearResult result = update_shear_force(law, state, increment);
+  // The spring's energy by increments at the step's stiffness, dE = F·dF / k: equal to
+  // |F|² / (2 k) while k is constant, and unchanged when k changes under a held force (an
+  // area that shrinks as a joint opens), where |F|² / (2 k) would create energy.
+  const double after = state.force.squaredNorm();
+  if (after == 0.0) {
+    state.elastic_energy = 0.0;
+  } else if (result.stiffness > 0.0) {
+    state.elastic_energy += 0.5 * (after - before) / result.stiffness;
+  }
   return result;
 }
 

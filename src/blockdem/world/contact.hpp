@@ -40,7 +40,8 @@ struct ContactDetail {
   double compressed_area = 0.0;                                ///< (m^2)
   double peak_stress = 0.0;                                    ///< (Pa)
   double peak_closure = 0.0;                                   ///< (m)
-  bool has_force_values = false;     ///< the four values above are the contact's own
+  double normal_energy = 0.0;        ///< ∫ e(g) dA, the normal springs' energy (J)
+  bool has_force_values = false;     ///< the five values above are the contact's own
   bool has_previous_normal = false;  ///< previous_normal is the contact's own
 };
 
@@ -62,14 +63,19 @@ struct ContactValues {
   int law = -1;                  ///< index into World::joint_laws()
   TwistState twist;              ///< twisting moment about the normal (on b)
 
-  double normal_stress = 0.0;    ///< σ_n (Pa); face-integrated: mean over the compressed area
-  double normal_force = 0.0;     ///< F_n (N), compression positive, acts on b along +normal
-  double shear_stiffness = 0.0;  ///< k_s A of the last shear update, for its energy (N/m)
+  double normal_stress = 0.0;  ///< σ_n (Pa); face-integrated: mean over the compressed area
+  double normal_force = 0.0;   ///< F_n (N), compression positive, acts on b along +normal
   // This step's terms of the pair (zero unless a force acts), for the time step and the energy
   // budget.
   double stiffness = 0.0;        ///< k_n A + k_s A (N/m)
   double twist_stiffness = 0.0;  ///< k_s J (N m/rad)
   double slip_work = 0.0;        ///< energy dissipated by slip (J)
+  /// The couple about the normal (on b) that moves the shear force from the force point to the
+  /// point where the shear spring acts (N m): ((x_s - x_f) × F_s) · n.
+  double shear_couple = 0.0;
+
+  /// The couple about the normal on b (N m): the twisting moment and the shear couple.
+  double couple_about_normal() const { return twist.moment + shear_couple; }
 };
 
 struct Contact : ContactValues {
@@ -103,6 +109,11 @@ struct Contact : ContactValues {
   double peak_stress() const { return force_values() ? detail_->peak_stress : normal_stress; }
   /// Largest closure over the contact (m); a point contact's δ.
   double peak_closure() const { return force_values() ? detail_->peak_closure : geometry.overlap; }
+  /// Energy stored in the normal springs (J): ∫ e(g) dA of an integrated face contact, else
+  /// ½ F_n δ (exact for the linear law at a uniform closure).
+  double normal_energy() const {
+    return force_values() ? detail_->normal_energy : 0.5 * normal_force * geometry.overlap;
+  }
   /// The normal of the last shear update (-): this step's normal but after a restore.
   const Eigen::Vector3d& previous_normal() const {
     return detail_ && detail_->has_previous_normal ? detail_->previous_normal : geometry.normal;
@@ -115,12 +126,14 @@ struct Contact : ContactValues {
     drop_empty_detail();
   }
   /// A face-integrated contact's own force values.
-  void set_force_values(const Eigen::Vector3d& point, double area, double stress, double closure) {
+  void set_force_values(const Eigen::Vector3d& point, double area, double stress, double closure,
+                        double energy) {
     ContactDetail& d = detail();
     d.force_point = point;
     d.compressed_area = area;
     d.peak_stress = stress;
     d.peak_closure = closure;
+    d.normal_energy = energy;
     d.has_force_values = true;
   }
   /// The previous normal is this step's geometry.normal from now on.
@@ -179,10 +192,10 @@ struct Contact : ContactValues {
 
 // A change of either record must be deliberate: the contact store is the largest array of a
 // large scene with the pair store (bench/README.md, "Memory at 1e5 blocks").
-static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 192,
+static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 200,
               "ContactValues changed size");
-static_assert(sizeof(Contact) == 200, "Contact changed size");
-static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 80,
+static_assert(sizeof(Contact) == 208, "Contact changed size");
+static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 88,
               "ContactDetail changed size");
 
 /// A contact as bytes between processes of the same program: its values, then its detail (all
@@ -200,7 +213,8 @@ inline Contact contact_from_bytes(const char* in) {
   ContactDetail d;
   std::memcpy(static_cast<void*>(&d), in + sizeof(ContactValues), sizeof(ContactDetail));
   if (d.has_force_values)
-    c.set_force_values(d.force_point, d.compressed_area, d.peak_stress, d.peak_closure);
+    c.set_force_values(d.force_point, d.compressed_area, d.peak_stress, d.peak_closure,
+                       d.normal_energy);
   if (d.has_previous_normal) c.set_previous_normal(d.previous_normal);
   return c;
 }

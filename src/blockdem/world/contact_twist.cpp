@@ -118,6 +118,33 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
   return g;
 }
 
+Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
+                                         const Eigen::Vector3d& fallback) {
+  double area = 0.0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  for (const ClosureCell& cell : cells) {
+    const PolygonMoments pm = polygon_area_centroid(
+        std::span<const Eigen::Vector3d>(cell.vertices.data(), cell.vertices.size()));
+    area += pm.area;
+    first += pm.area * pm.centroid;
+  }
+  return area > 0.0 ? Eigen::Vector3d(first / area) : fallback;
+}
+
+Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback) {
+  const std::size_t n = slice.vertices.size();
+  std::array<Eigen::Vector3d, SliceVertices::kInline> buffer;
+  std::vector<Eigen::Vector3d> heap;
+  Eigen::Vector3d* v = buffer.data();
+  if (n > SliceVertices::kInline) {
+    heap.resize(n);
+    v = heap.data();
+  }
+  for (std::size_t i = 0; i < n; ++i) v[i] = slice.to_world(slice.vertices[i]);
+  const PolygonMoments pm = polygon_area_centroid(std::span<const Eigen::Vector3d>(v, n));
+  return pm.area > 0.0 ? pm.centroid : fallback;
+}
+
 void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle) {
   if (angle == 0.0) return;
   const Eigen::AngleAxisd turn(angle, normal);

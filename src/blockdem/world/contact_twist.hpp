@@ -68,6 +68,15 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
 /// ((ω_A + ω_B)/2 · n) dt. A rigid rotation of both blocks then carries the force with them.
 void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle);
 
+/// The centroid of a face contact's compressed area, the union of its cells (m); `fallback`
+/// where the cells have no area.
+Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
+                                         const Eigen::Vector3d& fallback);
+
+/// The centroid of a point contact's slice polygon, in world coordinates (m), the same bits as
+/// slice_twist_geometry's centre; `fallback` where the slice has no area.
+Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback);
+
 /// The energy stored in a contact's torsional spring, M² / (2 k_s J) (J): `moment` M (N m),
 /// `stiffness` k_s J of the step (N m/rad); zero without a spring. The energy ledger's elastic
 /// term adds it to the normal and shear springs' (joint_elastic_energy).

@@ -24,10 +24,7 @@ double EnergyBudget::scale() const {
 }
 
 double joint_elastic_energy(const Contact& c) {
-  const double normal = 0.5 * c.normal_force * c.geometry.overlap;
-  const double shear =
-      c.shear_stiffness > 0.0 ? 0.5 * c.shear.force.squaredNorm() / c.shear_stiffness : 0.0;
-  return normal + shear;
+  return c.normal_energy() + c.shear.elastic_energy;
 }
 
 void EnergyStepSums::add_block(const BlockEnergyTerms& t) {

@@ -469,9 +469,10 @@ std::optional<World::BondHistory> World::BondHistory::of(const ContactHistory& h
   };
   if (h.has_history || !same(h.shear.force, d.shear.force) ||
       !same(h.shear.elastic_displacement, d.shear.elastic_displacement) ||
-      !same(h.shear.plastic_slip, d.shear.plastic_slip) || !same(h.twist.moment, d.twist.moment) ||
-      !same(h.previous_normal, d.previous_normal) || !same(h.point, d.point) ||
-      !same(h.closure, d.closure) || !same(h.area, d.area))
+      !same(h.shear.plastic_slip, d.shear.plastic_slip) ||
+      !same(h.shear.elastic_energy, d.shear.elastic_energy) ||
+      !same(h.twist.moment, d.twist.moment) || !same(h.previous_normal, d.previous_normal) ||
+      !same(h.point, d.point) || !same(h.closure, d.closure) || !same(h.area, d.area))
     return std::nullopt;
   return r;
 }
@@ -516,7 +517,7 @@ void World::restore_checkpoint() {
       c.geometry.overlap = h.closure;
       // The geometry is re-derived before anything reads these, but an open bond, which goes
       // on from its point and area.
-      c.set_force_values(h.point, h.area, 0.0, 0.0);
+      c.set_force_values(h.point, h.area, 0.0, 0.0, 0.0);
       c.set_previous_normal(h.previous_normal);
       s.contact = static_cast<std::int32_t>(contacts_.size());
       contacts_.push_back(c);

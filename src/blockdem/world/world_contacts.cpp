@@ -646,6 +646,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   slot.active = false;
   slot.broke = false;
   ct.slip_work = 0.0;
+  ct.shear_couple = 0.0;
   ct.stiffness = 0.0;
   ct.twist_stiffness = 0.0;
   const std::vector<int>& face_laws_a = face_laws(ct.a);
@@ -702,9 +703,15 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
                                         extent, settings_.face_contact)
                 : FaceContactGeometry{};
   std::optional<TwistGeometry> face_twist;
+  // Where the shear spring acts, x_s: the centroid of the compressed area, a point that moves
+  // with both faces (set below with the normal force). Not the centre of pressure, which slides
+  // across the face as the block rocks (millimetres per microradian on a stiff joint): a spring
+  // whose end moves over the block is not conservative, and a prism on its face, whose sliding
+  // and spinning frequencies are equal (I_z / m = J / A), flutters under it, undamped.
+  Eigen::Vector3d shear_point;
   if (face_mode) {
     if (fc.face_type) {
-      double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0;
+      double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0, energy = 0.0;
       Eigen::Vector3d moment = Eigen::Vector3d::Zero();
       for (const auto& cell : fc.cells) {
         const PolygonStressResultant r =
@@ -713,6 +720,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
         compressed += r.compressed_area;
         peak = std::max(peak, r.peak_stress);
         if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
+        energy += normal_energy_over_polygon(law.normal, cell.vertices, cell.closures, r.force);
         for (double gc : cell.closures) closure = std::max(closure, gc);
       }
       if (!(force > 0.0)) {
@@ -724,7 +732,8 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
       ct.integrated = true;
       ct.normal_force = force;
       ct.normal_stress = force / compressed;
-      ct.set_force_values(moment / force, compressed, peak, closure);
+      ct.set_force_values(moment / force, compressed, peak, closure, energy);
+      shear_point = compressed_area_centroid(fc.cells, ct.force_point());
       if (twist) {
         face_twist = face_twist_geometry(fc.cells, n, force, ct.force_point());
         TwistGeometry& tg = *face_twist;
@@ -747,6 +756,9 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
     ct.normal_force = ct.normal_stress * ct.geometry.area;
     // Force point, compressed area, peak stress and closure: x_c, A_c, σ_n and δ.
     ct.take_point_values();
+    // The shear spring at the slice's centroid, not at x_c (where the paper's point contact puts
+    // every force): x_c slides across the face as the block rocks.
+    shear_point = slice_centroid(g.slice, ct.geometry.point);
     if (twist) {
       const TwistGeometry tg = slice_twist_geometry(g.slice, ct.normal_stress);
       const auto known = [&] { return tg.radial_normal_moment; };
@@ -760,9 +772,10 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   if (!advance_shear) {
     ct.stiffness = kn;
     ct.set_previous_normal(previous);
+    ct.shear_couple = (shear_point - ct.force_point()).cross(ct.shear.force).dot(n);
     return;
   }
-  const Eigen::Vector3d& xf = ct.force_point();
+  const Eigen::Vector3d& xf = shear_point;
 
   // Shear: carry the stored force into the new tangent plane, then add the increment from the
   // relative velocity of the material points at x_c over the step.
@@ -796,14 +809,17 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
         });
     if (st.slipped) {
       ct.sliding = true;
-      // The shear spring's energy released by the return (the ledger's elastic term).
-      if (sr.stiffness > 0.0)
-        ct.slip_work += 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
+      // The shear spring's energy released by the return, dissipated.
+      if (sr.stiffness > 0.0) {
+        const double released = 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
+        ct.slip_work += released;
+        ct.shear.elastic_energy -= released;
+      }
       ct.slip_work += twist_elastic_energy(twisted, ct.twist_stiffness) -
                       twist_elastic_energy(ct.twist.moment, ct.twist_stiffness);
     }
   }
-  ct.shear_stiffness = sr.stiffness;
+  ct.shear_couple = (shear_point - ct.force_point()).cross(ct.shear.force).dot(n);
   ct.take_normal_as_previous();
   ct.has_history = true;
   // Stiffness for the automatic time step: normal and shear springs k A (N/m).
@@ -851,8 +867,8 @@ void World::scatter_loads(const std::vector<char>* counted) {
     b.contact_force += f;
     b.torque += (xf - b.position).cross(f);
     // The twisting moment about the normal, a couple: M n on b, -M n on a.
-    if (ct.twist.moment != 0.0) {
-      const Eigen::Vector3d moment = ct.twist.moment * ct.geometry.normal;
+    if (ct.couple_about_normal() != 0.0) {
+      const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
       b.torque += moment;
     }
     // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
@@ -871,8 +887,8 @@ void World::scatter_loads(const std::vector<char>* counted) {
     a.force -= f;
     a.contact_force -= f;
     a.torque -= (xf - a.position).cross(f);
-    if (ct.twist.moment != 0.0) {
-      const Eigen::Vector3d moment = ct.twist.moment * ct.geometry.normal;
+    if (ct.couple_about_normal() != 0.0) {
+      const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
       a.torque -= moment;
     }
     const double k = ct.stiffness;

@@ -466,12 +466,14 @@ void World::sum_resting_loads() {
         b.force += f;
         b.contact_force += f;
         b.torque += (xf - b.position).cross(f);
-        if (ct.twist.moment != 0.0) b.torque += ct.twist.moment * ct.geometry.normal;
+        if (ct.couple_about_normal() != 0.0)
+          b.torque += ct.couple_about_normal() * ct.geometry.normal;
       } else {
         b.force -= f;
         b.contact_force -= f;
         b.torque -= (xf - b.position).cross(f);
-        if (ct.twist.moment != 0.0) b.torque -= ct.twist.moment * ct.geometry.normal;
+        if (ct.couple_about_normal() != 0.0)
+          b.torque -= ct.couple_about_normal() * ct.geometry.normal;
       }
       stiffness_[k] += ct.stiffness;
       rotational_stiffness_[k] += ct.stiffness * ((xf - b.position).squaredNorm() + spread);
@@ -810,9 +812,10 @@ void World::save_checkpoint_part() {
         continue;
       const Contact& ct = contact_of(s);
       const Eigen::Vector3d xf = ct.force_point(), f = ct.force_on_b();
-      rest.insert(rest.end(), {static_cast<double>(ct.a), static_cast<double>(ct.b), f[0], f[1],
-                               f[2], xf[0], xf[1], xf[2], ct.twist.moment, ct.geometry.normal[0],
-                               ct.geometry.normal[1], ct.geometry.normal[2]});
+      rest.insert(rest.end(),
+                  {static_cast<double>(ct.a), static_cast<double>(ct.b), f[0], f[1], f[2], xf[0],
+                   xf[1], xf[2], ct.couple_about_normal(), ct.geometry.normal[0],
+                   ct.geometry.normal[1], ct.geometry.normal[2]});
     }
   }
   checkpoint_.part_resting = std::move(rest);
@@ -1077,7 +1080,7 @@ void World::save_state_to_root(const std::function<void(std::string_view)>& emit
                  {},
                  {},
                  {},
-                 ct.twist.moment,
+                 ct.couple_about_normal(),
                  ct.compressed_area() / 12.0,
                  ct.stiffness,
                  ct.twist_stiffness};

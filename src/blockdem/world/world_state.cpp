@@ -35,6 +35,7 @@ void write_shear(StateWriter& w, const ShearState& s) {
   w.vec(s.force);
   w.vec(s.elastic_displacement);
   w.pod(s.plastic_slip);
+  w.pod(s.elastic_energy);
   w.pod(static_cast<std::int32_t>(s.bond));
 }
 
@@ -43,6 +44,7 @@ ShearState read_shear(StateReader& r) {
   s.force = r.vec();
   s.elastic_displacement = r.vec();
   r.pod(s.plastic_slip);
+  r.pod(s.elastic_energy);
   const auto bond = r.pod<std::int32_t>();
   if (bond < 0 || bond > static_cast<std::int32_t>(BondState::unbonded))
     throw StateError("saved bond state is corrupt");
@@ -116,10 +118,10 @@ void write_contact(StateWriter& w, const Contact& c, const Boon2012Cache& cache)
   w.pod(c.compressed_area());
   w.pod(c.peak_stress());
   w.pod(c.peak_closure());
+  w.pod(c.normal_energy());
   w.pod(c.normal_force);
   w.pod(static_cast<std::uint8_t>(c.sliding));
   w.pod(c.twist.moment);
-  w.pod(c.shear_stiffness);
   write_cache(w, cache);
 }
 
@@ -145,19 +147,20 @@ Contact read_contact(StateReader& r, Boon2012Cache& cache) {
   const double compressed_area = r.pod<double>();
   const double peak_stress = r.pod<double>();
   const double peak_closure = r.pod<double>();
+  const double normal_energy = r.pod<double>();
   r.pod(c.normal_force);
   c.sliding = r.pod<std::uint8_t>() != 0;
   r.pod(c.twist.moment);
-  r.pod(c.shear_stiffness);
   // Kept apart only where they are not the point contact's (the same bits either way).
   c.set_previous_normal(previous_normal);
-  c.set_force_values(force_point, compressed_area, peak_stress, peak_closure);
+  c.set_force_values(force_point, compressed_area, peak_stress, peak_closure, normal_energy);
   const auto same = [](const auto& x, const auto& y) {
     static_assert(sizeof(x) == sizeof(y));
     return std::memcmp(&x, &y, sizeof(x)) == 0;
   };
   if (same(force_point, c.geometry.point) && same(compressed_area, c.geometry.area) &&
-      same(peak_stress, c.normal_stress) && same(peak_closure, c.geometry.overlap))
+      same(peak_stress, c.normal_stress) && same(peak_closure, c.geometry.overlap) &&
+      same(normal_energy, 0.5 * c.normal_force * c.geometry.overlap))
     c.take_point_values();
   cache = read_cache(r);
   return c;
