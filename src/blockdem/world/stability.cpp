@@ -110,13 +110,23 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   const StabilityTrial lo = trial(lower);
   const StabilityTrial hi = trial(upper);
   if (!lo.stable || hi.stable) {
-    throw std::invalid_argument("factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
-                                "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
-                                lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome +
-                                (lo.stable
-                                     ? "; both stable: raise the upper bound"
-                                     : (!hi.stable ? "; both failed: lower the lower bound" : "")) +
-                                " (the lower bound must be stable and the upper one fail)");
+    // What to do about it. Both failed with F <= 1 at the lower bound: the joints at their full
+    // strength (or stronger) do not hold the model, and no bound can bracket a factor of safety.
+    const std::string tried = "factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
+                              "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
+                              lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome;
+    const std::string rule = " (the lower bound must be stable and the upper one fail)";
+    if (lo.stable)
+      throw std::invalid_argument(tried + "; both stable: raise the upper bound" + rule);
+    if (hi.stable) throw std::invalid_argument(tried + rule);
+    if (lower > 1.0)
+      throw std::invalid_argument(tried + "; both failed: lower the lower bound" + rule);
+    throw std::invalid_argument(
+        tried + "; both failed, and F = " + fmt("%g", lower) +
+        " <= 1 leaves the joints their full strength or more: the model is unstable with its "
+        "full strength, so no strength reduction can help and it has no factor of safety (a "
+        "mechanism that friction cannot stop, such as toppling, or a model not in equilibrium "
+        "before the stage)");
   }
   s.last_stable = lower;
   s.first_failed = upper;

@@ -50,7 +50,8 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 /// The strength reduction of a stage: divides tan(phi), cohesion and tensile strength of the
 /// joint laws `laws` (indices into saved.joint_laws()) by F and seeks equilibrium with the
 /// stage's criteria. Tries the bounds first: throws std::invalid_argument (naming the factors
-/// tried and what happened) when they do not bracket the failure; then bisects until
+/// tried and what happened) when they do not bracket the failure, saying that the model is
+/// unstable with its full strength when both failed and lower <= 1; then bisects until
 /// first_failed - last_stable <= tolerance.
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
