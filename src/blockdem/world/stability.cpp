@@ -65,7 +65,9 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
   s.first_failed = g_failed;
   while (s.first_failed - s.last_stable > tolerance) {
     const double g = 0.5 * (s.last_stable + s.first_failed);
-    World w = saved;
+    // From the last stable equilibrium: the load rises monotonically, in steps that halve with
+    // the bracket (docs/stability.md, "Collapse load").
+    World w = s.stable_world ? *s.stable_world : saved;
     Stage trial = stage;
     trial.name = stage.name + " trial " + fmt("%g g", g);
     trial.gravity = g * kOneG * direction;

@@ -42,8 +42,9 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter);
 
 /// The collapse load of a gravity that rises to `stage.gravity`: `saved` is the world in
 /// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
-/// (each trial from `saved`, the stage's gravity direction and ramp) until
-/// g_failed - g_stable <= tolerance (g).
+/// until g_failed - g_stable <= tolerance (g); each trial starts from the last stable trial's
+/// equilibrium (from `saved` until one holds) and ramps gravity along the stage's direction over
+/// the stage's ramp_steps, so the load only rises, by at most the bracket's width.
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
                                    double g_failed, double tolerance, const TrialFn& done = {});
 
