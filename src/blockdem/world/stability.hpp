@@ -1,5 +1,6 @@
-// Stability searches by bisection, each trial from a saved world: the collapse load of a rising
-// gravity, and the factor of safety by strength reduction (docs/stability.md).
+// Stability searches by bisection, each trial from a saved world (a collapse search's from its
+// last stable trial): the collapse load of a rising gravity, and the factor of safety by strength
+// reduction (docs/stability.md).
 #pragma once
 
 #include <functional>
