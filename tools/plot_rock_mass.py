@@ -6,13 +6,14 @@ Usage: plot_rock_mass.py DIR [--title TEXT]
 Reads DIR/blocks.csv, DIR/rock_mass.json and DIR/blocks.vtk; writes
 DIR/block_volume_distribution.png and DIR/blocks.png.
        plot_rock_mass.py --run-vtk FILE --png OUT [--title TEXT]
-Renders a run's blocks_NNNN.vtk (blockdem run) seen from the south, faces coloured by their
+Renders a run's blocks_NNNNNN.vtu (blockdem run) seen from the south, faces coloured by their
 block's displacement: the state after an excavation, key blocks stand out.
 """
 import argparse
 import csv
 import json
 import os
+import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -52,6 +53,43 @@ def read_vtk(path):
             i += n + 1
         else:
             i += 1
+    return points, polygons, cells
+
+
+def read_vtu(path):
+    """Points, face polygons and per-face cell arrays of a run's VTK XML frame (docs/outputs.md):
+    an UnstructuredGrid of polyhedra, its arrays appended raw, each behind a UInt64 byte count."""
+    with open(path, "rb") as f:
+        data = f.read()
+    start = data.index(b"<AppendedData")
+    raw = data[data.index(b"_", start) + 1:]
+    header = data[:start].decode() + "</VTKFile>"
+    types = {"Float64": "<f8", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1"}
+
+    def array(node):
+        offset = int(node.get("offset"))
+        size = int(np.frombuffer(raw, "<u8", 1, offset)[0])
+        values = np.frombuffer(raw[offset + 8:offset + 8 + size], types[node.get("type")])
+        k = int(node.get("NumberOfComponents", "1"))
+        return values.reshape(-1, k) if k > 1 else values
+
+    piece = ET.fromstring(header).find("UnstructuredGrid/Piece")
+    arrays = {a.get("Name"): a for a in piece.iter("DataArray")}
+    points = array(arrays["Points"])
+    faces, ends = array(arrays["faces"]), array(arrays["faceoffsets"])
+    # Each cell's face stream: its number of faces, then each face as a count and point ids.
+    polygons, owner, at = [], [], 0
+    for cell, end in enumerate(ends):
+        at += 1
+        while at < end:
+            n = int(faces[at])
+            polygons.append([int(i) for i in faces[at + 1:at + 1 + n]])
+            owner.append(cell)
+            at += n + 1
+    cells = {}
+    for a in piece.find("CellData").iter("DataArray"):
+        if a.get("type") in types:
+            cells[a.get("Name")] = array(a)[np.array(owner, dtype=int)]
     return points, polygons, cells
 
 
@@ -109,8 +147,8 @@ def render(out, points, polygons, cells, title):
 
 
 def render_run(vtk, png, title):
-    points, polygons, cells = read_vtk(vtk)
-    disp = np.linalg.norm(cells["displacement_m"], axis=1) * 1e3
+    points, polygons, cells = read_vtu(vtk)
+    disp = np.linalg.norm(cells["displacement"], axis=1) * 1e3
     polys = [points[p] for p in polygons]
     norm = matplotlib.colors.LogNorm(vmin=max(1e-3, disp.min() + 1e-3), vmax=max(disp.max(), 1e-2))
     cmap = plt.get_cmap("viridis")

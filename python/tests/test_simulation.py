@@ -215,8 +215,8 @@ def test_collapse_search_of_a_cohesive_block():
     # A 0.5 kg block on a plane, gravity tilted 30 degrees, joint friction 20 degrees and
     # cohesion c: it slides when m g (sin 30 - cos 30 tan 20) > c A, so the collapse load is
     # g* = c A / (m (sin 30 - cos 30 tan 20)) = 5.00 g for c = 453.2 Pa (Mohr-Coulomb). The
-    # search brackets it within 5 % (measured: 4.87-4.94 g in mode boon2012; the slice area is a
-    # little under the face's and each trial's gravity ramp adds a small dynamic overshoot).
+    # search brackets it within 5 % (measured: 4.94-5.01 g in mode boon2012, each trial ramping
+    # from the last stable one: docs/stability.md, "Collapse load").
     th, phi, c = np.radians(30), np.radians(20), 453.2
     m, area = 2500 * 0.1 * 0.1 * 0.02, 0.01
     g_star = c * area / (m * (np.sin(th) - np.cos(th) * np.tan(phi))) / G

@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/world/stability.hpp"
@@ -86,6 +88,29 @@ INSTANTIATE_TEST_SUITE_P(HoekBray, ToppleOrSlide,
                          [](const ::testing::TestParamInfo<ChartPoint>& p) {
                            return "point" + std::to_string(p.index);
                          });
+
+// Strength reduction on a block that topples whatever its friction (the chart's toppling region:
+// b/h = 0.4 < tan 30 = 0.577 with phi = 40 > psi = 30): F = 0.5 (friction tan 40 x 2, 59 degrees)
+// fails as F = 2 does, so the bounds cannot bracket a factor of safety. With a lower bound <= 1
+// the error says that the model is unstable with its full strength, not that the lower bound
+// should be lowered, which cannot help.
+TEST(ToppleOrSlide, StrengthReductionOfAToppleSaysUnstableWithFullStrength) {
+  const double h = 0.1;
+  Scenario sc = parse_scenario(test::incline_scenario(30, 40, 0.4 * h, h, ""), "topple.toml");
+  World w = build_world(sc);
+  ASSERT_TRUE(run_stage(w, sc.stages[0]).converged);
+  std::string message;
+  try {
+    strength_reduction(w, sc.stages[1], {0}, 0.5, 2.0, 0.01, {});
+  } catch (const std::invalid_argument& e) {
+    message = e.what();
+  }
+  std::printf("%s\n", message.c_str());
+  EXPECT_NE(message.find("F = 0.5 was collapsed"), std::string::npos) << message;
+  EXPECT_NE(message.find("unstable with its full strength"), std::string::npos) << message;
+  EXPECT_NE(message.find("no strength reduction can help"), std::string::npos) << message;
+  EXPECT_EQ(message.find("lower the lower bound"), std::string::npos) << message;
+}
 
 }  // namespace
 }  // namespace blockdem

@@ -438,6 +438,45 @@ void check_block_scales(Scenario& sc) {
   }
 }
 
+// True for a rectangular box in any orientation: six faces whose normals are pairwise opposite
+// or perpendicular (to 1e-9).
+bool is_box(const Polyhedron& shape) {
+  const auto& planes = shape.planes();
+  if (planes.size() != 6) return false;
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    for (std::size_t j = i + 1; j < planes.size(); ++j) {
+      const double c = std::abs(planes[i].normal.dot(planes[j].normal));
+      if (c > 1e-9 && c < 1.0 - 1e-9) return false;
+    }
+  }
+  return true;
+}
+
+// A strength-reduction or collapse search in mode boon2012 on blocks other than boxes: the point
+// contact puts the force of a contact patch of any other shape off the patch's centroid, which can
+// jam a key block against a joint it would leave and overestimate its factor of safety, on the
+// unsafe side (docs/stability.md, "Contact mode"). Warned once, naming the first such stage and
+// block.
+void warn_point_contact_searches(Scenario& sc) {
+  if (sc.settings.contact_mode != ContactMode::boon2012) return;
+  const auto search = std::find_if(sc.stages.begin(), sc.stages.end(), [](const Stage& st) {
+    return st.kind == Stage::Kind::strength_reduction ||
+           (st.find_collapse && st.kind == Stage::Kind::equilibrium);
+  });
+  if (search == sc.stages.end()) return;
+  const auto block = std::find_if(sc.blocks.begin(), sc.blocks.end(), [](const Block& b) {
+    return b.motion == Motion::free && !is_box(b.shape);
+  });
+  if (block == sc.blocks.end()) return;
+  sc.warnings.push_back(
+      "stage \"" + search->name + "\" searches for " +
+      (search->kind == Stage::Kind::strength_reduction ? "a factor of safety" : "a collapse load") +
+      " with contact_mode = \"boon2012\" on blocks that are not boxes (block \"" + block->name +
+      "\"): the point contact can jam a key block against a joint it would leave and overestimate "
+      "its stability; contact_mode = \"face_integrated\" integrates the joint law over the "
+      "contact (docs/stability.md, \"Contact mode\")");
+}
+
 }  // namespace
 
 namespace {
@@ -554,6 +593,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     }
     if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
   }
+  warn_point_contact_searches(sc);
   // A built scene without stages can be generated (blockdem generate), not run.
   if (sc.stages.empty() && !sc.built)
     t.fail("stages", "a scenario needs at least one [[stages]] entry");

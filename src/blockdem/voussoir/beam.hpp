@@ -42,7 +42,8 @@ struct VoussoirSpec {
   /// Steps over which gravity is raised to each new level before equilibrium is sought.
   std::int64_t ramp_steps = 1000;
   /// When a level fails by a mechanism (snap-through), bisect between the last stable level and
-  /// the failed one, each trial from the last stable level's state, to collapse_tolerance (g).
+  /// the failed one, each trial from the last stable equilibrium (the level's, then the last
+  /// stable trial's), to collapse_tolerance (g).
   bool find_collapse = false;
   double collapse_tolerance = 0.5;  ///< (g)
 

@@ -65,7 +65,9 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
   s.first_failed = g_failed;
   while (s.first_failed - s.last_stable > tolerance) {
     const double g = 0.5 * (s.last_stable + s.first_failed);
-    World w = saved;
+    // From the last stable equilibrium: the load rises monotonically, in steps that halve with
+    // the bracket (docs/stability.md, "Collapse load").
+    World w = s.stable_world ? *s.stable_world : saved;
     Stage trial = stage;
     trial.name = stage.name + " trial " + fmt("%g g", g);
     trial.gravity = g * kOneG * direction;
@@ -110,13 +112,23 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   const StabilityTrial lo = trial(lower);
   const StabilityTrial hi = trial(upper);
   if (!lo.stable || hi.stable) {
-    throw std::invalid_argument("factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
-                                "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
-                                lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome +
-                                (lo.stable
-                                     ? "; both stable: raise the upper bound"
-                                     : (!hi.stable ? "; both failed: lower the lower bound" : "")) +
-                                " (the lower bound must be stable and the upper one fail)");
+    // What to do about it. Both failed with F <= 1 at the lower bound: the joints at their full
+    // strength (or stronger) do not hold the model, and no bound can bracket a factor of safety.
+    const std::string tried = "factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
+                              "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
+                              lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome;
+    const std::string rule = " (the lower bound must be stable and the upper one fail)";
+    if (lo.stable)
+      throw std::invalid_argument(tried + "; both stable: raise the upper bound" + rule);
+    if (hi.stable) throw std::invalid_argument(tried + rule);
+    if (lower > 1.0)
+      throw std::invalid_argument(tried + "; both failed: lower the lower bound" + rule);
+    throw std::invalid_argument(
+        tried + "; both failed, and F = " + fmt("%g", lower) +
+        " <= 1 leaves the joints their full strength or more: the model is unstable with its "
+        "full strength, so no strength reduction can help and it has no factor of safety (a "
+        "mechanism that friction cannot stop, such as toppling, or a model not in equilibrium "
+        "before the stage)");
   }
   s.last_stable = lower;
   s.first_failed = upper;

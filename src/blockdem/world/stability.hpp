@@ -1,5 +1,6 @@
-// Stability searches by bisection, each trial from a saved world: the collapse load of a rising
-// gravity, and the factor of safety by strength reduction (docs/stability.md).
+// Stability searches by bisection, each trial from a saved world (a collapse search's from its
+// last stable trial): the collapse load of a rising gravity, and the factor of safety by strength
+// reduction (docs/stability.md).
 #pragma once
 
 #include <functional>
@@ -42,15 +43,17 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter);
 
 /// The collapse load of a gravity that rises to `stage.gravity`: `saved` is the world in
 /// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
-/// (each trial from `saved`, the stage's gravity direction and ramp) until
-/// g_failed - g_stable <= tolerance (g).
+/// until g_failed - g_stable <= tolerance (g); each trial starts from the last stable trial's
+/// equilibrium (from `saved` until one holds) and ramps gravity along the stage's direction over
+/// the stage's ramp_steps, so the load only rises, by at most the bracket's width.
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
                                    double g_failed, double tolerance, const TrialFn& done = {});
 
 /// The strength reduction of a stage: divides tan(phi), cohesion and tensile strength of the
 /// joint laws `laws` (indices into saved.joint_laws()) by F and seeks equilibrium with the
 /// stage's criteria. Tries the bounds first: throws std::invalid_argument (naming the factors
-/// tried and what happened) when they do not bracket the failure; then bisects until
+/// tried and what happened) when they do not bracket the failure, saying that the model is
+/// unstable with its full strength when both failed and lower <= 1; then bisects until
 /// first_failed - last_stable <= tolerance.
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,

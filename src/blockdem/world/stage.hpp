@@ -53,8 +53,9 @@ struct Stage {
   bool stop_on_mechanism = false;
 
   /// Kind::equilibrium with a new gravity: when the stage fails by a mechanism, bisect between
-  /// the previous gravity and this one (each trial from the state before the stage) until the
-  /// bracket is narrower than collapse_tolerance.
+  /// the previous gravity and this one (each trial from the last stable equilibrium: the state
+  /// before the stage, then the last stable trial's) until the bracket is narrower than
+  /// collapse_tolerance.
   bool find_collapse = false;
   double collapse_tolerance = 0.5;  ///< width of the collapse bracket (g)
 

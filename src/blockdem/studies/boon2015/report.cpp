@@ -112,8 +112,8 @@ void write_collapse_section(std::ostream& o, const ReportInput& in) {
        "the ramp once past a quarter of it, "
        "under a stable time step with the kinetic energy supplied by gravity's work), the level "
        "is bisected between the last stable level and the failed one, each trial from the last "
-       "stable level's state, to a bracket of at most 0.5 g. Such a collapse is a result of the "
-       "model, not a numerical failure.\n\n";
+       "stable equilibrium (the level's, then the last stable trial's), to a bracket of at most "
+       "0.5 g. Such a collapse is a result of the model, not a numerical failure.\n\n";
   bool any = false;
   for (const auto& r : runs) {
     if (!r.result.collapse) continue;
