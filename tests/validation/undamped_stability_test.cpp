@@ -22,7 +22,9 @@
 #include "support/sanitized_run.hpp"
 #include "validation/scenes.hpp"
 
-namespace blockdem::test {
+// A namespace of its own: the tests are compiled in unity groups, where kSide and the other
+// names below are also another file's.
+namespace blockdem::test::undamped {
 namespace {
 
 constexpr double kSide = 0.1;        // cube side a (m)
@@ -197,4 +199,4 @@ INSTANTIATE_TEST_SUITE_P(Modes, UndampedSpin,
                          case_name);
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::undamped

@@ -798,15 +798,23 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   // Force and moment together against Coulomb's law at every point of a face contact.
   if (face_twist) {
     const double stored = ct.shear.force.squaredNorm(), twisted = ct.twist.moment;
+    // Coulomb's limit surface is written about the centre of pressure x_p (a uniform slip's
+    // friction has no moment there): the state taken there, the shear force with the couple that
+    // moves it from x_s, and the slip of x_p; and back to x_s after.
+    const Eigen::Vector3d& xp = ct.force_point();
+    const auto couple_to_p = [&] { return (xf - xp).cross(ct.shear.force).dot(n); };
+    TwistState at_p{ct.twist.moment + couple_to_p()};
+    const Eigen::Vector3d slip_p = inc.displacement + spin * n.cross(xp - xf);
     const ShearTwistResult st = interact_shear_twist(
-        ct.shear, ct.twist, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area(),
-        *face_twist, xf, n, inc.displacement, spin,
+        ct.shear, at_p, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area(),
+        *face_twist, xp, n, slip_p, spin,
         [&] {
-          return face_pressure_radial_bound(fc.cells, law.normal, *face_twist, ct.normal_force, xf);
+          return face_pressure_radial_bound(fc.cells, law.normal, *face_twist, ct.normal_force, xp);
         },
         [&](const SlipCentre& centre) {
-          return face_full_slip(fc.cells, law.normal, n, xf, centre);
+          return face_full_slip(fc.cells, law.normal, n, xp, centre);
         });
+    if (st.slipped) ct.twist.moment = at_p.moment - couple_to_p();
     if (st.slipped) {
       ct.sliding = true;
       // The shear spring's energy released by the return, dissipated.
