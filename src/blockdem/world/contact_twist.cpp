@@ -132,17 +132,9 @@ Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
 }
 
 Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback) {
-  const std::size_t n = slice.vertices.size();
-  std::array<Eigen::Vector3d, SliceVertices::kInline> buffer;
-  std::vector<Eigen::Vector3d> heap;
-  Eigen::Vector3d* v = buffer.data();
-  if (n > SliceVertices::kInline) {
-    heap.resize(n);
-    v = heap.data();
-  }
-  for (std::size_t i = 0; i < n; ++i) v[i] = slice.to_world(slice.vertices[i]);
-  const PolygonMoments pm = polygon_area_centroid(std::span<const Eigen::Vector3d>(v, n));
-  return pm.area > 0.0 ? pm.centroid : fallback;
+  // In the slice's plane coordinates, about x_c: one point to carry to the world.
+  if (!(slice.area() > 0.0)) return fallback;
+  return slice.to_world(slice.centroid_2d());
 }
 
 void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle) {

@@ -73,8 +73,8 @@ void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double a
 Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
                                          const Eigen::Vector3d& fallback);
 
-/// The centroid of a point contact's slice polygon, in world coordinates (m), the same bits as
-/// slice_twist_geometry's centre; `fallback` where the slice has no area.
+/// The centroid of a point contact's slice polygon, in world coordinates (m); `fallback` where
+/// the slice has no area.
 Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback);
 
 /// The energy stored in a contact's torsional spring, M² / (2 k_s J) (J): `moment` M (N m),

@@ -708,7 +708,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   // across the face as the block rocks (millimetres per microradian on a stiff joint): a spring
   // whose end moves over the block is not conservative, and a prism on its face, whose sliding
   // and spinning frequencies are equal (I_z / m = J / A), flutters under it, undamped.
-  Eigen::Vector3d shear_point;
+  Eigen::Vector3d shear_point = g.point;
   if (face_mode) {
     if (fc.face_type) {
       double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0, energy = 0.0;
