@@ -14,7 +14,9 @@
 #include "brick_pile.hpp"
 #include "support/temp_path.hpp"
 
-namespace blockdem::test {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::mpi_vtk_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -93,4 +95,4 @@ TEST_F(MpiVtk, PiecesOfTwoAndThreeRanksReadAsTheOneProcessFrames) {
 }
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::mpi_vtk_test
