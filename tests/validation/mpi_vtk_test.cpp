@@ -33,12 +33,14 @@ int exit_code(const std::string& cmd) {
 }
 
 /// `blockdem run` on `ranks` processes (0: without mpirun), oversubscribed and allowed as root
-/// as CI runs it, the blocks partitioned again every 30 steps so that blocks and contacts change
-/// owner between frames.
+/// as CI runs it, waiting processes yielding their core (tests/support/mpi_launcher.hpp says
+/// why), the blocks partitioned again every 30 steps so that blocks and contacts change owner
+/// between frames.
 void run(int ranks, const fs::path& scenario, const fs::path& out) {
   std::ostringstream c;
   if (ranks > 0)
-    c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 "
+    c << kMpiexec << " --oversubscribe --allow-run-as-root --mca mpi_yield_when_idle 1 "
+      << "-x OMP_NUM_THREADS=1 "
       << "-x BLOCKDEM_MPI_REBALANCE_STEPS=30 -np " << ranks << " ";
   c << BLOCKDEM_CLI_PATH << " run '" << scenario.string() << "' --out '" << out.string()
     << "' --quiet --no-figures --threads 1";
