@@ -10,7 +10,9 @@
 
 #include "scenes.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::cohesion_validation_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -91,4 +93,4 @@ INSTANTIATE_TEST_SUITE_P(LimitEquilibrium, CohesiveInclineTest,
                          });
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::cohesion_validation_test

@@ -20,7 +20,9 @@
 #include "brick_pile.hpp"
 #include "support/thread_distribution.hpp"
 
-namespace blockdem::test {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::distributed_step_test {
 namespace {
 
 /// Every block's state and loads after each step, as raw bytes.
@@ -401,4 +403,4 @@ TEST(DistributedStep, RebalancesMigrateBlocksPointToPointBitIdentically) {
 }
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::distributed_step_test

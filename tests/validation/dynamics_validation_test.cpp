@@ -9,7 +9,9 @@
 #include "blockdem/world/stage.hpp"
 #include "scenes.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::dynamics_validation_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -253,4 +255,4 @@ INSTANTIATE_TEST_SUITE_P(Modes, Validation,
                          mode_name);
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::dynamics_validation_test

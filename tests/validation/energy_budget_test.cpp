@@ -8,7 +8,9 @@
 
 #include "scenes.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::energy_budget_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -164,4 +166,4 @@ INSTANTIATE_TEST_SUITE_P(Modes, EnergyBudgetTest,
                          mode_name);
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::energy_budget_test

@@ -14,7 +14,9 @@
 #include "brick_pile.hpp"
 #include "support/temp_path.hpp"
 
-namespace blockdem::test {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::mpi_vtk_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -31,12 +33,14 @@ int exit_code(const std::string& cmd) {
 }
 
 /// `blockdem run` on `ranks` processes (0: without mpirun), oversubscribed and allowed as root
-/// as CI runs it, the blocks partitioned again every 30 steps so that blocks and contacts change
-/// owner between frames.
+/// as CI runs it, waiting processes yielding their core (tests/support/mpi_launcher.hpp says
+/// why), the blocks partitioned again every 30 steps so that blocks and contacts change owner
+/// between frames.
 void run(int ranks, const fs::path& scenario, const fs::path& out) {
   std::ostringstream c;
   if (ranks > 0)
-    c << kMpiexec << " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 "
+    c << kMpiexec << " --oversubscribe --allow-run-as-root --mca mpi_yield_when_idle 1 "
+      << "-x OMP_NUM_THREADS=1 "
       << "-x BLOCKDEM_MPI_REBALANCE_STEPS=30 -np " << ranks << " ";
   c << BLOCKDEM_CLI_PATH << " run '" << scenario.string() << "' --out '" << out.string()
     << "' --quiet --no-figures --threads 1";
@@ -93,4 +97,4 @@ TEST_F(MpiVtk, PiecesOfTwoAndThreeRanksReadAsTheOneProcessFrames) {
 }
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::mpi_vtk_test

@@ -15,7 +15,9 @@
 #include "support/sanitized_run.hpp"
 #include "support/temp_path.hpp"
 
-namespace blockdem::test {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::parallel_determinism_test {
 namespace {
 
 /// Appends the bytes of doubles to a record; comparing records compares every bit.
@@ -176,4 +178,4 @@ TEST(ParallelStepCli, RunOutputsByteIdenticalForOneTwoAndThreeThreads) {
 }
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::parallel_determinism_test

@@ -22,7 +22,9 @@
 #include "calibration_test_support.hpp"
 #include "support/cli_runner.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::cmd_calibrate_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -210,4 +212,4 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::cmd_calibrate_test

@@ -10,7 +10,9 @@
 #include "support/cli_runner.hpp"
 #include "support/temp_path.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::cli_convention_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -114,4 +116,4 @@ TEST(CliConvention, HelpAndVersionExitZero) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::cli_convention_test

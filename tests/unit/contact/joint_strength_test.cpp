@@ -14,7 +14,9 @@
 #include "blockdem/contact/shear_laws.hpp"
 #include "law_test_support.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::joint_strength_test {
 namespace {
 
 using test::invalid_argument_message;
@@ -255,4 +257,4 @@ TEST(JointStrength, FactoryReadsStrengthKeysAndRejectsBadOnes) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::joint_strength_test

@@ -10,7 +10,9 @@
 
 #include "law_test_support.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::shear_laws_test {
 namespace {
 
 using test::invalid_argument_message;
@@ -288,4 +290,4 @@ TEST(ShearLaws, FactoryRejectsWhatItCannotRead) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::shear_laws_test

@@ -9,7 +9,9 @@
 #include <random>
 #include <stdexcept>
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::twist_test {
 namespace {
 
 constexpr double kSide = 0.046;  // a (m)
@@ -87,4 +89,4 @@ TEST(Twist, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::twist_test

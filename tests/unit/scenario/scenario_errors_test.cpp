@@ -12,7 +12,9 @@
 #include "blockdem/run/scene_builders.hpp"
 #include "support/temp_path.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::scenario_errors_test {
 namespace {
 
 const char* kGood = R"(
@@ -184,4 +186,4 @@ TEST(ScenarioErrors, ReproduceRejectsUnknownCase) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::scenario_errors_test
