@@ -105,7 +105,8 @@ class UndampedHoldWithTwist : public ::testing::TestWithParam<ContactMode> {};
 
 // At 38° (factor of safety 1.07) the base joint is partly open (the resultant lies beyond the
 // kern, a/6), and the cube still must not move: 1e-8 m. Without twist a lifted prism has no
-// stiffness about the normal and is not tested here (docs/joint-laws.md, "Twist").
+// stiffness about the normal and is not tested here (docs/joint-laws.md, "Where the shear spring
+// acts").
 TEST_P(UndampedHoldWithTwist, CubeOnIncline38DegreesStaysPut) {
   const Case c{GetParam(), true};
   World w = settled_cube(c, radians(38.0));
@@ -170,7 +171,7 @@ INSTANTIATE_TEST_SUITE_P(Modes, UndampedHoldWithTwist,
 // no vertical motion beyond round-off (1e-12 m). The point contact with twist spins against
 // μ σ_n ∫ r dA of the slice: its moment is the limit within 1%. Without
 // twist nothing resists the turn. (Face-integrated contacts with twist are not in this list:
-// docs/joint-laws.md, "Twist", says why.)
+// docs/joint-laws.md, "Where the shear spring acts", says why.)
 class UndampedSpin : public ::testing::TestWithParam<Case> {};
 
 TEST_P(UndampedSpin, CubeSpinningPastTheTwistLimitStaysSeated) {
