@@ -163,6 +163,26 @@ TEST_P(UndampedHoldWithTwist, CubeTurnedBelowTheTwistLimitStaysSeated) {
   EXPECT_NEAR(largest_turn, 2.0 * elastic, 0.02 * elastic);
 }
 
+// The same torque at 0.7 T_lim with local damping 0.7: the cube comes to rest turned by
+// T / (k_s J) (within 1%), seated to round-off (1e-12 m).
+TEST_P(UndampedHoldWithTwist, CubeTurnedBySevenTenthsOfTheLimitDampedRestsSeated) {
+  World w = settled_cube({GetParam(), true}, 0.0);
+  w.settings().damping = 0.7;
+  const double limit = 0.3826 * std::tan(radians(kFriction)) * weight() * kSide;
+  const double torque = 0.7 * limit;
+  const double z0 = w.blocks()[1].position.z();
+  w.blocks()[1].set_external_torque(Eigen::Vector3d(0, 0, torque));
+  double lift = 0.0;
+  const double end = w.time() + 0.2;
+  while (w.time() < end) {
+    w.step();
+    lift = std::max(lift, std::abs(w.blocks()[1].position.z() - z0));
+  }
+  EXPECT_LT(lift, 1e-12);
+  const double elastic = torque / (kShear * std::pow(kSide, 4) / 6.0);
+  EXPECT_NEAR(w.blocks()[1].rotation_since_start().z(), elastic, 0.01 * elastic);
+}
+
 INSTANTIATE_TEST_SUITE_P(Modes, UndampedHoldWithTwist,
                          ::testing::Values(ContactMode::face_integrated, ContactMode::boon2012),
                          [](const auto& p) { return to_string(p.param); });
