@@ -71,6 +71,8 @@ constexpr double kMinImbalanceSeconds = 1e-3;
 constexpr double kPairCountThreshold = 1.1;
 
 void put_bytes(std::vector<char>& out, const void* p, std::size_t n) {
+  // An empty part's data() may be null, which memcpy may not be given even for no bytes.
+  if (n == 0) return;
   const std::size_t at = out.size();
   out.resize(at + n);
   std::memcpy(out.data() + at, p, n);
@@ -1119,11 +1121,11 @@ void World::save_state_to_root(const std::function<void(std::string_view)>& emit
           }
         });
     std::vector<char> bytes(rest.size() * sizeof(double));
-    std::memcpy(bytes.data(), rest.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(bytes.data(), rest.data(), bytes.size());
     dist.broadcast(bytes);
     if (bytes.size() != rest.size() * sizeof(double))
       throw std::logic_error("save_state_to_root: a malformed broadcast");
-    std::memcpy(rest.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(rest.data(), bytes.data(), bytes.size());
   }
   const auto loads_of = [&](std::size_t i, Eigen::Vector3d* loads) -> const Eigen::Vector3d* {
     if (rest_at[i] == n) return nullptr;
