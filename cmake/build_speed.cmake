@@ -1,4 +1,4 @@
-# Compiling less: precompiled headers and unity groups for the tests.
+# Compiling less: precompiled headers, and unity groups for the tests and the command-line program.
 #
 # CI builds the project three times (Release, AddressSanitizer, ThreadSanitizer) on two cores.
 # Measured in CPU seconds of a Release build: the test files took 449 s compiled one by one and
@@ -33,11 +33,13 @@ function(blockdem_precompile_headers target)
   endif()
 endfunction()
 
-# blockdem_unity_groups(SOURCES SIZE): puts the test sources into unity groups of at most SIZE
-# files, each folder's files (in sorted order) split evenly into groups of their own; SIZE 0
-# leaves every file alone. A group is one translation unit, so two files of one group may not
-# define the same name in an anonymous namespace (rename one). Groups follow folders, so a new
-# test file changes only its own folder's groups.
+# blockdem_unity_groups(SOURCES SIZE): puts SOURCES (the tests', the command-line program's) into
+# unity groups of at most SIZE files, each folder's files (in sorted order) split evenly into
+# groups of their own; SIZE 0 leaves every file alone. A group is one translation unit, so two
+# files of one group may not define the same name in an anonymous namespace (give one file a
+# namespace of its own, as some tests have). Groups follow folders, so a new file changes only
+# its own folder's groups. The command-line program's 10 files took 70 s of CPU one by one and
+# 30 s in two groups.
 function(blockdem_unity_groups sources size)
   if(NOT size GREATER 0)
     return()
