@@ -3,14 +3,11 @@
 // warning is printed.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
+#include "support/cli_runner.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
@@ -32,14 +29,10 @@ TEST(RockMassFigure, RunDrawsTheBlocksAtTheEnd) {
                          "[[boundaries]]\nfaces = [\"z_min\"]\ncondition = \"fixed\"\n"
                          "[[stages]]\nname = \"settle\"\ngravity = [0, 0, -9.81]\nmax_steps = 20\n";
   const auto out = dir / "out";
-  const auto err = dir / "err.txt";
-  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
-                          out.string() + " --quiet 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 3) << "20 steps do not settle it";
-  std::ifstream in(err);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const test::CommandOutput r =
+      test::run_cli("run " + file.string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 3) << "20 steps do not settle it";
+  const std::string& text = r.err;
   EXPECT_EQ(text.find("no figures"), std::string::npos) << text;
   ASSERT_TRUE(std::filesystem::exists(out / "blocks_final.png")) << text;
   EXPECT_GT(std::filesystem::file_size(out / "blocks_final.png"), 1000u);
