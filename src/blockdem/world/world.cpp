@@ -135,25 +135,25 @@ std::vector<const Contact*> World::contacts() const {
   return out;
 }
 
+void World::refresh_block(std::size_t i) {
+  Block& b = blocks_[i];
+  b.update_world_geometry(box_min_[i], box_max_[i]);
+  b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
+                           : Eigen::Vector3d::Zero();
+  b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
+  b.contact_force.setZero();
+}
+
 void World::update_geometry(int threads) {
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   box_min_.resize(blocks_.size());
   box_max_.resize(blocks_.size());
-  const auto refresh = [&](std::int64_t i) {
-    Block& b = blocks_[static_cast<std::size_t>(i)];
-    b.update_world_geometry(box_min_[static_cast<std::size_t>(i)],
-                            box_max_[static_cast<std::size_t>(i)]);
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
-                             : Eigen::Vector3d::Zero();
-    b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
-    b.contact_force.setZero();
-  };
   // No parallel region for one thread: a team of one still costs a futex call at its end.
   if (threads > 1 && n > 256) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) refresh(i);
+    for (std::int64_t i = 0; i < n; ++i) refresh_block(static_cast<std::size_t>(i));
   } else {
-    for (std::int64_t i = 0; i < n; ++i) refresh(i);
+    for (std::int64_t i = 0; i < n; ++i) refresh_block(static_cast<std::size_t>(i));
   }
 }
 
@@ -269,67 +269,6 @@ void World::fail_step(const std::string& why) {
          "blockdem (please report it with the scenario): try a smaller safety_factor or "
          "time_step, more damping, or check the joint laws.";
   throw StepFailure(msg.str());
-}
-
-void World::step() {
-  if (!checkpoint_.valid) {
-    synchronize();
-    save_checkpoint();
-  }
-  const double dt = next_time_step();
-  const int threads = thread_count();
-  if (settings_.distribution) {
-    drop_primed();  // the distributed step solves its own pairs
-    step_distributed(dt, threads);
-    return;
-  }
-  // 1. World planes, boxes and the loads that do not come from contacts (parallel per block).
-  update_geometry(threads);
-  // 2-5. Contacts: broad phase, per-pair work in parallel, loads scattered in a fixed order.
-  // A law or the narrow phase that refuses a value here (a stress that overflowed, a moment
-  // below zero) met a state the divergence checks had not caught yet, or a defect: not bad
-  // input, which was checked before the first step. The run is reset as after a blow-up.
-  try {
-    compute_contacts(dt, threads);
-  } catch (const std::invalid_argument& e) {
-    fail_step(e.what());
-  }
-  // 6. Servos, then integration (parallel per block).
-  apply_servos(dt);
-  const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
-  const double damping = settings_.damping;
-  // 7. With each block, its terms of the energy budget at the level whose forces this step
-  // used: exact sums, the same bits for any split over threads (the contacts' terms were summed
-  // by scatter_loads).
-  energy_.before_integration(blocks_);
-  energy_.prepare(blocks_.size());
-  EnergyStepSums sums = contact_energy_;
-  const Eigen::Vector3d gravity = settings_.gravity;
-  const auto advance = [&](std::int64_t i, EnergyStepSums& into) {
-    const auto k = static_cast<std::size_t>(i);
-    integrate_block(blocks_[k], dt, damping);
-    into.add_block(energy_.block_terms(k, blocks_[k], gravity, damping, dt));
-  };
-  if (threads <= 1 || n <= 256) {
-    // One thread: the terms go straight into the step's sums (exact: the same bits as the
-    // parallel split's, without a part per thread and its normalising +=).
-    for (std::int64_t i = 0; i < n; ++i) advance(i, sums);
-  } else {
-#pragma omp parallel num_threads(threads)
-    {
-      EnergyStepSums part;
-#pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < n; ++i) advance(i, part);
-#pragma omp critical(blockdem_energy_sums)
-      sums += part;
-    }
-  }
-  energy_.add_step(sums);
-  time_ += dt;
-  ++step_count_;
-  last_dt_ = dt;
-  check_divergence();
-  if (step_count_ % 200 == 0) save_checkpoint();
 }
 
 EquilibriumMeasures World::equilibrium() const {

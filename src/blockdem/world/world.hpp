@@ -329,12 +329,60 @@ class World {
     Contact contact;
   };
 
+  /// What one step carries from pass to pass (world/step.cpp). A one-process step leaves the
+  /// distributed part empty; a distributed step fills it in begin_distributed_step.
+  struct StepScratch {
+    double dt = 0.0;  ///< this step's time step (s)
+    int threads = 1;  ///< threads of this process
+    bool distributed = false;
+    /// The blocks exact on this process (own, resting, ghosts), in index order, and their boxes
+    /// (the broad phase's input); per block, whether it is dynamic (read per pair).
+    std::vector<int> held;
+    std::vector<Eigen::Vector3d> held_min, held_max;
+    std::vector<char> moves;
+    /// The slots this process evaluates (indices, and per slot a flag).
+    std::vector<std::int64_t> mine;
+    std::vector<char> is_mine;
+    /// Every process's pair time and count, gathered after the pair pass (rebalancing).
+    double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
+    double pair_seconds = 0.0;  ///< this process's own pair work (s)
+    double waiting = 0.0;       ///< time in the exchanges and reductions, waiting included (s)
+    std::int64_t broken_before = 0, active = 0, broke = 0;
+    double overlap_key = std::numeric_limits<double>::infinity();
+    double dt_min = std::numeric_limits<double>::infinity();
+  };
+  // The step's passes (world/step.cpp), in order.
+  void refresh_blocks(StepScratch& s);
+  void contact_passes(StepScratch& s);
+  void find_step_pairs(StepScratch& s);
+  void evaluate_step_pairs(StepScratch& s);
+  void scatter_step_loads(StepScratch& s);
+  void integrate_blocks(StepScratch& s);
+  void check_step(StepScratch& s);
+  void keep_divergence_checkpoint();
+  // The distributed step's own parts (world/step_exchange.cpp): its partition and exact
+  // blocks, the exchange of evaluated slots, the time-step minimum and the global checks, and
+  // the rebalance at its end.
+  void begin_distributed_step(StepScratch& s);
+  /// A block whose pairs this process finds and keeps: its own, not resting.
+  bool keeps_pairs_of(int i) const {
+    return own_[static_cast<std::size_t>(i)] != 0 && resting_[static_cast<std::size_t>(i)] == 0;
+  }
+  /// The slots this process evaluates (the ownership rule), and the ghost sends they ask for.
+  void select_own_pairs(StepScratch& s);
+  void exchange_evaluated_slots(StepScratch& s, const std::exception_ptr& error);
+  /// Whether a process found a diverged block or a too-deep overlap.
+  bool reduce_step_checks(StepScratch& s);
+  void end_distributed_step(StepScratch& s);
+
   void update_geometry(int threads);
+  /// One block's refresh at the start of a step: its world planes and box, and the loads that
+  /// do not come from contacts.
+  void refresh_block(std::size_t i);
   /// The blocks' boxes for the broad phase: compact arrays (48 bytes per block) that the grid
   /// reads many times per box; read in place from the blocks (576-byte records then) the step
   /// at 1e5 blocks was about 4 % slower (cache misses). A block keeps no box of its own.
   BoxView block_boxes() const { return BoxView(box_min_, box_max_); }
-  void compute_contacts(double dt, int threads);
   /// A pair the step evaluates: at least one block can move (boxes of fixed blocks alone meet
   /// no contact that matters).
   bool steps_pair(int a, int b) const {
@@ -381,7 +429,6 @@ class World {
   /// Drops the states of slots that no longer exist (after slots were removed), keeping order.
   void compact_contacts();
   // world_distributed.cpp
-  void step_distributed(double dt, int threads);
   void partition_blocks();
   /// Collective, on a distributed world that is not whole (deferred_replica_), at the end of a
   /// step: the partition partition_blocks() would compute, from each block's centroid and pair

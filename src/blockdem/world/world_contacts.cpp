@@ -217,12 +217,37 @@ void prefetch_planes(const Block& b) {
 
 }  // namespace
 
-void World::compute_contacts(double dt, int threads) {
-  // Broad phase: pairs where at least one block can move, sorted by (a, b). The list was freed
-  // after the last merge: room for as many pairs as then, in one allocation.
-  pairs_.reserve(slots_.size());
-  broad_phase_.find_pairs(
-      block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
+void World::find_step_pairs(StepScratch& s) {
+  const int threads = s.threads;
+  if (!s.distributed) {
+    // Broad phase: pairs where at least one block can move, sorted by (a, b). The list was
+    // freed after the last merge: room for as many pairs as then, in one allocation.
+    pairs_.reserve(slots_.size());
+    broad_phase_.find_pairs(
+        block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, pairs_, threads);
+  } else {
+    // The pairs of this process's blocks (both blocks exact here); a resting block's pairs only
+    // where the other block is this process's. The broad phase runs over the exact blocks'
+    // boxes; as they are listed in index order, its pairs (i, j) of list places map to pairs of
+    // blocks in the same order.
+    broad_phase_.find_pairs(
+        s.held_min, s.held_max,
+        [&](int i, int j) {
+          const int a = s.held[static_cast<std::size_t>(i)];
+          const int b = s.held[static_cast<std::size_t>(j)];
+          return (keeps_pairs_of(a) || keeps_pairs_of(b)) &&
+                 (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
+                 (s.moves[static_cast<std::size_t>(a)] != 0 ||
+                  s.moves[static_cast<std::size_t>(b)] != 0);
+        },
+        pairs_, threads);
+    for (auto& [a, b] : pairs_) {
+      a = s.held[static_cast<std::size_t>(a)];
+      b = s.held[static_cast<std::size_t>(b)];
+    }
+    std::vector<Eigen::Vector3d>().swap(s.held_min);
+    std::vector<Eigen::Vector3d>().swap(s.held_max);
+  }
   // The common case of a settled scene, found in one pass over the slots (the pair store is
   // the largest array: each pass over it costs memory traffic that a second core barely
   // shortens): no open bond, and the same pairs as last step, whose slots then stay as they are.
@@ -236,16 +261,21 @@ void World::compute_contacts(double dt, int threads) {
     same = no_open && differ == 0 && slots_rules_version_ == rules_version_;
   }
   if (!same) {
-    if (!no_open) keep_open_bonds();
+    if (!no_open) {
+      keep_open_bonds();
+      // A distributed step keeps an open bond's pair only where one of its blocks is kept here.
+      if (s.distributed) {
+        std::erase_if(pairs_, [&](const std::pair<int, int>& p) {
+          return !keeps_pairs_of(p.first) && !keeps_pairs_of(p.second);
+        });
+      }
+    }
     take_primed_slots();  // the set-up's narrow phase, at the first step
     merge_pairs();
   }
   // The slots now hold these pairs, in order: the list is not read again before the next broad
   // phase refills it, and freed it is not held through the step's peak (8 bytes per pair).
-  std::vector<std::pair<int, int>>().swap(pairs_);
-  evaluate_pairs(dt, true, threads);
-  drop_primed();
-  scatter_loads();
+  if (!s.distributed) std::vector<std::pair<int, int>>().swap(pairs_);
 }
 
 void World::keep_open_bonds() {

@@ -1538,10 +1538,8 @@ void World::exchange_ghosts() {
   dist_stats_.bytes_received += static_cast<std::int64_t>(boxes.size() - box.size());
 }
 
-void World::step_distributed(double dt, int threads) {
-  PairDistribution& dist = *settings_.distribution;
-  const int rank = dist.rank();
-  const auto k_ranks = static_cast<std::size_t>(dist.size());
+void World::begin_distributed_step(StepScratch& s) {
+  drop_primed();  // the distributed step solves its own pairs
   const std::size_t n = blocks_.size();
   if (owner_.size() != n) {
     synchronize();
@@ -1552,101 +1550,31 @@ void World::step_distributed(double dt, int threads) {
     ghosts_listed_ = false;
     mark_resting();
   }
-  // Time spent in the exchanges and reductions, waiting included (s).
-  using Clock = std::chrono::steady_clock;
-  double waiting = 0.0;
-  const auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
-
-  // 1. World planes, boxes and non-contact loads of the exact blocks (own and ghosts), listed
-  // in index order: the step's broad phase and its per-block loops cover them alone, not the
-  // whole world. Independent per block, so in parallel over the threads.
-  std::vector<int> held;
+  // The exact blocks: the kept ones and the last exchange's ghosts (disjoint lists), or after a
+  // refresh every block local_ marks.
   if (ghosts_listed_) {
-    // The exact blocks are the kept ones and the last exchange's ghosts (disjoint lists).
-    held.resize(kept_list_.size() + ghosts_.size());
-    std::merge(kept_list_.begin(), kept_list_.end(), ghosts_.begin(), ghosts_.end(), held.begin());
+    s.held.resize(kept_list_.size() + ghosts_.size());
+    std::merge(kept_list_.begin(), kept_list_.end(), ghosts_.begin(), ghosts_.end(),
+               s.held.begin());
   } else {
-    held.reserve(n);
+    s.held.reserve(n);
     for (std::size_t i = 0; i < n; ++i)
-      if (local_[i] != 0) held.push_back(static_cast<int>(i));
+      if (local_[i] != 0) s.held.push_back(static_cast<int>(i));
   }
-  const auto n_held = static_cast<std::int64_t>(held.size());
-  box_min_.resize(n);
-  box_max_.resize(n);
-  std::vector<Eigen::Vector3d> held_min(held.size()), held_max(held.size());
-  std::vector<char> moves(n, 0);  // per exact block: is_dynamic(), read per pair below
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n_held > 1024)
-  for (std::int64_t k = 0; k < n_held; ++k) {
-    const auto i = static_cast<std::size_t>(held[static_cast<std::size_t>(k)]);
-    Block& b = blocks_[i];
-    b.update_world_geometry(box_min_[i], box_max_[i]);
-    held_min[static_cast<std::size_t>(k)] = box_min_[i];
-    held_max[static_cast<std::size_t>(k)] = box_max_[i];
-    moves[i] = b.is_dynamic() ? 1 : 0;
-    b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
-                             : Eigen::Vector3d::Zero();
-    b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
-    b.contact_force.setZero();
-  }
-  // 2-3. The pairs of this process's blocks (both blocks exact here), merged with its slots; a
-  // resting block's pairs only where the other block is this process's. The broad phase runs
-  // over the exact blocks' boxes; as they are listed in index order, its pairs (i, j) of list
-  // places map to pairs of blocks in the same order.
-  const auto keeps = [&](int i) { return own_[i] != 0 && resting_[i] == 0; };
-  broad_phase_.find_pairs(
-      held_min, held_max,
-      [&](int i, int j) {
-        const int a = held[static_cast<std::size_t>(i)], b = held[static_cast<std::size_t>(j)];
-        return (keeps(a) || keeps(b)) &&
-               (blocks_[a].motion != Motion::fixed || blocks_[b].motion != Motion::fixed) &&
-               (moves[a] != 0 || moves[b] != 0);
-      },
-      pairs_, threads);
-  for (auto& [a, b] : pairs_) {
-    a = held[static_cast<std::size_t>(a)];
-    b = held[static_cast<std::size_t>(b)];
-  }
-  std::vector<Eigen::Vector3d>().swap(held_min);
-  std::vector<Eigen::Vector3d>().swap(held_max);
-  // The common case, found in one pass over the slots: no open bond (a settled scene has none;
-  // keep_open_bonds and the filter below then change nothing), and the same pairs as last step,
-  // whose slots then stay as they are (merge_pairs would change nothing).
-  bool no_open = false, same = false;
-  {
-    const auto m = static_cast<std::int64_t>(slots_.size());
-    const bool sized = pairs_.size() == slots_.size();
-    std::int64_t open = 0, differ = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : open, differ) if (threads > 1 && m > 4096)
-    for (std::int64_t k = 0; k < m; ++k) {
-      const PairSlot& s = slots_[static_cast<std::size_t>(k)];
-      if (s.active && !contact_of(s).touching) ++open;
-      if (sized && (s.a != pairs_[static_cast<std::size_t>(k)].first ||
-                    s.b != pairs_[static_cast<std::size_t>(k)].second))
-        ++differ;
-    }
-    no_open = open == 0;
-    same = no_open && sized && differ == 0 && slots_rules_version_ == rules_version_;
-  }
-  if (!no_open) {
-    keep_open_bonds();
-    std::erase_if(
-        pairs_, [&](const std::pair<int, int>& p) { return !keeps(p.first) && !keeps(p.second); });
-  }
-  if (!same) merge_pairs();
+}
 
-  // 4. This process's pairs (in parallel over its threads; each writes only its own slot).
+void World::select_own_pairs(StepScratch& s) {
+  const int rank = settings_.distribution->rank();
   const auto owner_of = [&](const PairSlot& c) {
-    return pair_owner_process(owner_, c.a, moves[static_cast<std::size_t>(c.a)] != 0, c.b,
-                              moves[static_cast<std::size_t>(c.b)] != 0);
+    return pair_owner_process(owner_, c.a, s.moves[static_cast<std::size_t>(c.a)] != 0, c.b,
+                              s.moves[static_cast<std::size_t>(c.b)] != 0);
   };
   // The same walk lists the (own block, process) pairs that the ghost exchange sends for the
   // slots: an own block to the owner of its pair's other block (an open bond keeps a pair whose
   // boxes have parted), neither block resting.
-  std::vector<std::int64_t> mine;
   std::vector<int> ghost;  // the other processes' blocks in this process's pairs
-  std::vector<char> is_mine(slots_.size(), 0);
+  s.mine.clear();
+  s.is_mine.assign(slots_.size(), 0);
   pair_sends_.clear();
   for (std::size_t k = 0; k < slots_.size(); ++k) {
     const PairSlot& c = slots_[k];
@@ -1656,25 +1584,28 @@ void World::step_distributed(double dt, int threads) {
       if (own_[cb] != 0 && owner_[ca] != rank) pair_sends_.emplace_back(cb, owner_[ca]);
     }
     if (owner_of(c) != rank) continue;
-    mine.push_back(static_cast<std::int64_t>(k));
-    is_mine[k] = 1;
+    s.mine.push_back(static_cast<std::int64_t>(k));
+    s.is_mine[k] = 1;
     if (own_[ca] == 0) ghost.push_back(ca);
     if (own_[cb] == 0) ghost.push_back(cb);
   }
   std::sort(ghost.begin(), ghost.end());
   dist_stats_.ghost_blocks += std::unique(ghost.begin(), ghost.end()) - ghost.begin();
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::int64_t count = static_cast<std::int64_t>(mine.size());
-  const std::exception_ptr error = evaluate_slots(dt, true, threads, &is_mine);
-  const auto t1 = std::chrono::steady_clock::now();
-  // The new contact states wait in pending_ (in slot order per run) for one settle_contacts,
-  // after the received slots have joined them.
+}
 
+void World::exchange_evaluated_slots(StepScratch& s, const std::exception_ptr& error) {
+  PairDistribution& dist = *settings_.distribution;
+  const int rank = dist.rank();
+  const auto k_ranks = static_cast<std::size_t>(dist.size());
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   // Every process's figures (pair time and count, failure): all decide alike on failures and
   // on rebalancing.
   StepHeader header;
-  header.seconds = std::chrono::duration<double>(t1 - t0).count();
-  header.slots = static_cast<std::uint64_t>(count);
+  header.seconds = s.pair_seconds;
+  header.slots = static_cast<std::uint64_t>(s.mine.size());
   // A refused value (std::invalid_argument of a law or the narrow phase) and its message.
   std::string refused;
   if (error) {
@@ -1691,8 +1622,7 @@ void World::step_distributed(double dt, int threads) {
   std::vector<std::size_t> counts;
   auto tw = Clock::now();
   const std::vector<char> heads = dist.all_gather(head, counts);
-  waiting += seconds_since(tw);
-  double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
+  s.waiting += seconds_since(tw);
   for (std::size_t r = 0; r < k_ranks; ++r) {
     const auto h = get<StepHeader>(heads, r * sizeof(StepHeader));
     if (h.failed == 1) {
@@ -1714,39 +1644,39 @@ void World::step_distributed(double dt, int threads) {
       if (error) std::rethrow_exception(error);
       throw std::runtime_error("contact evaluation failed on process " + std::to_string(r));
     }
-    slowest = std::max(slowest, h.seconds);
-    total += h.seconds;
-    most_pairs = std::max(most_pairs, static_cast<double>(h.slots));
-    total_pairs += static_cast<double>(h.slots);
+    s.slowest = std::max(s.slowest, h.seconds);
+    s.total += h.seconds;
+    s.most_pairs = std::max(s.most_pairs, static_cast<double>(h.slots));
+    s.total_pairs += static_cast<double>(h.slots);
   }
 
   // Each evaluated slot to the owner of the pair's other block, byte for byte (not to a resting
   // block's owner: its loads wait for the whole world, sum_resting_loads).
   // A slot that formed a contact this step finds its state in its run's list.
   const auto state_of = [&](std::size_t k) -> const Contact* {
-    const PairSlot& s = slots_[k];
-    if (!s.active) return nullptr;
-    if (!s.pending) return &contact_of(s);
+    const PairSlot& slot = slots_[k];
+    if (!slot.active) return nullptr;
+    if (!slot.pending) return &contact_of(slot);
     const std::vector<PendingContact>& list = pending_[k / pending_run_];
     const auto it =
         std::lower_bound(list.begin(), list.end(), k,
-                         [](const PendingContact& p, std::size_t slot) { return p.slot < slot; });
+                         [](const PendingContact& p, std::size_t at) { return p.slot < at; });
     if (it == list.end() || it->slot != k)
       throw std::logic_error("pair exchange: a new contact state is missing");
     return &it->contact;
   };
   std::vector<std::vector<char>> to(k_ranks);
-  for (std::int64_t i : mine) {
-    const PairSlot& s = slots_[static_cast<std::size_t>(i)];
-    for (int block : {s.a, s.b}) {
+  for (std::int64_t i : s.mine) {
+    const PairSlot& slot = slots_[static_cast<std::size_t>(i)];
+    for (int block : {slot.a, slot.b}) {
       const int r = owner_[static_cast<std::size_t>(block)];
       if (r == rank || resting_[static_cast<std::size_t>(block)] != 0) continue;
-      put_slot(to[static_cast<std::size_t>(r)], s, state_of(static_cast<std::size_t>(i)));
+      put_slot(to[static_cast<std::size_t>(r)], slot, state_of(static_cast<std::size_t>(i)));
     }
   }
   tw = Clock::now();
   const std::vector<std::vector<char>> from = dist.exchange(to);
-  waiting += seconds_since(tw);
+  s.waiting += seconds_since(tw);
   // The received slots replace this process's (none of its own pairs); their contact states
   // join the new ones in pending_, each run's list then put back in slot order.
   if (pending_.size() != (slots_.size() + pending_run_ - 1) / pending_run_)
@@ -1762,8 +1692,8 @@ void World::step_distributed(double dt, int threads) {
       const int ab[2] = {received.a, received.b};
       const auto it =
           std::lower_bound(slots_.begin(), slots_.end(), std::pair<int, int>(ab[0], ab[1]),
-                           [](const PairSlot& s, const std::pair<int, int>& key) {
-                             return s.a < key.first || (s.a == key.first && s.b < key.second);
+                           [](const PairSlot& x, const std::pair<int, int>& key) {
+                             return x.a < key.first || (x.a == key.first && x.b < key.second);
                            });
       if (it == slots_.end() || it->a != ab[0] || it->b != ab[1])
         throw std::logic_error("pair exchange: a process sent a pair this one does not have");
@@ -1787,116 +1717,51 @@ void World::step_distributed(double dt, int threads) {
   settle_contacts();
   dist_stats_.bytes_sent += static_cast<std::int64_t>(head.size());
   dist_stats_.bytes_received += static_cast<std::int64_t>(heads.size() - head.size());
+}
 
-  // 5. Loads: every slot of an own block is exact here, so its sums are the serial ones. The
-  // counts over pairs and the time-step minimum count only what this process owns.
-  // scatter_loads counts, of this process's pairs only, the contacts' energy terms, the active
-  // contacts and broken bonds, and finds the first too-deep overlap among them (the blocks'
-  // copies of their shapes' radii, refreshed with their planes this step); it sums the loads
-  // of the own and resting blocks only.
-  const std::int64_t broken_before = broken_bonds_;
-  scatter_loads(&is_mine);
-  const auto active = static_cast<std::int64_t>(active_count_);
-  const std::int64_t broke = broken_bonds_ - broken_before;
-  double overlap_key = std::numeric_limits<double>::infinity();
-  if (overlap_violation_ >= 0) {
-    const PairSlot& s = slots_[static_cast<std::size_t>(overlap_violation_)];
-    overlap_key = static_cast<double>(s.a) * static_cast<double>(n) + s.b;
-  }
-  double dt_min = std::numeric_limits<double>::infinity();
-  for (const int h : own_list_) {
-    const auto i = static_cast<std::size_t>(h);
-    if (stiffness_[i] <= 0.0 || moves[i] == 0) continue;
-    const Block& bl = blocks_[i];
-    dt_min = std::min(dt_min, std::sqrt(bl.mass / stiffness_[i]));
-    dt_min = std::min(dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
-  }
-
-  // 6. Servos and integration of the own blocks.
-  apply_servos(dt, &own_);
-  // The ledger's records of the own blocks only: another process keeps the others' (a refresh
-  // sets them here from their owners).
-  energy_.before_integration(blocks_, own_list_);
-  const std::vector<int>& own_list = own_list_;
-  const std::int64_t n_own = static_cast<std::int64_t>(own_list.size());
-  const double damping = settings_.damping;
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n_own > 256)
-  for (std::int64_t i = 0; i < n_own; ++i)
-    integrate_block(blocks_[static_cast<std::size_t>(own_list[static_cast<std::size_t>(i)])], dt,
-                    damping);
-
-  // 7. The energy budget: exact sums over the own blocks and pairs, reduced as integers (the
-  // accumulators' limbs), so every process adds the step of one process, bit for bit.
-  energy_.prepare(n);
-  EnergyStepSums step_sums = std::move(contact_energy_);  // scatter_loads's, of its own pairs
-  contact_energy_ = EnergyStepSums{};
-  for (const int i : own_list) {
-    const auto bi = static_cast<std::size_t>(i);
-    step_sums.add_block(energy_.block_terms(bi, blocks_[bi], settings_.gravity, damping, dt));
-  }
-  tw = Clock::now();
-  const std::vector<std::int64_t> reduced = dist.sum(step_sums.limbs());
-  waiting += seconds_since(tw);
-  energy_.add_step(EnergyStepSums::from_limbs(reduced));
-  const auto reduction_bytes = static_cast<std::int64_t>(reduced.size() * sizeof(std::int64_t));
-  dist_stats_.bytes_sent += reduction_bytes;
-  dist_stats_.bytes_received += reduction_bytes;
-  time_ += dt;
-  ++step_count_;
-  last_dt_ = dt;
-
-  // 8. Ghosts for the next step, then the global checks: exact reductions (minima of
-  // indices and time steps, integer sums).
-  tw = Clock::now();
+bool World::reduce_step_checks(StepScratch& s) {
+  PairDistribution& dist = *settings_.distribution;
+  // Ghosts for the next step, then the global checks: exact reductions (minima of indices and
+  // time steps, integer sums).
+  const auto tw = std::chrono::steady_clock::now();
   exchange_ghosts();
   double first_bad = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < own_list.size() && std::isinf(first_bad); ++k) {
-    const auto i = static_cast<std::size_t>(own_list[k]);
+  for (std::size_t k = 0; k < own_list_.size() && std::isinf(first_bad); ++k) {
+    const auto i = static_cast<std::size_t>(own_list_[k]);
     const Block& b = blocks_[i];
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
         !b.orientation.coeffs().allFinite() || b.velocity.norm() > settings_.max_speed)
       first_bad = static_cast<double>(i);
   }
-  const std::vector<double> minima = dist.min({dt_min, overlap_key, first_bad});
-  const std::vector<std::int64_t> sums = dist.sum({active, broke});
-  waiting += seconds_since(tw);
+  const std::vector<double> minima = dist.min({s.dt_min, s.overlap_key, first_bad});
+  const std::vector<std::int64_t> sums = dist.sum({s.active, s.broke});
+  s.waiting += std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
   contact_dt_ = std::isfinite(minima[0]) ? settings_.safety_factor * minima[0] : 0.0;
   overlap_key_ = minima[1];
   active_count_ = static_cast<std::size_t>(sums[0]);
-  broken_bonds_ = broken_before + sums[1];
+  broken_bonds_ = s.broken_before + sums[1];
   replica_complete_ = false;
   dist_stats_.steps += 1;
-  dist_stats_.owned_pairs += count;
-  dist_stats_.pair_seconds += header.seconds;
-  dist_stats_.exchange_seconds += waiting;
+  dist_stats_.owned_pairs += static_cast<std::int64_t>(s.mine.size());
+  dist_stats_.pair_seconds += s.pair_seconds;
+  dist_stats_.exchange_seconds += s.waiting;
+  return std::isfinite(minima[1]) || std::isfinite(minima[2]);
+}
 
-  // A failed check: the whole world on every process, and the serial check (which restores
-  // the last checkpoint and throws, alike everywhere).
-  if (std::isfinite(minima[1]) || std::isfinite(minima[2])) {
-    synchronize();
-    check_divergence();
-  }
-  // The divergence checkpoint: in parts when the caller defers the refresh (gathered by the next
-  // synchronize(), before anything reads it); otherwise from the whole world made anyway.
-  if (step_count_ % 200 == 0) {
-    if (deferred_replica_) {
-      save_checkpoint_part();
-    } else {
-      synchronize();
-      save_checkpoint();
-    }
-  }
-
+void World::end_distributed_step(StepScratch& s) {
   // Rebalancing: every process sees the same measured figures, so all decide alike. The answers
   // do not depend on the partition, only the speed does.
-  const double mean = total / static_cast<double>(k_ranks);
-  dist_stats_.last_imbalance = mean > 0.0 ? slowest / mean : 1.0;
+  PairDistribution& dist = *settings_.distribution;
+  const auto k_ranks = static_cast<double>(dist.size());
+  const double mean = s.total / k_ranks;
+  dist_stats_.last_imbalance = mean > 0.0 ? s.slowest / mean : 1.0;
   const std::int64_t since = step_count_ - partition_step_;
   const std::int64_t every = dist.repartition_interval();
-  const double mean_pairs = total_pairs / static_cast<double>(k_ranks);
-  const bool uneven_pairs = most_pairs > kPairCountThreshold * mean_pairs;
-  if ((dist_stats_.last_imbalance > kImbalanceThreshold && slowest - mean > kMinImbalanceSeconds &&
-       uneven_pairs && since >= kMinStepsBetweenPartitions) ||
+  const double mean_pairs = s.total_pairs / k_ranks;
+  const bool uneven_pairs = s.most_pairs > kPairCountThreshold * mean_pairs;
+  if ((dist_stats_.last_imbalance > kImbalanceThreshold &&
+       s.slowest - mean > kMinImbalanceSeconds && uneven_pairs &&
+       since >= kMinStepsBetweenPartitions) ||
       (every > 0 && since >= every)) {
     if (deferred_replica_ && !replica_complete_) {
       migrate_blocks();  // point to point: no whole world
