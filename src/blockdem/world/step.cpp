@@ -1,7 +1,7 @@
 // The step: one pipeline of passes for every way of running. A one-process world runs each pass
 // over all its blocks and pairs; a distributed world (settings().distribution) runs the same
 // passes over the blocks exact on this process and the pairs it owns, with its exchanges and
-// exact reductions between them (world_distributed.cpp). Either way each block and contact ends
+// exact reductions between them (the world's Decomposition, world/decomposition_step.cpp). Either way each block and contact ends
 // the step with the same bits.
 #include <chrono>
 #include <cmath>
@@ -27,7 +27,7 @@ void World::step() {
   s.threads = thread_count();
   s.distributed = settings_.distribution != nullptr;
   // 0. A distributed step: its partition, and the blocks exact on this process.
-  if (s.distributed) begin_distributed_step(s);
+  if (s.distributed) decomposition_.begin_step(*this, s);
   // 1. World planes, boxes and the loads that do not come from contacts (parallel per block).
   refresh_blocks(s);
   // 2-5. Contacts: broad phase, per-pair work in parallel, loads scattered in a fixed order.
@@ -46,7 +46,7 @@ void World::step() {
   }
   // 6. Servos, then integration with each block's terms of the energy budget (parallel per
   // block).
-  apply_servos(s.dt, s.distributed ? &own_ : nullptr);
+  apply_servos(s.dt, s.distributed ? &decomposition_.own() : nullptr);
   integrate_blocks(s);
   time_ += s.dt;
   ++step_count_;
@@ -55,7 +55,7 @@ void World::step() {
   check_step(s);
   // 8. The divergence checkpoint, then (distributed) a rebalance of the processes' work.
   if (step_count_ % 200 == 0) keep_divergence_checkpoint();
-  if (s.distributed) end_distributed_step(s);
+  if (s.distributed) decomposition_.end_step(*this, s);
 }
 
 void World::refresh_blocks(StepScratch& s) {
@@ -97,11 +97,11 @@ void World::evaluate_step_pairs(StepScratch& s) {
   // This process's pairs (in parallel over its threads; each writes only its own slot). The
   // new contact states wait in pending_ (in slot order per run) for one settle_contacts, after
   // the slots received from the other processes have joined them.
-  select_own_pairs(s);
+  decomposition_.select_own_pairs(*this, s);
   const auto t0 = std::chrono::steady_clock::now();
   const std::exception_ptr error = evaluate_slots(s.dt, true, s.threads, &s.is_mine);
   s.pair_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  exchange_evaluated_slots(s, error);
+  decomposition_.exchange_evaluated_slots(*this, s, error);
 }
 
 void World::scatter_step_loads(StepScratch& s) {
@@ -123,7 +123,7 @@ void World::scatter_step_loads(StepScratch& s) {
     const PairSlot& slot = slots_[static_cast<std::size_t>(overlap_violation_)];
     s.overlap_key = static_cast<double>(slot.a) * static_cast<double>(blocks_.size()) + slot.b;
   }
-  for (const int h : own_list_) {
+  for (const int h : decomposition_.own_list()) {
     const auto i = static_cast<std::size_t>(h);
     if (stiffness_[i] <= 0.0 || s.moves[i] == 0) continue;
     const Block& bl = blocks_[i];
@@ -136,7 +136,7 @@ void World::integrate_blocks(StepScratch& s) {
   // The blocks this process integrates: all of them, or (distributed) its own. The ledger keeps
   // the records of those only: another process keeps the others' (a refresh sets them here from
   // their owners).
-  const std::vector<int>* own = s.distributed ? &own_list_ : nullptr;
+  const std::vector<int>* own = s.distributed ? &decomposition_.own_list() : nullptr;
   if (own != nullptr) {
     energy_.before_integration(blocks_, *own);
   } else {
@@ -172,19 +172,7 @@ void World::integrate_blocks(StepScratch& s) {
       sums += part;
     }
   }
-  if (!s.distributed) {
-    energy_.add_step(sums);
-    return;
-  }
-  // Reduced as integers (the accumulators' limbs), so every process adds the step of one
-  // process, bit for bit.
-  const auto tw = std::chrono::steady_clock::now();
-  const std::vector<std::int64_t> reduced = settings_.distribution->sum(sums.limbs());
-  s.waiting += std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
-  energy_.add_step(EnergyStepSums::from_limbs(reduced));
-  const auto reduction_bytes = static_cast<std::int64_t>(reduced.size() * sizeof(std::int64_t));
-  dist_stats_.bytes_sent += reduction_bytes;
-  dist_stats_.bytes_received += reduction_bytes;
+  energy_.add_step(s.distributed ? decomposition_.reduce_energy(*this, s, sums) : sums);
 }
 
 void World::check_step(StepScratch& s) {
@@ -195,7 +183,7 @@ void World::check_step(StepScratch& s) {
   // Ghosts for the next step, then the global checks as exact reductions; a failed check makes
   // the whole world on every process and runs the one-process check (which restores the last
   // checkpoint and throws, alike everywhere).
-  if (reduce_step_checks(s)) {
+  if (decomposition_.reduce_step_checks(*this, s)) {
     synchronize();
     check_divergence();
   }
@@ -204,8 +192,8 @@ void World::check_step(StepScratch& s) {
 void World::keep_divergence_checkpoint() {
   // A distributed step keeps it in parts when the caller defers the refresh (gathered by the next
   // synchronize(), before anything reads it); otherwise from the whole world.
-  if (settings_.distribution && deferred_replica_) {
-    save_checkpoint_part();
+  if (settings_.distribution && decomposition_.deferred_replica()) {
+    decomposition_.save_checkpoint_part(*this);
     return;
   }
   synchronize();

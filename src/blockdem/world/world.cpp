@@ -126,7 +126,7 @@ int World::thread_count() const {
 }
 
 std::vector<const Contact*> World::contacts() const {
-  require_replica("contacts");
+  decomposition_.require_replica("contacts");
   std::vector<const Contact*> out;
   out.reserve(active_count_);
   for (const auto& s : slots_) {
@@ -320,7 +320,7 @@ EquilibriumMeasures World::equilibrium() const {
 }
 
 void World::save_checkpoint() {
-  require_replica("save_checkpoint");
+  decomposition_.require_replica("save_checkpoint");
   checkpoint_.blocks.resize(blocks_.size());
   checkpoint_.motions.resize(blocks_.size());
   checkpoint_.servos.clear();
@@ -473,8 +473,7 @@ void World::restore_checkpoint() {
   broken_bonds_ = checkpoint_.broken_bonds;
   energy_ = checkpoint_.energy;
   // The checkpoint is whole on every process: so is the world now.
-  replica_complete_ = true;
-  overlap_key_ = std::numeric_limits<double>::infinity();
+  decomposition_.reset_whole();
 }
 
 World::LevelState World::level_state(int block) const {
@@ -488,6 +487,43 @@ World::LevelState World::level_state(int block) const {
   s.velocity = energy_.level_velocity(block, b);
   s.angular_velocity = energy_.level_angular_velocity(block, b);
   return s;
+}
+
+// The collective operations of a distributed world (world/decomposition.hpp), which on one
+// process or a whole world read the world as it is.
+void World::synchronize() {
+  decomposition_.synchronize(*this);
+}
+
+void World::save_state_to_root(const std::function<void(std::string_view)>& emit) {
+  decomposition_.save_state_to_root(*this, emit);
+}
+
+std::vector<const Contact*> World::counted_contacts() const {
+  return decomposition_.counted_contacts(*this);
+}
+
+bool World::counts_contact(const Contact& contact) const {
+  return decomposition_.counts_contact(*this, contact);
+}
+
+void World::reduce_partials(std::span<ExactSum> sums, std::span<double> maxima,
+                            std::span<std::int64_t> counts) const {
+  decomposition_.reduce_partials(*this, sums, maxima, counts);
+}
+
+std::vector<int> World::gather_indices(const std::vector<int>& mine) const {
+  return decomposition_.gather_indices(*this, mine);
+}
+
+void World::merge_to_root(std::size_t count, const std::function<std::uint64_t(std::size_t)>& key,
+                          const std::function<void(std::size_t, std::string&)>& record,
+                          const std::function<void(std::string_view)>& emit) const {
+  decomposition_.merge_to_root(*this, count, key, record, emit);
+}
+
+std::vector<std::pair<int, Eigen::Vector3d>> World::resting_contact_forces() const {
+  return decomposition_.resting_contact_forces(*this);
 }
 
 }  // namespace blockdem

@@ -25,9 +25,11 @@
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/numerics/exact_sum.hpp"
 #include "blockdem/world/contact.hpp"
+#include "blockdem/world/decomposition.hpp"
 #include "blockdem/world/distribution.hpp"
 #include "blockdem/world/energy_budget.hpp"
 #include "blockdem/world/state_stream.hpp"
+#include "blockdem/world/step_scratch.hpp"
 
 namespace blockdem {
 
@@ -231,25 +233,25 @@ class World {
   void save_state_to_root(const std::function<void(std::string_view)>& emit);
   /// With settings().distribution: the owner process of each block (empty before the first
   /// step) and this process's figures of the distributed work.
-  const std::vector<int>& block_owners() const { return owner_; }
-  const DistributionStats& distribution_stats() const { return dist_stats_; }
+  const std::vector<int>& block_owners() const { return decomposition_.block_owners(); }
+  const DistributionStats& distribution_stats() const { return decomposition_.stats(); }
 
   /// With settings().distribution, a step leaves exact only this process's blocks and pairs and
   /// its ghosts (docs/scaling.md). Collective: gathers every block's state and every pair slot to
   /// every process, bit for bit those of one process. Nothing to do when already complete.
   void synchronize();
   /// Whether every block and pair slot here is exact (always without a distribution).
-  bool replica_complete() const { return replica_complete_; }
+  bool replica_complete() const { return decomposition_.replica_complete(); }
   /// Off (the default): a distributed step ends with synchronize(). On: the caller calls
   /// synchronize() on every process before it reads more than the time and step counters.
-  void set_deferred_replica(bool on) { deferred_replica_ = on; }
+  void set_deferred_replica(bool on) { decomposition_.set_deferred_replica(on); }
 
   // Global measures without the whole world: each process takes its part (the blocks and the
   // contacts it counts) and the parts are reduced exactly (docs/scaling.md), so the result is
   // the same bits as on one process. On a whole world (one process, or after synchronize())
   // every block and contact counts and the reductions do nothing.
   /// Whether block i is this process's to count: every block of a whole world, else its own.
-  bool counts_block(std::size_t i) const { return replica_complete_ || own_[i] != 0; }
+  bool counts_block(std::size_t i) const { return decomposition_.counts_block(i); }
   /// Whether a contact is this process's to count: every contact of a whole world, else its own.
   bool counts_contact(const Contact& contact) const;
   /// Collective when the world is distributed and not whole (every process at the same point,
@@ -329,28 +331,6 @@ class World {
     Contact contact;
   };
 
-  /// What one step carries from pass to pass (world/step.cpp). A one-process step leaves the
-  /// distributed part empty; a distributed step fills it in begin_distributed_step.
-  struct StepScratch {
-    double dt = 0.0;  ///< this step's time step (s)
-    int threads = 1;  ///< threads of this process
-    bool distributed = false;
-    /// The blocks exact on this process (own, resting, ghosts), in index order, and their boxes
-    /// (the broad phase's input); per block, whether it is dynamic (read per pair).
-    std::vector<int> held;
-    std::vector<Eigen::Vector3d> held_min, held_max;
-    std::vector<char> moves;
-    /// The slots this process evaluates (indices, and per slot a flag).
-    std::vector<std::int64_t> mine;
-    std::vector<char> is_mine;
-    /// Every process's pair time and count, gathered after the pair pass (rebalancing).
-    double slowest = 0.0, total = 0.0, most_pairs = 0.0, total_pairs = 0.0;
-    double pair_seconds = 0.0;  ///< this process's own pair work (s)
-    double waiting = 0.0;       ///< time in the exchanges and reductions, waiting included (s)
-    std::int64_t broken_before = 0, active = 0, broke = 0;
-    double overlap_key = std::numeric_limits<double>::infinity();
-    double dt_min = std::numeric_limits<double>::infinity();
-  };
   // The step's passes (world/step.cpp), in order.
   void refresh_blocks(StepScratch& s);
   void contact_passes(StepScratch& s);
@@ -360,20 +340,8 @@ class World {
   void integrate_blocks(StepScratch& s);
   void check_step(StepScratch& s);
   void keep_divergence_checkpoint();
-  // The distributed step's own parts (world/step_exchange.cpp): its partition and exact
-  // blocks, the exchange of evaluated slots, the time-step minimum and the global checks, and
-  // the rebalance at its end.
-  void begin_distributed_step(StepScratch& s);
   /// A block whose pairs this process finds and keeps: its own, not resting.
-  bool keeps_pairs_of(int i) const {
-    return own_[static_cast<std::size_t>(i)] != 0 && resting_[static_cast<std::size_t>(i)] == 0;
-  }
-  /// The slots this process evaluates (the ownership rule), and the ghost sends they ask for.
-  void select_own_pairs(StepScratch& s);
-  void exchange_evaluated_slots(StepScratch& s, const std::exception_ptr& error);
-  /// Whether a process found a diverged block or a too-deep overlap.
-  bool reduce_step_checks(StepScratch& s);
-  void end_distributed_step(StepScratch& s);
+  bool keeps_pairs_of(int i) const { return decomposition_.keeps_pairs_of(i); }
 
   void update_geometry(int threads);
   /// One block's refresh at the start of a step: its world planes and box, and the loads that
@@ -428,35 +396,6 @@ class World {
   void settle_contacts_serial();
   /// Drops the states of slots that no longer exist (after slots were removed), keeping order.
   void compact_contacts();
-  // world_distributed.cpp
-  void partition_blocks();
-  /// Collective, on a distributed world that is not whole (deferred_replica_), at the end of a
-  /// step: the partition partition_blocks() would compute, from each block's centroid and pair
-  /// count sent by its owner, and each block that changes owner sent point to point to its new
-  /// owner with the slots the new owner lacks; then one ghost exchange for the new subdomains.
-  /// Makes the world whole and partitions (as partition_blocks) when the resting blocks would
-  /// change.
-  void migrate_blocks();
-  /// A block's whole step state (pose, velocities, loads, stiffness sums, energy record, world
-  /// planes and box) as bytes, and its reading (the state set on block `i` of the record; the
-  /// offset past it returned), for a refresh or a migration.
-  void put_block_state(std::vector<char>& out, std::size_t i) const;
-  std::size_t take_block_state(const std::vector<char>& in, std::size_t at, std::size_t end,
-                               bool apply, std::size_t& i);
-  int pair_owner(int a, int b) const;
-  int pair_owner(const PairSlot& s) const { return pair_owner(s.a, s.b); }
-  void exchange_ghosts();
-  /// After a distributed step that leaves the world not whole: gives back the room the pair
-  /// stores kept from a whole world (a refresh, a restart, a rebalance), which this process
-  /// holds only a part of. Changes no value.
-  void release_spare_room();
-  void require_replica(const char* what) const;
-  void mark_resting();
-  /// Lists the blocks by own_ and resting_ (own_list_, moving_list_, kept_list_, keeps_loads_),
-  /// after either changed.
-  void list_own_blocks();
-  void sum_resting_loads();
-
   /// `counted`: the contacts' energy terms, contact and broken-bond counts and the first too-deep
   /// overlap of these slots only (per slot, nonzero: count; a distributed step's own pairs), and
   /// loads summed only on the blocks of keeps_loads_ (the others' are not read), without the
@@ -498,34 +437,9 @@ class World {
   std::vector<std::vector<std::size_t>> scatter_cross_;
   EnergyStepSums contact_energy_;
 
-  // Distributed runs (settings_.distribution): block owners, when they were last computed.
-  std::vector<int> owner_;
-  std::int64_t partition_step_ = -1;
-  mutable DistributionStats dist_stats_;  ///< mutable: const reductions count their bytes
-  bool replica_complete_ = true;          ///< every block and slot exact on this process
-  bool deferred_replica_ = false;
-  std::vector<char> own_;    ///< per block: owned by this process
-  std::vector<char> local_;  ///< per block: exact here (owned, or a ghost received this step)
-  /// Per block: fixed and at rest, marked on a whole world (mark_resting). Its state is the same
-  /// on every process; its pairs and slots stay with the other blocks' owners, and its loads are
-  /// summed only when the world is made whole (sum_resting_loads).
-  std::vector<char> resting_;
-  // Lists kept from the partition and mark_resting (list_own_blocks), in index order: the own
-  // blocks; those of them not resting (what the ghost exchange sends); the blocks exact here
-  // in every step (own or resting); and per block, whether its loads are summed here (the same).
-  std::vector<int> own_list_, moving_list_, kept_list_;
-  std::vector<char> keeps_loads_;
-  /// The ghosts received by the last ghost exchange, in index order; valid when ghosts_listed_
-  /// (local_ is then kept_list_ and these), not after local_ was set whole.
-  std::vector<int> ghosts_;
-  bool ghosts_listed_ = false;
-  /// The ghost exchange's buffers, kept between steps: the moving own blocks' boxes at their new
-  /// poses (per moving_list_ entry), the (own block, process) sends, and those that the step's
-  /// slots ask for (an own block in a pair with another process's block), listed by the step.
-  std::vector<Eigen::Vector3d> next_min_, next_max_;
-  std::vector<std::pair<std::int64_t, int>> ghost_sends_, pair_sends_;
-  double overlap_key_ =
-      std::numeric_limits<double>::infinity();  ///< a N + b of the first too-deep contact
+  /// The world's spread over processes (settings_.distribution); empty on one process.
+  Decomposition decomposition_;
+  friend class Decomposition;
 
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
@@ -605,7 +519,7 @@ class World {
     std::int64_t broken_bonds = 0;
     EnergyLedger energy;
     bool valid = false;
-    /// A distributed part (world_distributed.cpp): `blocks` and `motions` hold this process's
+    /// A distributed part (world/decomposition_replica.cpp): `blocks` and `motions` hold this process's
     /// blocks (indices in `part_blocks`), `servos` and `contacts` its own; synchronize() gathers.
     std::vector<int> part_blocks;
     std::vector<double> part_resting;  ///< the resting blocks' loads' terms (gather_checkpoint)
@@ -614,7 +528,6 @@ class World {
   /// Appends checkpoint_history(s), if any, to the list it belongs in.
   void keep_slot(const PairSlot& s, std::vector<ContactHistory>& contacts,
                  std::vector<BondHistory>& bonds) const;
-  void save_checkpoint_part();  ///< the divergence checkpoint of a distributed step, its part
   // save_state's parts (world_state.cpp), shared with save_state_to_root: block i's record with
   // its loads (force, torque, contact force), a slot's record with its contact state (null: the
   // fresh contact it restarts from), the counters after the stiffness sums, and the divergence
@@ -623,7 +536,6 @@ class World {
   void save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const;
   void save_counters(StateWriter& w, std::int64_t overlap_violation) const;
   void save_divergence_checkpoint(StateWriter& w) const;
-  void gather_checkpoint();  ///< collective: the parts into the whole checkpoint
 };
 
 template <class F>

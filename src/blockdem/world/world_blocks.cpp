@@ -28,7 +28,7 @@ const std::vector<int>& World::face_laws(int block) const {
 }
 
 void World::remove_blocks(const std::vector<int>& indices) {
-  require_replica("remove_blocks");
+  decomposition_.require_replica("remove_blocks");
   drop_primed();  // kept by block indices
   std::vector<int> new_index(blocks_.size(), 0);
   for (int i : indices) {

@@ -881,14 +881,14 @@ void World::scatter_loads(const std::vector<char>* counted) {
   // slots, and it takes its time-step minimum over its own blocks.
   const std::size_t n_blocks = blocks_.size();
   const std::size_t m = slots_.size();
-  const char* keeps = counted != nullptr ? keeps_loads_.data() : nullptr;
+  const char* keeps = counted != nullptr ? decomposition_.keeps_loads().data() : nullptr;
   if (keeps == nullptr) {
     stiffness_.assign(n_blocks, 0.0);
     rotational_stiffness_.assign(n_blocks, 0.0);
   } else {
     stiffness_.resize(n_blocks, 0.0);
     rotational_stiffness_.resize(n_blocks, 0.0);
-    for (const int i : kept_list_) {
+    for (const int i : decomposition_.kept_list()) {
       stiffness_[static_cast<std::size_t>(i)] = 0.0;
       rotational_stiffness_[static_cast<std::size_t>(i)] = 0.0;
     }

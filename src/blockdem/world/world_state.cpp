@@ -180,7 +180,7 @@ std::vector<double> read_doubles(StateReader& r) {
 }  // namespace
 
 void World::save_state(StateWriter& w) const {
-  require_replica("save_state");
+  decomposition_.require_replica("save_state");
   if (checkpoint_.partial)
     throw std::logic_error("save_state: the divergence checkpoint is in parts; call synchronize()");
   // Settings a stage changes.
@@ -290,8 +290,7 @@ void World::save_divergence_checkpoint(StateWriter& w) const {
 
 void World::load_state(StateReader& r) {
   // Loaded alike on every process: the world is whole, and is partitioned again at its next step.
-  replica_complete_ = true;
-  owner_.clear();
+  decomposition_.forget_partition();
   drop_primed();
   settings_.gravity = r.vec();
   r.pod(settings_.damping);
