@@ -519,8 +519,9 @@ class World {
     std::int64_t broken_bonds = 0;
     EnergyLedger energy;
     bool valid = false;
-    /// A distributed part (world/decomposition_replica.cpp): `blocks` and `motions` hold this process's
-    /// blocks (indices in `part_blocks`), `servos` and `contacts` its own; synchronize() gathers.
+    /// A distributed part (world/decomposition_replica.cpp): `blocks` and `motions` hold this
+    /// process's blocks (indices in `part_blocks`), `servos` and `contacts` its own; synchronize()
+    /// gathers.
     std::vector<int> part_blocks;
     std::vector<double> part_resting;  ///< the resting blocks' loads' terms (gather_checkpoint)
     bool partial = false;
