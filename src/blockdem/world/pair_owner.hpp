@@ -1,6 +1,6 @@
 // The rule that gives each candidate pair of blocks of a distributed world one owner process (the
-// one that evaluates its contact), shared by the step (world/decomposition_step.cpp) and the outputs
-// written per process (io/vtu.hpp).
+// one that evaluates its contact), shared by the step (world/decomposition_step.cpp) and the
+// outputs written per process (io/vtu.hpp).
 #pragma once
 
 #include <vector>

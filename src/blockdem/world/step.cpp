@@ -1,8 +1,8 @@
 // The step: one pipeline of passes for every way of running. A one-process world runs each pass
 // over all its blocks and pairs; a distributed world (settings().distribution) runs the same
 // passes over the blocks exact on this process and the pairs it owns, with its exchanges and
-// exact reductions between them (the world's Decomposition, world/decomposition_step.cpp). Either way each block and contact ends
-// the step with the same bits.
+// exact reductions between them (the world's Decomposition, world/decomposition_step.cpp). Either
+// way each block and contact ends the step with the same bits.
 #include <chrono>
 #include <cmath>
 #include <cstdint>
