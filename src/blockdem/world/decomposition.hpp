@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -113,6 +114,17 @@ class Decomposition {
   /// Makes the world whole and partitions (as partition_blocks) when the resting blocks would
   /// change.
   void migrate_blocks(World& world);
+  // migrate_blocks's parts (world/decomposition_migrate.cpp): the new owners from each block's
+  // centroid and pair count gathered from its owner (empty when a block came to rest or left
+  // it), each moving block and the slots its new owner lacks as messages, the received ones
+  // into place, and the slots as a step leaves them.
+  struct Arrivals;
+  std::vector<int> migration_owners(World& world, std::int64_t& sent, std::int64_t& received);
+  std::vector<std::vector<char>> migration_messages(World& world, const std::vector<int>& owners,
+                                                    std::int64_t& sent);
+  Arrivals receive_migrated(World& world, const std::vector<std::vector<char>>& from,
+                            const std::vector<int>& owners, std::int64_t& received);
+  void keep_migrated_slots(World& world, Arrivals& in);
   /// A block's whole step state (pose, velocities, loads, stiffness sums, energy record, world
   /// planes and box) as bytes, and its reading (the state set on block `i` of the record; the
   /// offset past it returned), for a refresh or a migration.
@@ -131,6 +143,28 @@ class Decomposition {
   void list_own_blocks(World& world);
   void sum_resting_loads(World& world);
   void gather_checkpoint(World& world);  ///< collective: the parts into the whole checkpoint
+  /// gather_checkpoint's parts: this process's part as bytes, and the resting blocks' energy
+  /// records summed from the gathered contact terms (sorted here) as sum_resting_loads sums them.
+  std::vector<char> checkpoint_part(World& world);
+  void sum_checkpoint_resting(World& world, std::vector<std::array<double, 12>>& terms,
+                              std::size_t resting_count);
+
+  // save_state_to_root's sections (world/decomposition_replica.cpp).
+  struct RootStream;
+  /// The resting blocks' loads and stiffness sums, kRest values per resting block (at[i]: its
+  /// place, or the block count for a block that is not resting), as sum_resting_loads sums them
+  /// on a whole world, on every process.
+  struct RestingTerms {
+    std::vector<std::size_t> at;
+    std::vector<double> values;
+  };
+  static constexpr std::size_t kRest = 11;  ///< force, torque, contact force, the two stiffnesses
+  RestingTerms resting_terms(World& world);
+  void blocks_to_root(World& world, RootStream& out, const RestingTerms& rest,
+                      const std::vector<std::size_t>& mine);
+  void slots_to_root(World& world, RootStream& out);
+  void energy_to_root(World& world, RootStream& out, const RestingTerms& rest,
+                      const std::vector<std::size_t>& mine);
 
   // Block owners, when they were last computed.
   std::vector<int> owner_;

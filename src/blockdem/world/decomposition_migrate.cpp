@@ -19,14 +19,17 @@ namespace blockdem {
 
 using namespace decomposition_wire;
 
-void Decomposition::migrate_blocks(World& world) {
+/// The blocks and slots a process received in a migration, the slots' contact states apart.
+struct Decomposition::Arrivals {
+  std::vector<World::PairSlot> slots;
+  std::vector<Contact> states;
+};
+
+std::vector<int> Decomposition::migration_owners(World& world, std::int64_t& sent,
+                                                 std::int64_t& received) {
   PairDistribution& dist = *world.settings_.distribution;
-  const int rank = dist.rank();
   const auto k_ranks = static_cast<std::size_t>(dist.size());
   const std::size_t n = world.blocks_.size();
-  const auto t0 = std::chrono::steady_clock::now();
-  std::int64_t sent = 0, received = 0;
-
   // 1. The partition's input, as partition_blocks() takes it from a whole world: each
   // block's centroid, whether it is at rest (mark_resting), and the number of slots it is in. Its
   // owner holds them exactly: after the step's pair exchange every slot of an own block that is not
@@ -77,21 +80,20 @@ void Decomposition::migrate_blocks(World& world) {
     if (cursor[r] != end)
       throw std::logic_error("migration: a process sent a malformed partition input");
   }
-  if (rest_changed) {
-    // A block came to rest or left it (a caller's change, or a servo that stopped a fixed block):
-    // the resting blocks' loads are summed only on a whole world, so every process (all see the
-    // same flags) makes it whole and partitions it.
-    dist_stats_.migration_bytes_sent += sent;
-    dist_stats_.migration_bytes_received += received;
-    synchronize(world);
-    partition_blocks(world);
-    return;
-  }
+  // A block came to rest or left it (a caller's change, or a servo that stopped a fixed block):
+  // no migration (the caller makes the world whole and partitions it).
+  if (rest_changed) return {};
   std::vector<int> owners = dist.partition(points, weights);
   if (owners.size() != n) throw std::logic_error("partition: one owner per block expected");
-  std::vector<Eigen::Vector3d>().swap(points);
-  std::vector<double>().swap(weights);
 
+  return owners;
+}
+
+std::vector<std::vector<char>> Decomposition::migration_messages(World& world,
+                                                                 const std::vector<int>& owners,
+                                                                 std::int64_t& sent) {
+  const int rank = world.settings_.distribution->rank();
+  const auto k_ranks = static_cast<std::size_t>(world.settings_.distribution->size());
   // 2. Each own block whose owner changes, to its new owner: its state, loads, stiffness sums,
   // energy record, world planes and box (what a refresh would send; a divergence checkpoint in
   // parts stays as it is, gathered from the parts as they were saved). Its servo and applied
@@ -143,15 +145,23 @@ void Decomposition::migrate_blocks(World& world) {
     dist_stats_.migrated_slots += static_cast<std::int64_t>(slots_to[q]);
     sent += static_cast<std::int64_t>(to[q].size());
   }
-  const std::vector<std::vector<char>> from = dist.exchange(to);
-  std::vector<std::vector<char>>().swap(to);
+  return to;
+}
 
+Decomposition::Arrivals Decomposition::receive_migrated(World& world,
+                                                        const std::vector<std::vector<char>>& from,
+                                                        const std::vector<int>& owners,
+                                                        std::int64_t& received) {
+  const int rank = world.settings_.distribution->rank();
+  const auto k_ranks = from.size();
+  const std::size_t n = world.blocks_.size();
   // 3. The received blocks into place; the received slots in a list, their states apart.
   world.stiffness_.resize(n, 0.0);
   world.rotational_stiffness_.resize(n, 0.0);
   world.energy_.prepare(n);
-  std::vector<World::PairSlot> arrived;
-  std::vector<Contact> arrived_states;
+  Arrivals in;
+  std::vector<World::PairSlot>& arrived = in.slots;
+  std::vector<Contact>& arrived_states = in.states;
   for (std::size_t r = 0; r < k_ranks; ++r) {
     const std::vector<char>& part = from[r];
     received += static_cast<std::int64_t>(part.size());
@@ -182,13 +192,14 @@ void Decomposition::migrate_blocks(World& world) {
     if (at != part.size()) throw std::logic_error("migration: a process sent a malformed part");
   }
 
-  // 4. The new owners.
-  owner_ = std::move(owners);
-  for (std::size_t i = 0; i < n; ++i) own_[i] = owner_[i] == rank ? 1 : 0;
-  list_own_blocks(world);
-  partition_step_ = world.step_count_;
-  ++dist_stats_.partitions;
+  return in;
+}
 
+void Decomposition::keep_migrated_slots(World& world, Arrivals& in) {
+  const int rank = world.settings_.distribution->rank();
+  const std::size_t n = world.blocks_.size();
+  std::vector<World::PairSlot>& arrived = in.slots;
+  std::vector<Contact>& arrived_states = in.states;
   // 5. The slots as a step leaves them: those of the blocks this process now keeps (own, not
   // resting), in (a, b) order, every one exact; the contact states in slot order. A pair that
   // arrived from two processes (its blocks came from both) holds the same bytes in both.
@@ -240,6 +251,37 @@ void Decomposition::migrate_blocks(World& world) {
   world.overlap_violation_ =
       slot_of_key(world.slots_, n, overlap_key_,
                   [&](const World::PairSlot& c) { return pair_owner(world, c.a, c.b) == rank; });
+}
+
+void Decomposition::migrate_blocks(World& world) {
+  const int rank = world.settings_.distribution->rank();
+  const std::size_t n = world.blocks_.size();
+  const auto t0 = std::chrono::steady_clock::now();
+  std::int64_t sent = 0, received = 0;
+  std::vector<int> owners = migration_owners(world, sent, received);
+  if (owners.empty()) {
+    // A block came to rest or left it (a caller's change, or a servo that stopped a fixed block):
+    // the resting blocks' loads are summed only on a whole world, so every process (all see the
+    // same flags) makes it whole and partitions it.
+    dist_stats_.migration_bytes_sent += sent;
+    dist_stats_.migration_bytes_received += received;
+    synchronize(world);
+    partition_blocks(world);
+    return;
+  }
+  std::vector<std::vector<char>> to = migration_messages(world, owners, sent);
+  const std::vector<std::vector<char>> from = world.settings_.distribution->exchange(to);
+  std::vector<std::vector<char>>().swap(to);
+  Arrivals in = receive_migrated(world, from, owners, received);
+
+  // 4. The new owners.
+  owner_ = std::move(owners);
+  for (std::size_t i = 0; i < n; ++i) own_[i] = owner_[i] == rank ? 1 : 0;
+  list_own_blocks(world);
+  partition_step_ = world.step_count_;
+  ++dist_stats_.partitions;
+
+  keep_migrated_slots(world, in);
 
   // 6. Ghosts for the next step, for the new subdomains: the ghost exchange with the slots' sends
   // (an own block to the owner of its pair's other block, neither resting) listed as the step

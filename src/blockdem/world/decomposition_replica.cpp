@@ -20,6 +20,20 @@ namespace blockdem {
 
 using namespace decomposition_wire;
 
+namespace {
+
+/// A block of a divergence checkpoint's part: index, state (position, velocities, angular
+/// momentum, orientation), motion and energy record.
+struct PartBlock {
+  std::int64_t index = 0;
+  double state[16];
+  std::int64_t motion = 0;
+  double energy[EnergyLedger::kBlockRecordDoubles];
+};
+static_assert(std::is_trivially_copyable_v<PartBlock>);
+
+}  // namespace
+
 void Decomposition::save_checkpoint_part(World& world) {
   // What save_checkpoint takes from a whole world, taken from this process's exact part: its
   // blocks (own_) and the pairs it owns, each by the same rule (docs/scaling.md, "Checkpoints in
@@ -85,24 +99,8 @@ void Decomposition::save_checkpoint_part(World& world) {
   world.checkpoint_.partial = true;
 }
 
-void Decomposition::gather_checkpoint(World& world) {
-  if (!world.checkpoint_.partial) return;
-  static_assert(std::is_trivially_destructible_v<World::ContactHistory>);
-  static_assert(std::is_trivially_copyable_v<World::BondHistory>);
-  PairDistribution& dist = *world.settings_.distribution;
-  const int rank = dist.rank();
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t n = world.blocks_.size();
-  World::Checkpoint& cp = world.checkpoint_;
-  cp.energy.prepare(n);
-  // This process's part: its blocks (index, state, motion, energy record), servos and contacts.
-  struct PartBlock {
-    std::int64_t index = 0;
-    double state[16];
-    std::int64_t motion = 0;
-    double energy[EnergyLedger::kBlockRecordDoubles];
-  };
-  static_assert(std::is_trivially_copyable_v<PartBlock>);
+std::vector<char> Decomposition::checkpoint_part(World& world) {
+  const World::Checkpoint& cp = world.checkpoint_;
   std::vector<char> out;
   put(out, static_cast<std::uint64_t>(cp.part_blocks.size()));
   put(out, static_cast<std::uint64_t>(cp.servos.size()));
@@ -120,7 +118,7 @@ void Decomposition::gather_checkpoint(World& world) {
     }
     for (int c = 0; c < 4; ++c) p.state[12 + c] = s.orientation.coeffs()[c];
     p.motion = static_cast<std::int64_t>(cp.motions[k]);
-    cp.energy.block_record(static_cast<std::size_t>(p.index), p.energy);
+    world.checkpoint_.energy.block_record(static_cast<std::size_t>(p.index), p.energy);
     put(out, p);
   }
   for (const auto& [i, servo] : cp.servos) {
@@ -137,6 +135,23 @@ void Decomposition::gather_checkpoint(World& world) {
     throw std::logic_error("checkpoint gather: a malformed part");
   put(out, static_cast<std::uint64_t>((rest.size() - terms_at) / 12));
   put_bytes(out, rest.data() + terms_at, (rest.size() - terms_at) * sizeof(double));
+  return out;
+}
+
+void Decomposition::gather_checkpoint(World& world) {
+  if (!world.checkpoint_.partial) return;
+  static_assert(std::is_trivially_destructible_v<World::ContactHistory>);
+  static_assert(std::is_trivially_copyable_v<World::BondHistory>);
+  PairDistribution& dist = *world.settings_.distribution;
+  const int rank = dist.rank();
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = world.blocks_.size();
+  World::Checkpoint& cp = world.checkpoint_;
+  cp.energy.prepare(n);
+  // This process's part: its blocks (index, state, motion, energy record), servos and contacts.
+  const std::vector<char> out = checkpoint_part(world);
+  const std::vector<double>& rest = cp.part_resting;
+  const auto resting_count = static_cast<std::size_t>(rest.size() >= 2 ? rest[1] : 0.0);
   std::vector<std::size_t> counts;
   const std::vector<char> all = dist.all_gather(out, counts);
 
@@ -213,6 +228,27 @@ void Decomposition::gather_checkpoint(World& world) {
   };
   std::sort(contacts.begin(), contacts.end(), by_pair);
   std::sort(bonds.begin(), bonds.end(), by_pair);
+  cp.blocks = std::move(states);
+  cp.motions = std::move(motions);
+  cp.servos = std::move(servos);
+  cp.contacts = std::move(contacts);
+  cp.bonds = std::move(bonds);
+  sum_checkpoint_resting(world, terms, resting_count);
+  std::vector<int>().swap(cp.part_blocks);
+  std::vector<double>().swap(cp.part_resting);
+  cp.partial = false;
+  dist_stats_.checkpoint_gathers += 1;
+  dist_stats_.checkpoint_bytes_sent += static_cast<std::int64_t>(out.size());
+  dist_stats_.checkpoint_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
+  dist_stats_.replica_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void Decomposition::sum_checkpoint_resting(World& world, std::vector<std::array<double, 12>>& terms,
+                                           std::size_t resting_count) {
+  World::Checkpoint& cp = world.checkpoint_;
+  const std::vector<double>& rest = cp.part_resting;
+  const std::size_t n = world.blocks_.size();
   // The resting blocks' records as sum_resting_loads leaves them on the whole world of the
   // checkpoint's step: the contact force and torque summed with its arithmetic in (a, b) order.
   std::sort(terms.begin(), terms.end(), [](const auto& x, const auto& y) {
@@ -230,7 +266,7 @@ void Decomposition::gather_checkpoint(World& world) {
         const auto k = static_cast<std::size_t>(ab);
         if (k >= n) throw std::logic_error("checkpoint gather: a malformed contact");
         if (resting[k] == 0) continue;
-        const Eigen::Vector3d& position = states[k].position;
+        const Eigen::Vector3d& position = cp.blocks[k].position;
         if (ab == t[1]) {
           force[k] += f;
           torque[k] += (xf - position).cross(f);
@@ -256,20 +292,20 @@ void Decomposition::gather_checkpoint(World& world) {
       cp.energy.set_block_record(i, record);
     }
   }
-  cp.blocks = std::move(states);
-  cp.motions = std::move(motions);
-  cp.servos = std::move(servos);
-  cp.contacts = std::move(contacts);
-  cp.bonds = std::move(bonds);
-  std::vector<int>().swap(cp.part_blocks);
-  std::vector<double>().swap(cp.part_resting);
-  cp.partial = false;
-  dist_stats_.checkpoint_gathers += 1;
-  dist_stats_.checkpoint_bytes_sent += static_cast<std::int64_t>(out.size());
-  dist_stats_.checkpoint_bytes_received += static_cast<std::int64_t>(all.size() - out.size());
-  dist_stats_.replica_seconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+/// save_state_to_root's stream: process 0's own bytes between the merges (which emit theirs as
+/// they come); flush() hands them on.
+struct Decomposition::RootStream {
+  const std::function<void(std::string_view)>& emit;
+  bool root = false;
+  StateWriter w;
+  void flush() {
+    if (root && !w.bytes().empty())
+      emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+    w.bytes().clear();
+  }
+};
 
 void Decomposition::save_state_to_root(World& world,
                                        const std::function<void(std::string_view)>& emit) {
@@ -291,8 +327,6 @@ void Decomposition::save_state_to_root(World& world,
   // blocks by index from their owners, the slots by (a, b) from the pairs' owners, the energy
   // records by index. What synchronize() re-derives is derived here alike: the resting
   // blocks' loads (sum_resting_loads), the index of the overlap violation in the whole slot list.
-  PairDistribution& dist = *world.settings_.distribution;
-  const int rank = dist.rank();
   const std::size_t n = world.blocks_.size();
   if (world.energy_.records() != n)
     throw std::logic_error("save_state_to_root: the energy ledger has another number of blocks");
@@ -300,19 +334,34 @@ void Decomposition::save_state_to_root(World& world,
   for (std::size_t i = 0; i < n; ++i)
     if (own_[i] != 0) mine.push_back(i);
 
+  const RestingTerms rest = resting_terms(world);
+  // Process 0's own bytes between the merges (which emit theirs as they come): flush() emits.
+  RootStream out{emit, root, {}};
+  out.w.vec(world.settings_.gravity);
+  out.w.pod(world.settings_.damping);
+  out.w.size(world.laws_.size());
+  out.w.size(n);
+  blocks_to_root(world, out, rest, mine);
+  slots_to_root(world, out);
+  energy_to_root(world, out, rest, mine);
+}
+
+Decomposition::RestingTerms Decomposition::resting_terms(World& world) {
+  PairDistribution& dist = *world.settings_.distribution;
+  const int rank = dist.rank();
+  const std::size_t n = world.blocks_.size();
   // The resting blocks' loads and stiffness sums, as sum_resting_loads sums them on a whole
   // world (every active slot in (a, b) order, its arithmetic), on every process: 11 values each.
-  constexpr std::size_t kRest = 11;  // force, torque, contact force, stiffness, rotational
-  std::vector<std::size_t> rest_at(n, n);
-  std::vector<double> rest;
+  RestingTerms rest;
+  rest.at.assign(n, n);
   if (resting_.size() == n) {
     for (std::size_t i = 0; i < n; ++i) {
       if (resting_[i] == 0) continue;
-      rest_at[i] = rest.size() / kRest;
-      rest.resize(rest.size() + kRest, 0.0);
+      rest.at[i] = rest.values.size() / kRest;
+      rest.values.resize(rest.values.size() + kRest, 0.0);
     }
   }
-  if (!rest.empty()) {
+  if (!rest.values.empty()) {
     std::vector<const World::PairSlot*> terms;
     for (const World::PairSlot& s : world.slots_) {
       if (s.active && (resting_[s.a] != 0 || resting_[s.b] != 0) &&
@@ -356,9 +405,9 @@ void Decomposition::save_state_to_root(World& world,
           const Eigen::Vector3d f(t.f[0], t.f[1], t.f[2]), xf(t.xf[0], t.xf[1], t.xf[2]);
           const Eigen::Vector3d normal(t.normal[0], t.normal[1], t.normal[2]);
           for (const int i : {t.a, t.b}) {
-            const std::size_t j = rest_at[static_cast<std::size_t>(i)];
+            const std::size_t j = rest.at[static_cast<std::size_t>(i)];
             if (j == n) continue;
-            double* r = rest.data() + j * kRest;
+            double* r = rest.values.data() + j * kRest;
             Eigen::Map<Eigen::Vector3d> force(r), torque(r + 3), contact_force(r + 6);
             const Eigen::Vector3d& position = world.blocks_[static_cast<std::size_t>(i)].position;
             if (i == t.b) {
@@ -377,40 +426,34 @@ void Decomposition::save_state_to_root(World& world,
             r[10] += t.twist_stiffness;
           }
         });
-    std::vector<char> bytes(rest.size() * sizeof(double));
-    if (!bytes.empty()) std::memcpy(bytes.data(), rest.data(), bytes.size());
+    std::vector<char> bytes(rest.values.size() * sizeof(double));
+    if (!bytes.empty()) std::memcpy(bytes.data(), rest.values.data(), bytes.size());
     dist.broadcast(bytes);
-    if (bytes.size() != rest.size() * sizeof(double))
+    if (bytes.size() != rest.values.size() * sizeof(double))
       throw std::logic_error("save_state_to_root: a malformed broadcast");
-    if (!bytes.empty()) std::memcpy(rest.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(rest.values.data(), bytes.data(), bytes.size());
   }
+  return rest;
+}
+
+void Decomposition::blocks_to_root(World& world, RootStream& out, const RestingTerms& rest,
+                                   const std::vector<std::size_t>& mine) {
+  const std::size_t n = world.blocks_.size();
   const auto loads_of = [&](std::size_t i, Eigen::Vector3d* loads) -> const Eigen::Vector3d* {
-    if (rest_at[i] == n) return nullptr;
-    const double* r = rest.data() + rest_at[i] * kRest;
+    if (rest.at[i] == n) return nullptr;
+    const double* r = rest.values.data() + rest.at[i] * kRest;
     for (int k = 0; k < 3; ++k) loads[k] = Eigen::Vector3d(r[3 * k], r[3 * k + 1], r[3 * k + 2]);
     return loads;
   };
-
-  // Process 0's own bytes between the merges (which emit theirs as they come): flush() emits.
-  StateWriter w;
-  const auto flush = [&] {
-    if (root && !w.bytes().empty())
-      emit(std::string_view(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
-    w.bytes().clear();
-  };
-  w.vec(world.settings_.gravity);
-  w.pod(world.settings_.damping);
-  w.size(world.laws_.size());
-  w.size(n);
   // The blocks, each with its stiffness sums (kept for the section after the blocks).
-  std::vector<double> stiffness(root ? 2 * n : 0, 0.0);
-  flush();
+  std::vector<double> stiffness(out.root ? 2 * n : 0, 0.0);
+  out.flush();
   merge_to_root(
       world, mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
       [&](std::size_t k, std::string& text) {
         const std::size_t i = mine[k];
         Eigen::Vector3d loads[3];
-        const double* r = rest_at[i] == n ? nullptr : rest.data() + rest_at[i] * kRest;
+        const double* r = rest.at[i] == n ? nullptr : rest.values.data() + rest.at[i] * kRest;
         const double head[3] = {
             static_cast<double>(i),
             r ? r[9] : (i < world.stiffness_.size() ? world.stiffness_[i] : 0.0),
@@ -427,15 +470,20 @@ void Decomposition::save_state_to_root(World& world,
         const auto i = static_cast<std::size_t>(head[0]);
         stiffness[i] = head[1];
         stiffness[n + i] = head[2];
-        emit(text.substr(sizeof head));
+        out.emit(text.substr(sizeof head));
       });
-  if (root) {
-    w.size(n);
-    for (std::size_t i = 0; i < n; ++i) w.pod(stiffness[i]);
-    w.size(n);
-    for (std::size_t i = 0; i < n; ++i) w.pod(stiffness[n + i]);
+  if (out.root) {
+    out.w.size(n);
+    for (std::size_t i = 0; i < n; ++i) out.w.pod(stiffness[i]);
+    out.w.size(n);
+    for (std::size_t i = 0; i < n; ++i) out.w.pod(stiffness[n + i]);
   }
   std::vector<double>().swap(stiffness);
+}
+
+void Decomposition::slots_to_root(World& world, RootStream& out) {
+  const int rank = world.settings_.distribution->rank();
+  const std::size_t n = world.blocks_.size();
   // The counters, with the overlap violation's index in the whole (a, b)-sorted slot list:
   // the owned slots before its pair, summed over the processes.
   std::vector<const World::PairSlot*> owned;
@@ -450,24 +498,24 @@ void Decomposition::save_state_to_root(World& world,
     }
   }
   reduce_partials(world, {}, {}, counts);
-  if (root) world.save_counters(w, counts[2] > 0 ? counts[1] : -1);
+  if (out.root) world.save_counters(out.w, counts[2] > 0 ? counts[1] : -1);
   const auto pair_key = [&](std::size_t k) {
     return (static_cast<std::uint64_t>(owned[k]->a) << 32) |
            static_cast<std::uint32_t>(owned[k]->b);
   };
   // The slots' pairs, then their records (a contact state where a force acts, as synchronize
   // keeps it: through its bytes).
-  if (root) w.size(static_cast<std::size_t>(counts[0]));
-  flush();
+  if (out.root) out.w.size(static_cast<std::size_t>(counts[0]));
+  out.flush();
   merge_to_root(
       world, owned.size(), pair_key,
       [&](std::size_t k, std::string& text) {
         const std::int32_t ab[2] = {owned[k]->a, owned[k]->b};
         text.append(reinterpret_cast<const char*>(ab), sizeof ab);
       },
-      emit);
-  if (root) w.size(static_cast<std::size_t>(counts[0]));
-  flush();
+      out.emit);
+  if (out.root) out.w.size(static_cast<std::size_t>(counts[0]));
+  out.flush();
   merge_to_root(
       world, owned.size(), pair_key,
       [&](std::size_t k, std::string& text) {
@@ -483,23 +531,28 @@ void Decomposition::save_state_to_root(World& world,
         }
         text.append(reinterpret_cast<const char*>(b.bytes().data()), b.bytes().size());
       },
-      emit);
-  if (root) world.save_divergence_checkpoint(w);
-  flush();
+      out.emit);
+  if (out.root) world.save_divergence_checkpoint(out.w);
+  out.flush();
+}
+
+void Decomposition::energy_to_root(World& world, RootStream& out, const RestingTerms& rest,
+                                   const std::vector<std::size_t>& mine) {
+  const std::size_t n = world.blocks_.size();
   // The energy ledger (EnergyLedger::save_state's layout): the budget (every process's), each
   // block's record from its owner (a resting block's contact impulses from the sums above, as
   // sum_resting_loads sets them), the level velocities (kept for their two lists), the flag.
   const EnergyBudget& e = world.energy_.budget();
-  if (root) {
+  if (out.root) {
     for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
                      e.friction_dissipation, e.damping_dissipation, e.initial})
-      w.pod(v);
-    w.size(n);
+      out.w.pod(v);
+    out.w.size(n);
   }
   constexpr std::size_t kRecord = EnergyLedger::kBlockRecordDoubles;
   constexpr std::size_t kLevel = kRecord - 6;  // the record's level velocities
-  std::vector<double> level(root ? 6 * n : 0, 0.0);
-  flush();
+  std::vector<double> level(out.root ? 6 * n : 0, 0.0);
+  out.flush();
   merge_to_root(
       world, mine.size(), [&](std::size_t k) { return static_cast<std::uint64_t>(mine[k]); },
       [&](std::size_t k, std::string& text) {
@@ -507,9 +560,9 @@ void Decomposition::save_state_to_root(World& world,
         double record[1 + kRecord];
         record[0] = static_cast<double>(i);
         world.energy_.block_record(i, record + 1);
-        if (rest_at[i] != n && world.step_count_ != 0) {
+        if (rest.at[i] != n && world.step_count_ != 0) {
           constexpr std::size_t kContact = 1 + 24;  // as sum_resting_loads
-          const double* r = rest.data() + rest_at[i] * kRest;
+          const double* r = rest.values.data() + rest.at[i] * kRest;
           const Eigen::Vector3d impulse = world.last_dt_ * Eigen::Vector3d(r[6], r[7], r[8]);
           const Eigen::Vector3d angular = world.last_dt_ * Eigen::Vector3d(r[3], r[4], r[5]);
           for (int c = 0; c < 3; ++c) {
@@ -523,17 +576,17 @@ void Decomposition::save_state_to_root(World& world,
         double record[1 + kRecord];
         std::memcpy(record, text.data(), sizeof record);
         const auto i = static_cast<std::size_t>(record[0]);
-        emit(text.substr(sizeof(double), kLevel * sizeof(double)));
+        out.emit(text.substr(sizeof(double), kLevel * sizeof(double)));
         for (std::size_t c = 0; c < 6; ++c) level[6 * i + c] = record[1 + kLevel + c];
       });
-  if (!root) return;
+  if (!out.root) return;
   for (const std::size_t at : {std::size_t{0}, std::size_t{3}}) {
-    w.size(n);
+    out.w.size(n);
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t c = 0; c < 3; ++c) w.pod(level[6 * i + at + c]);
+      for (std::size_t c = 0; c < 3; ++c) out.w.pod(level[6 * i + at + c]);
   }
-  w.pod(static_cast<std::uint8_t>(world.energy_.started()));
-  flush();
+  out.w.pod(static_cast<std::uint8_t>(world.energy_.started()));
+  out.flush();
 }
 
 void Decomposition::put_block_state(const World& world, std::vector<char>& out,
