@@ -39,8 +39,8 @@ TEST(StageDriver, EveryObserverHearsEveryStageInOrder) {
   const Scenario sc = parse_scenario(incline(), "incline.toml");
   World world = build_world(sc);
   Heard first, second;
-  const DriveResult d = drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {},
-                                     {}, {&first, &second});
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, {}, {&first, &second});
   EXPECT_EQ(d.status, RunStatus::completed);
   EXPECT_EQ(d.level, -1);
   const std::vector<std::string> expected = {"start 0 settle", "end 0 settle", "start 1 tilt",
@@ -60,8 +60,8 @@ TEST(StageDriver, AStopAtABoundaryEndsTheDriveBeforeTheStage) {
   Heard heard;
   DriveControl control;
   control.at_boundary = [](int level) { return level == 1; };
-  const DriveResult d = drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {},
-                                     control, {&heard});
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
   EXPECT_EQ(d.status, RunStatus::interrupted);
   EXPECT_EQ(d.level, 1);
   EXPECT_TRUE(d.before_stage);
@@ -79,8 +79,8 @@ TEST(StageDriver, AStopAfterAStepEndsTheStageThere) {
   control.after_step = [](int, const StageResume& at, const MotionMonitor&, const World*) {
     return at.steps_done == 25;
   };
-  const DriveResult d = drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {},
-                                     control, {&heard});
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
   EXPECT_EQ(d.status, RunStatus::interrupted);
   EXPECT_FALSE(d.before_stage);
   EXPECT_EQ(d.stage.steps, 25);
