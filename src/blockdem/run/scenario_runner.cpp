@@ -64,9 +64,9 @@ struct Restart {
   std::string_view world, before;  ///< the saved states, in `point` or in `mapped`
 };
 
-Restart read_restart(const RunControl& control, int stages) {
-  Restart r;
-  if (control.restart.empty()) return r;
+/// Fills `r` in place (its views point into it).
+void read_restart(const RunControl& control, int stages, Restart& r) {
+  if (control.restart.empty()) return;
   try {
     if (control.restart_payload) {
       r.point = decode_run_point(std::move(*control.restart_payload));
@@ -83,7 +83,6 @@ Restart read_restart(const RunControl& control, int stages) {
   }
   if (r.point->level >= stages)
     throw CheckpointError(control.restart, "saved stage index is corrupt");
-  return r;
 }
 
 /// Reports a set-up part that took a second or more, with its wall time.
@@ -624,7 +623,8 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
                                   control.checkpoint_seconds > 0.0 || !control.restart.empty()))
     throw std::invalid_argument("checkpoints and restarts are not available for " + no_checkpoints +
                                 " yet");
-  Restart restart = read_restart(control, static_cast<int>(sc.stages.size()));
+  Restart restart;
+  read_restart(control, static_cast<int>(sc.stages.size()), restart);
   RunPoint* resume = restart.point ? &*restart.point : nullptr;
   auto setup0 = Clock::now();
   if (cb.progress) cb.progress("setting up the world (initial-overlap check, first contacts)");
