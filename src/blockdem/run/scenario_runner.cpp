@@ -671,6 +671,7 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   outputs.history().flush();  // an interrupted stage's rows too, before the record reads the file
   res.summary["files"] = run_files_record(out, res.foreign_files);
   write_file_atomically(out / "summary.json", res.summary.dump(2) + "\n");
+  if (scene_observer) scene_observer->on_run_end();
   res.scene_output = std::move(scene_observer);
   return res;
 }

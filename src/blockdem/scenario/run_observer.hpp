@@ -56,6 +56,8 @@ class RunObserver {
   virtual std::string failure_note() const { return {}; }
   /// Adds the observer's entries to summary.json when the run ends with `status`.
   virtual void add_to_summary(nlohmann::json&, RunStatus) const {}
+  /// The run has written its last file: the observer closes its files (what it measured stays).
+  virtual void on_run_end() {}
 };
 
 }  // namespace blockdem

@@ -104,6 +104,12 @@ void VoussoirRecorder::on_stage_end(const World& world, const StageEnd& end) {
   if (end.result.converged) stable_.push_back(lv);
 }
 
+void VoussoirRecorder::on_run_end() {
+  history_.reset();
+  blocks_.reset();
+  joints_.reset();
+}
+
 std::string VoussoirRecorder::failure_note() const {
   if (stable_.empty()) return {};
   char buf[64];

@@ -32,6 +32,8 @@ class VoussoirRecorder final : public RunObserver {
   std::string failure_note() const override;
   /// summary.json's "voussoir", its headline numbers at the top level, and "lost_equilibrium".
   void add_to_summary(nlohmann::json& summary, RunStatus status) const override;
+  /// Closes the CSV files (the levels stay).
+  void on_run_end() override;
 
  private:
   VoussoirSpec spec_;
