@@ -22,7 +22,8 @@ class MappedCheckpoint;
 struct RunResult {
   /// completed, collapsed (physical: a mechanism formed), diverged (numerical blow-up),
   /// not_converged (no equilibrium and no mechanism within the step limit), interrupted
-  /// (RunControl::poll asked the run to stop).
+  /// (RunControl::poll asked the run to stop); failed is set by callers whose run threw (a
+  /// study's case).
   RunStatus status = RunStatus::completed;
   std::string message;
   /// 0 completed, or collapsed with a collapse search asked for (the search found it);
