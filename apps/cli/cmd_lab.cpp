@@ -17,6 +17,7 @@
 #include "blockdem/lab/lab_report.hpp"
 #include "blockdem/lab/law_spec.hpp"
 #include "blockdem/lab/shear_test.hpp"
+#include "blockdem/world/contact_mode.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 
@@ -64,8 +65,7 @@ struct FiguresArgs {
 /// The two-block rig of --dem, in the contact mode given by --mode.
 TwoBlockRigDef rig_for(const std::string& mode) {
   TwoBlockRigDef rig;
-  rig.contact_mode =
-      mode == "face_integrated" ? ContactMode::face_integrated : ContactMode::boon2012;
+  rig.contact_mode = *parse_contact_mode(mode);  // --mode checks the name
   return rig;
 }
 
@@ -235,7 +235,7 @@ void register_lab(CLI::App& app) {
     cmd->add_flag("--dem", a->dem,
                   "Also run the path on two blocks in the engine (load levels to equilibrium)");
     cmd->add_option("--mode", a->mode, "Contact mode of --dem (default boon2012, the paper's)")
-        ->check(CLI::IsMember({"boon2012", "face_integrated"}));
+        ->check(CLI::IsMember(contact_mode_names()));
     cmd->add_option("--out", a->out, "Folder for compression.csv and compression.png");
     cmd->add_flag("!--no-figures", a->plot, "With --out: write the CSV only");
     cmd->callback([a, closure, stress] {
@@ -270,7 +270,7 @@ void register_lab(CLI::App& app) {
     cmd->add_flag("--dem", a->dem,
                   "Also run the path on two blocks in the engine (prescribed shear velocity)");
     cmd->add_option("--mode", a->mode, "Contact mode of --dem (default boon2012, the paper's)")
-        ->check(CLI::IsMember({"boon2012", "face_integrated"}));
+        ->check(CLI::IsMember(contact_mode_names()));
     cmd->add_option("--out", a->out, "Folder for shear.csv and shear.png");
     cmd->add_flag("!--no-figures", a->plot, "With --out: write the CSV only");
     cmd->callback([a] { guarded("shear", [&] { return run_shear(*a); }); });

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "blockdem/studies/boon2015/reproduce.hpp"
+#include "blockdem/world/contact_mode.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -40,9 +41,7 @@ int reproduce(const ReproduceOptions& opt) {
     return 2;
   }
   selection.cases = opt.cases;
-  selection.modes.clear();
-  if (opt.modes != "face_integrated") selection.modes.push_back(ContactMode::boon2012);
-  if (opt.modes != "boon2012") selection.modes.push_back(ContactMode::face_integrated);
+  selection.modes = contact_modes_selected(opt.modes);  // --modes checks the word
   // Select and read every case before running any.
   std::vector<Boon2015CaseRun> runs;
   try {
@@ -76,10 +75,10 @@ int reproduce(const ReproduceOptions& opt) {
       char buf[200];
       std::snprintf(buf, sizeof buf,
                     "[%zu/%zu] %-12s finished  at %8.1f s: %s, %lld steps in %.2f s", ++finished,
-                    total, r.spec.id.c_str(), elapsed(), r.result.status.c_str(),
+                    total, r.spec.id.c_str(), elapsed(), to_string(r.result.status),
                     static_cast<long long>(r.result.steps), r.result.wall_time);
       progress.message(buf);
-      if (r.result.status != "completed") progress.message("  " + r.result.message);
+      if (r.result.status != RunStatus::completed) progress.message("  " + r.result.message);
     };
     callbacks.stage_done = [&](const std::string& id, const std::string& line) {
       progress.update(id + ": " + line);
@@ -90,7 +89,7 @@ int reproduce(const ReproduceOptions& opt) {
   }
   run_boon2015_cases(runs, out, jobs, callbacks);
   for (const auto& r : runs) {
-    if (r.result.status == "failed") {
+    if (r.result.status == RunStatus::failed) {
       std::cerr << "blockdem: error: case " << r.spec.id << ": " << r.result.message << "\n";
       return 1;
     }
@@ -137,7 +136,11 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option(
          "--mode", opt->modes,
          "Contact modes: both (default), boon2012 (the paper's) or face_integrated (cases -fi)")
-      ->check(CLI::IsMember({"both", "boon2012", "face_integrated"}));
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> words = contact_mode_names();
+        words.insert(words.begin(), "both");
+        return words;
+      }()));
   cmd->add_option(
          "--jobs", opt->jobs,
          "Cases run in parallel (default: number of cores); each case gets cores / jobs threads")

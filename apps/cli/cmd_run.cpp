@@ -21,6 +21,7 @@
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/measures.hpp"
 #include "blockdem/voussoir/scene.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
@@ -179,6 +180,151 @@ int run(const RunOptions& opt) {
   return code;
 }
 
+/// A restart checkpoint that the run wrote before an error is kept: it is the run's progress
+/// (hours of it, maybe), not a result, and a corrected program or input may go on from it.
+bool checkpoint_kept(const RunOptions& opt, bool restarting) {
+  std::error_code ec;
+  return !restarting &&
+         std::filesystem::exists(std::filesystem::path(opt.out) / kCheckpointName, ec);
+}
+
+/// After an input error found while running: what the run wrote goes (`existed`: the folder was
+/// there before the run).
+void remove_outputs(const RunOptions& opt, bool existed, bool restarting) {
+  std::error_code ec;
+  if (restarting) return;  // the folder holds the run being continued: leave it as it is
+  if (!existed && !checkpoint_kept(opt, restarting)) {
+    std::filesystem::remove_all(opt.out, ec);
+    return;
+  }
+  if (!existed) {
+    std::vector<std::filesystem::path> written;
+    for (const auto& entry : std::filesystem::directory_iterator(opt.out, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name != kCheckpointName && name != kPreviousCheckpointName)
+        written.push_back(entry.path());
+    }
+    for (const auto& path : written) std::filesystem::remove_all(path, ec);
+    return;
+  }
+  for (const std::string& f : run_output_names())
+    std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
+}
+
+/// The first process checks the checkpoint: one it refuses stops every process (exit code 2).
+/// Then each process maps the file itself where it sees the same file (the same checksum), so
+/// that no process holds the file's bytes beside its world; where one does not (an output
+/// folder only the first process sees), the first process sends the bytes to every process.
+/// One process alone leaves it all to the runner, which maps the file. Returns false when every
+/// process stops (exit code 2).
+bool share_restart(const RunOptions& opt, const MpiSession& mpi, RunControl& control) {
+  std::string why;
+  std::shared_ptr<MappedCheckpoint> mine;
+  std::string checksum(sizeof(std::uint64_t), '\0');
+  if (mpi.rank() == 0) {
+    try {
+      mine = std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
+      const std::uint64_t sum = mine->checksum();
+      std::memcpy(checksum.data(), &sum, sizeof sum);
+    } catch (const CheckpointError& e) {
+      why = e.what();
+    }
+  }
+  if (!mpi.all_ok(why.empty(), why)) {
+    if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
+    return false;
+  }
+  mpi.broadcast(checksum, 0);
+  if (mpi.rank() != 0 && unseen_restart_rank_from_environment() != mpi.rank()) {
+    // --resume: the checkpoint in process 0's output folder (this process's own is scratch).
+    const std::filesystem::path file = opt.resume && !opt.shared_out.empty()
+                                           ? std::filesystem::path(opt.shared_out) / kCheckpointName
+                                           : control.restart;
+    try {
+      mine = std::make_shared<MappedCheckpoint>(file, control.scenario_hash);
+      std::uint64_t first = 0;
+      std::memcpy(&first, checksum.data(), sizeof first);
+      if (mine->checksum() != first)
+        mine.reset();  // another file of that name: not the first process's checkpoint
+    } catch (const CheckpointError&) {
+      mine.reset();
+    }
+  }
+  if (std::string none; mpi.all_ok(mine != nullptr, none)) {
+    control.restart_file = std::move(mine);
+  } else {
+    control.restart_payload = std::make_shared<std::string>();
+    if (mpi.rank() == 0) {
+      std::cerr << "blockdem: a process does not see " << control.restart.string()
+                << ": process 0 sends it to every process\n";
+      control.restart_payload->assign(mine->payload());
+    }
+    mine.reset();
+    mpi.broadcast(*control.restart_payload, 0);
+  }
+  return true;
+}
+
+/// The run's figures (matplotlib scripts in tools/), listed in summary.json's record.
+void draw_figures(const RunOptions& opt, const RunResult& r, bool beam, bool rock_mass) {
+  const bool draws =
+      opt.figures && ((beam && !voussoir_levels(r).empty()) || rock_mass || r.factor_of_safety);
+  if (beam && opt.figures && !voussoir_levels(r).empty()) {
+    std::string why;
+    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
+      std::cerr << "blockdem: warning: no figures: " << why << "\n";
+  }
+  if (rock_mass && opt.figures) {
+    // The blocks at the last stage end, coloured by displacement (key blocks stand out).
+    std::filesystem::path last;
+    const std::filesystem::path vtk = std::filesystem::path(opt.out) / "vtk";
+    if (std::filesystem::exists(vtk)) {
+      for (const auto& e : std::filesystem::directory_iterator(vtk)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("blocks_", 0) == 0 && (last.empty() || e.path() > last)) last = e.path();
+      }
+    }
+    std::string why;
+    if (!last.empty() &&
+        !run_plot_script("plot_rock_mass.py",
+                         {"--run-vtk", last.string(), "--png",
+                          (std::filesystem::path(opt.out) / "blocks_final.png").string()},
+                         why))
+      std::cerr << "blockdem: warning: no figures: " << why << "\n";
+  }
+  if (r.factor_of_safety && opt.figures) {
+    std::string why;
+    if (!run_plot_script("plot_mechanism.py", {opt.out}, why))
+      std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
+  }
+  // The figures are part of the run: the record, written last, lists them too.
+  if (draws) update_files_record(opt.out, r.foreign_files);
+}
+
+/// The run's last lines on stderr; returns the exit code.
+int report_end(const RunOptions& opt, const RunResult& r, const MpiSession& mpi,
+               std::chrono::steady_clock::time_point command0) {
+  if (r.factor_of_safety)
+    std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
+  if (r.collapse) {
+    std::fprintf(stderr, "blockdem: collapse between %.4g g (stable) and %.4g g (failed)\n",
+                 r.collapse->first, r.collapse->second);
+  }
+  if (mpi.rank() != 0) return r.exit_code;
+  if (r.exit_code != 0) {
+    std::cerr << "blockdem: error: " << r.message << "\n"
+              << "blockdem: outputs up to the last good state are in " << opt.out
+              << " (summary.json status \"" << to_string(r.status) << "\")\n";
+  } else if (!opt.quiet) {
+    char buf[128];
+    // The whole command's time: reading the scenario (a large one's rock mass cut) and the run.
+    std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ",
+                  seconds_since(command0), static_cast<long long>(r.steps));
+    std::cerr << buf << opt.out << "\n";
+  }
+  return r.exit_code;
+}
+
 int run_one(RunOptions opt, const MpiSession& mpi) {
   Progress progress(!opt.quiet);
   RunCallbacks cb;
@@ -197,35 +343,6 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   // the failure): then what the run wrote is removed, so that nothing is left.
   const bool existed = std::filesystem::exists(opt.out);
   const bool restarting = !opt.restart.empty() || opt.resume;
-  // A restart checkpoint that the run wrote before the error is kept: it is the run's progress
-  // (hours of it, maybe), not a result, and a corrected program or input may go on from it.
-  const auto checkpoint_kept = [&] {
-    std::error_code ec;
-    return !restarting &&
-           std::filesystem::exists(std::filesystem::path(opt.out) / kCheckpointName, ec);
-  };
-  auto remove_outputs = [&] {
-    std::error_code ec;
-    if (restarting) return;  // the folder holds the run being continued: leave it as it is
-    if (!existed && !checkpoint_kept()) {
-      std::filesystem::remove_all(opt.out, ec);
-      return;
-    }
-    if (!existed) {
-      std::vector<std::filesystem::path> written;
-      for (const auto& entry : std::filesystem::directory_iterator(opt.out, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name != kCheckpointName && name != kPreviousCheckpointName)
-          written.push_back(entry.path());
-      }
-      for (const auto& path : written) std::filesystem::remove_all(path, ec);
-      return;
-    }
-    for (const char* f : {"history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
-                          "summary.json", "strength_reduction.csv", "mechanism.csv",
-                          "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
-      std::filesystem::remove_all(std::filesystem::path(opt.out) / f, ec);
-  };
   // Until every rank has read the scenario, a failure must be agreed on by all (collective).
   bool agreed = false;
   auto agree = [&](bool ok, std::string& why) {
@@ -236,10 +353,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   // An input error found while running (every process alike): the outputs go, the message once.
   const auto stop_on_error = [&](std::string why) {
     agree(false, why);
-    remove_outputs();
+    remove_outputs(opt, existed, restarting);
     if (mpi.rank() == 0) {
       std::cerr << "blockdem: error: " << why << "\n";
-      if (checkpoint_kept())
+      if (checkpoint_kept(opt, restarting))
         std::cerr << "blockdem: the run's last checkpoint is kept: "
                   << (std::filesystem::path(opt.out) / kCheckpointName).string() << "\n";
     }
@@ -287,58 +404,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
       if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
       return 2;
     }
-    // The first process checks the checkpoint: one it refuses stops every process (exit code 2).
-    // Then each process maps the file itself where it sees the same file (the same checksum), so
-    // that no process holds the file's bytes beside its world; where one does not (an output
-    // folder only the first process sees), the first process sends the bytes to every process.
-    // One process alone leaves it all to the runner, which maps the file.
-    if (!control.restart.empty() && mpi.size() > 1) {
-      std::string why;
-      std::shared_ptr<MappedCheckpoint> mine;
-      std::string checksum(sizeof(std::uint64_t), '\0');
-      if (mpi.rank() == 0) {
-        try {
-          mine = std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
-          const std::uint64_t sum = mine->checksum();
-          std::memcpy(checksum.data(), &sum, sizeof sum);
-        } catch (const CheckpointError& e) {
-          why = e.what();
-        }
-      }
-      if (!mpi.all_ok(why.empty(), why)) {
-        if (mpi.rank() == 0) std::cerr << "blockdem: error: " << why << "\n";
-        return 2;
-      }
-      mpi.broadcast(checksum, 0);
-      if (mpi.rank() != 0 && unseen_restart_rank_from_environment() != mpi.rank()) {
-        // --resume: the checkpoint in process 0's output folder (this process's own is scratch).
-        const std::filesystem::path file =
-            opt.resume && !opt.shared_out.empty()
-                ? std::filesystem::path(opt.shared_out) / kCheckpointName
-                : control.restart;
-        try {
-          mine = std::make_shared<MappedCheckpoint>(file, control.scenario_hash);
-          std::uint64_t first = 0;
-          std::memcpy(&first, checksum.data(), sizeof first);
-          if (mine->checksum() != first)
-            mine.reset();  // another file of that name: not the first process's checkpoint
-        } catch (const CheckpointError&) {
-          mine.reset();
-        }
-      }
-      if (std::string none; mpi.all_ok(mine != nullptr, none)) {
-        control.restart_file = std::move(mine);
-      } else {
-        control.restart_payload = std::make_shared<std::string>();
-        if (mpi.rank() == 0) {
-          std::cerr << "blockdem: a process does not see " << control.restart.string()
-                    << ": process 0 sends it to every process\n";
-          control.restart_payload->assign(mine->payload());
-        }
-        mine.reset();
-        mpi.broadcast(*control.restart_payload, 0);
-      }
-    }
+    if (!control.restart.empty() && mpi.size() > 1 && !share_restart(opt, mpi, control)) return 2;
     install_stop_handlers();
     // After every step, one reduction over the processes: the largest stop signal any of them
     // received and whether any clock says a timed checkpoint is due. All stop after the same
@@ -369,57 +435,8 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     if (mpi.rank() == 0) std::cerr << "blockdem: " << r.message << "\n";
     return 128 + (agreed_signal != 0 ? agreed_signal : SIGINT);
   }
-  const bool draws =
-      opt.figures && ((beam && !r.levels.empty()) || rock_mass || r.factor_of_safety);
-  if (beam && opt.figures && !r.levels.empty()) {
-    std::string why;
-    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
-      std::cerr << "blockdem: warning: no figures: " << why << "\n";
-  }
-  if (rock_mass && opt.figures) {
-    // The blocks at the last stage end, coloured by displacement (key blocks stand out).
-    std::filesystem::path last;
-    const std::filesystem::path vtk = std::filesystem::path(opt.out) / "vtk";
-    if (std::filesystem::exists(vtk)) {
-      for (const auto& e : std::filesystem::directory_iterator(vtk)) {
-        const std::string name = e.path().filename().string();
-        if (name.rfind("blocks_", 0) == 0 && (last.empty() || e.path() > last)) last = e.path();
-      }
-    }
-    std::string why;
-    if (!last.empty() &&
-        !run_plot_script("plot_rock_mass.py",
-                         {"--run-vtk", last.string(), "--png",
-                          (std::filesystem::path(opt.out) / "blocks_final.png").string()},
-                         why))
-      std::cerr << "blockdem: warning: no figures: " << why << "\n";
-  }
-  if (r.factor_of_safety && opt.figures) {
-    std::string why;
-    if (!run_plot_script("plot_mechanism.py", {opt.out}, why))
-      std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
-  }
-  // The figures are part of the run: the record, written last, lists them too.
-  if (draws) update_files_record(opt.out, r.foreign_files);
-  if (r.factor_of_safety)
-    std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
-  if (r.collapse) {
-    std::fprintf(stderr, "blockdem: collapse between %.4g g (stable) and %.4g g (failed)\n",
-                 r.collapse->first, r.collapse->second);
-  }
-  if (mpi.rank() != 0) return r.exit_code;
-  if (r.exit_code != 0) {
-    std::cerr << "blockdem: error: " << r.message << "\n"
-              << "blockdem: outputs up to the last good state are in " << opt.out
-              << " (summary.json status \"" << r.status << "\")\n";
-  } else if (!opt.quiet) {
-    char buf[128];
-    // The whole command's time: reading the scenario (a large one's rock mass cut) and the run.
-    std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ",
-                  seconds_since(command0), static_cast<long long>(r.steps));
-    std::cerr << buf << opt.out << "\n";
-  }
-  return r.exit_code;
+  draw_figures(opt, r, beam, rock_mass);
+  return report_end(opt, r, mpi, command0);
 }
 
 }  // namespace

@@ -40,19 +40,13 @@ def run(scenario, out, progress=None):
         if not existed:
             shutil.rmtree(out, ignore_errors=True)
         else:
-            for name in _RUN_OUTPUTS:
+            for name in _core.run_output_names():
                 target = out / name
                 if target.is_dir():
                     shutil.rmtree(target, ignore_errors=True)
                 elif target.exists():
                     target.unlink()
         raise
-
-
-# What a run writes into its folder (removed again after an input error).
-_RUN_OUTPUTS = ["history.csv", "blocks.csv", "contacts.csv", "joints.csv", "levels.csv",
-                "summary.json", "strength_reduction.csv", "mechanism.csv", "collapse_search.csv",
-                "collapse_mechanism.csv", "vtk"]
 
 
 def data_dir():

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "blockdem/run/run_files.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/scenario/scenario.hpp"
@@ -131,7 +132,7 @@ void bind_scenario(py::module_& m) {
           r = run_scenario(sc, out, cb);
         }
         py::dict d;
-        d["status"] = r.status;
+        d["status"] = to_string(r.status);
         d["message"] = r.message;
         d["exit_code"] = r.exit_code;
         d["steps"] = r.steps;
@@ -145,6 +146,10 @@ void bind_scenario(py::module_& m) {
       py::arg("scenario"), py::arg("out"), py::arg("progress") = nullptr,
       "Runs every stage and writes the outputs of `blockdem run` into `out`; returns status, "
       "message, exit_code, steps, wall_time (s), factor_of_safety, collapse (g) and summary.");
+  m.def(
+      "run_output_names", [] { return run_output_names(); },
+      "The files and folders directly under an output folder that a run may write (what an "
+      "input error found while running removes again).");
 }
 
 }  // namespace blockdem::python

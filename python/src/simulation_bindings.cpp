@@ -9,9 +9,7 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "blockdem/numerics/units.hpp"
-#include "blockdem/world/stability.hpp"
-#include "blockdem/world/stage.hpp"
+#include "blockdem/run/stage_driver.hpp"
 #include "simulation.hpp"
 
 namespace py = pybind11;
@@ -51,48 +49,71 @@ py::dict stage_dict(const StageResult& r) {
   return d;
 }
 
-/// A strength-reduction stage: the factor of safety, the world left as it was (as the runner).
-py::dict reduce_strength(Simulation& sim, const Stage& stage) {
-  const World& w = sim.world;
-  std::vector<int> laws;
-  for (int i = 0; i < static_cast<int>(w.joint_laws().size()); ++i) {
-    const auto& names = stage.strength.laws;
-    if (names.empty() ||
-        std::find(names.begin(), names.end(), w.joint_laws()[i].name) != names.end())
-      laws.push_back(i);
+/// What drive_stages reported of the one stage run_stage drives: its result, or its strength
+/// reduction, and its collapse search. A stage that blew up throws its DivergenceError on.
+struct StageRecord final : RunObserver {
+  StageResult result;
+  std::optional<StabilitySearch> strength;
+  std::optional<StabilitySearch> collapse;
+
+  void on_stage_end(const World&, const StageEnd& end) override {
+    if (end.error) std::rethrow_exception(end.error);
+    result = end.result;
   }
-  StabilitySearch sr;
-  {
-    py::gil_scoped_release free;
-    sr = strength_reduction(w, stage, laws, stage.strength.lower, stage.strength.upper,
-                            stage.strength.tolerance);
+  void on_interrupted(const World&, const Stage&, int, const StageResult* r) override {
+    if (r) result = *r;
   }
+  void on_strength_reduction(const World&, const Stage&, int, const StabilitySearch& search,
+                             const StageResult& r) override {
+    strength = search;
+    result = r;
+  }
+  void on_collapse_search(const Stage&, int, const StabilitySearch& search) override {
+    collapse = search;
+  }
+};
+
+/// A strength-reduction stage: the factor of safety (the world is left as it was).
+py::dict strength_dict(const Stage& stage, const StabilitySearch& sr, std::int64_t steps) {
   py::dict d;
   d["name"] = stage.name;
   d["converged"] = true;
   d["factor_of_safety"] = 0.5 * (sr.last_stable + sr.first_failed);
   d["last_stable"] = sr.last_stable;
   d["first_failed"] = sr.first_failed;
-  std::int64_t steps = 0;
-  for (const auto& t : sr.trials) steps += t.steps;
   d["steps"] = steps;
   return d;
 }
 
-/// The collapse load of an equilibrium stage with find_collapse that failed, bisected from the
-/// state before it as `blockdem run` does: {last_stable, first_failed, trials} in g.
-py::dict collapse_search(const World& before, const Stage& stage) {
-  const double g_stable = before.settings().gravity.norm() / kOneG;
-  const double g_failed = stage.gravity->norm() / kOneG;
-  StabilitySearch cs;
-  {
-    py::gil_scoped_release free;
-    cs = find_collapse_load(before, stage, g_stable, g_failed, stage.collapse_tolerance);
-  }
+/// The collapse load of a failed stage, bisected as `blockdem run` does: {last_stable,
+/// first_failed, trials} in g.
+py::dict collapse_dict(const StabilitySearch& cs) {
   py::dict d;
   d["last_stable"] = cs.last_stable;
   d["first_failed"] = cs.first_failed;
   d["trials"] = cs.trials.size();
+  return d;
+}
+
+/// Runs stage `i` with the driver `blockdem run` uses; `hook` may stop it.
+py::dict run_one_stage(Simulation& s, int i, const StepHook& hook) {
+  const Stage& stage = s.scenario->stages[i];
+  DriveControl control;
+  if (hook) {
+    control.after_step = [&hook](int, const StageResume& at, const MotionMonitor&, const World*) {
+      return !hook(at.steps_done);
+    };
+  }
+  control.search_after_any_failure = true;
+  StageRecord record;
+  {
+    py::gil_scoped_release free;
+    drive_stages(s.world, s.scenario->stages, i + 1, DriveStart{i, nullptr, {}, {}}, control,
+                 {&record});
+  }
+  if (record.strength) return strength_dict(stage, *record.strength, record.result.steps);
+  py::dict d = stage_dict(record.result);
+  if (record.collapse) d["collapse"] = collapse_dict(*record.collapse);
   return d;
 }
 
@@ -135,24 +156,8 @@ void bind_simulation(py::module_& m) {
             if (i < 0 || i >= n)
               throw py::index_error("stage " + std::to_string(i) + " out of range (" +
                                     std::to_string(n) + " stages)");
-            const Stage& stage = s.scenario->stages[i];
             s.next_stage = i + 1;
-            if (stage.kind == Stage::Kind::strength_reduction) return reduce_strength(s, stage);
-            const StepHook hook = make_hook(self, callback, every);
-            const bool search = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
-            std::optional<World> before;
-            if (search) before.emplace(s.world);  // every trial starts from here
-            StageResult r;
-            {
-              py::gil_scoped_release free;
-              AfterStepFn after;
-              if (hook) after = [&hook](const StageResume& at) { return !hook(at.steps_done); };
-              r = run_stage(s.world, stage, {}, nullptr, after);
-            }
-            py::dict d = stage_dict(r);
-            if (search && !r.converged && !r.interrupted)
-              d["collapse"] = collapse_search(*before, stage);
-            return d;
+            return run_one_stage(s, i, make_hook(self, callback, every));
           },
           py::arg("index") = py::none(), py::arg("callback") = py::none(), py::arg("every") = 100,
           "Runs stage `index` (default: the next one) as `blockdem run` does; callback(sim, "

@@ -24,6 +24,7 @@
 #include "blockdem/lab/shear_test.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/studies/boon2015/reproduce.hpp"
+#include "blockdem/world/contact_mode.hpp"
 
 namespace py = pybind11;
 
@@ -48,27 +49,28 @@ void write_calibration(const std::filesystem::path& out, Report report, WriteCsv
   if (!f) throw std::runtime_error("cannot write " + (out / "calibration.json").string());
 }
 
+/// The words quoted and listed: "a", "b" or "c".
+std::string quoted_choices(const std::vector<std::string>& words) {
+  std::string list;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (i > 0) list += i + 1 == words.size() ? " or " : ", ";
+    list += "\"" + words[i] + "\"";
+  }
+  return list;
+}
+
 TwoBlockRigDef rig_for(const std::string& mode) {
-  if (mode != "boon2012" && mode != "face_integrated")
-    throw py::value_error("mode: must be \"boon2012\" or \"face_integrated\", got \"" + mode +
-                          "\"");
+  const std::optional<ContactMode> parsed = parse_contact_mode(mode);
+  if (!parsed)
+    throw py::value_error("mode: must be " + quoted_choices(contact_mode_names()) + ", got \"" +
+                          mode + "\"");
   TwoBlockRigDef rig;
-  rig.contact_mode =
-      mode == "face_integrated" ? ContactMode::face_integrated : ContactMode::boon2012;
+  rig.contact_mode = *parsed;
   return rig;
 }
 
-}  // namespace
-
-void bind_studies(py::module_& m) {
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const CalibrationError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    }
-  });
-
+/// The analytical voussoir beam (Diederichs & Kaiser 1999).
+void bind_analytic(py::module_& m) {
   m.def(
       "analytic_voussoir",
       [](double span, double depth, double density, double gravity, double modulus,
@@ -100,7 +102,10 @@ void bind_studies(py::module_& m) {
       "The voussoir beam of Diederichs & Kaiser (1999), as `blockdem analytic voussoir`: span, "
       "depth (m), density (kg/m^3), gravity (m/s^2), modulus E_rm (Pa); optional width (m), "
       "compressive_strength (Pa), friction_deg. Returns the JSON report as a dict.");
+}
 
+/// The virtual laboratory: compression and shear along displacement paths.
+void bind_lab(py::module_& m) {
   m.def(
       "lab_compression",
       [](const std::string& normal, std::optional<double> max_closure,
@@ -169,7 +174,10 @@ void bind_studies(py::module_& m) {
       py::arg("dem") = false, py::arg("mode") = "boon2012", py::arg("out") = py::none(),
       "A constant-normal-stress shear path, as `blockdem lab shear`: normal_stress (Pa), "
       "max_displacement (m). With out: shear.csv there. Returns the JSON summary.");
+}
 
+/// Joint-law calibration from laboratory curves.
+void bind_calibration(py::module_& m) {
   m.def(
       "calibrate_normal",
       [](const std::filesystem::path& data, double modulus, double height, int joints,
@@ -227,20 +235,24 @@ void bind_studies(py::module_& m) {
       py::arg("stiffness_exponent") = 0.7, py::arg("out") = py::none(),
       "The continuously-yielding law (eqs 8-16) from direct shear curves, as `blockdem "
       "calibrate continuously_yielding`. Returns the report.");
+}
 
+/// The reproduction of Boon et al. (2015).
+void bind_reproduce(py::module_& m) {
   m.def(
       "reproduce_boon2015",
       [](const std::filesystem::path& out, const std::filesystem::path& scenarios,
          const std::vector<std::string>& cases, const std::string& modes, int jobs,
          const std::function<void(const std::string&)>& progress) {
-        if (modes != "both" && modes != "boon2012" && modes != "face_integrated")
-          throw py::value_error("modes: must be \"both\", \"boon2012\" or \"face_integrated\"");
         Boon2015Selection sel;
         sel.scenarios = scenarios;
         sel.cases = cases;
-        sel.modes.clear();
-        if (modes != "face_integrated") sel.modes.push_back(ContactMode::boon2012);
-        if (modes != "boon2012") sel.modes.push_back(ContactMode::face_integrated);
+        sel.modes = contact_modes_selected(modes);
+        if (sel.modes.empty()) {
+          std::vector<std::string> words = contact_mode_names();
+          words.insert(words.begin(), "both");
+          throw py::value_error("modes: must be " + quoted_choices(words));
+        }
         std::vector<Boon2015CaseRun> runs = select_boon2015_cases(sel);
         const int threads =
             jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -251,7 +263,7 @@ void bind_studies(py::module_& m) {
           callbacks.case_done = [&](const Boon2015CaseRun& r) {
             if (!progress) return;
             py::gil_scoped_acquire hold;
-            progress(r.spec.id + ": " + r.result.status + " after " +
+            progress(r.spec.id + ": " + to_string(r.result.status) + " after " +
                      std::to_string(r.result.steps) + " steps");
           };
           run_boon2015_cases(runs, out, threads, callbacks);
@@ -263,7 +275,7 @@ void bind_studies(py::module_& m) {
         for (const auto& r : runs) {
           py::dict d;
           d["id"] = r.spec.id;
-          d["status"] = r.result.status;
+          d["status"] = to_string(r.result.status);
           d["message"] = r.result.message;
           d["exit_code"] = r.result.exit_code;
           d["steps"] = r.result.steps;
@@ -279,6 +291,23 @@ void bind_studies(py::module_& m) {
       "Runs the cases of Boon et al. (2015) from the case files in `scenarios` into out/<id> and "
       "writes out/report.md (without figures), as `blockdem reproduce boon2015 --no-figures`. "
       "Returns one dict per case (id, status, message, exit_code, steps, wall_time, summary).");
+}
+
+}  // namespace
+
+void bind_studies(py::module_& m) {
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const CalibrationError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  bind_analytic(m);
+  bind_lab(m);
+  bind_calibration(m);
+  bind_reproduce(m);
 }
 
 }  // namespace blockdem::python

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import blockdem as bd
-from conftest import column_scene
+from conftest import cohesive_block_scene, column_scene
 
 G = 9.81
 RHO = 1207.0
@@ -220,19 +220,7 @@ def test_collapse_search_of_a_cohesive_block():
     th, phi, c = np.radians(30), np.radians(20), 453.2
     m, area = 2500 * 0.1 * 0.1 * 0.02, 0.01
     g_star = c * area / (m * (np.sin(th) - np.cos(th) * np.tan(phi))) / G
-    d = np.array([np.sin(th), 0.0, -np.cos(th)])
-    scene = bd.Scene()
-    scene.settings(damping=0.7, contact_mode="boon2012")
-    scene.joint_law("j", normal={"law": "linear", "stiffness": 1e10},
-                    shear={"law": "linear", "stiffness": 1e9, "friction_deg": 20,
-                           "cohesion": c})
-    scene.box("base", size=[1.0, 0.3, 0.05], position=[0, 0, -0.025], density=2500.0,
-              motion="fixed")
-    scene.box("block", size=[0.1, 0.1, 0.02], position=[0, 0, 0.01], density=2500.0)
-    scene.stage("settle", gravity=G * d)
-    scene.stage("load", gravity=10 * G * d, ramp_steps=2000, find_collapse=True,
-                collapse_tolerance=0.1)
-    sim = scene.simulation()
+    sim = cohesive_block_scene(bd, collapse_tolerance=0.1).simulation()
     assert sim.run_stage()["converged"]  # 1 g < g*: the bond holds
     r = sim.run_stage()
     assert r["mechanism"] and not r["converged"]

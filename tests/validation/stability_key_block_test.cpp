@@ -59,7 +59,7 @@ TEST(KeyBlock, RoofWedgeFactorOfSafetyMatchesBlockTheory) {
   const auto out = test::run_folder("key_block_roof_wedge");
   std::filesystem::remove_all(out);
   const RunResult r = run_scenario(sc, out);
-  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
   ASSERT_TRUE(r.factor_of_safety.has_value());
   const double f = *r.factor_of_safety;
   std::printf("roof wedge: F = %.5g (bracket %.5g-%.5g), block theory %.5g (%.0f s)\n", f,

@@ -31,7 +31,7 @@ TEST_P(PlanarSliding, FactorOfSafetyIsTanPhiOverTanPsi) {
   const std::string name = "stab_planar_" + std::to_string(static_cast<int>(c.psi_deg));
   const RunResult r = test::run_text(
       test::incline_scenario(c.psi_deg, c.phi_deg, 0.1, 0.02, kStrengthReduction), name);
-  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
   ASSERT_TRUE(r.factor_of_safety.has_value());
   const double expected = std::tan(deg_to_rad(c.phi_deg)) / std::tan(deg_to_rad(c.psi_deg));
   EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
@@ -70,7 +70,7 @@ TEST(PlanarSlidingWithCohesion, FactorOfSafetyMatchesHoekBray) {
   const RunResult r =
       test::run_text(test::incline_scenario(35.0, 30.0, b, h, kStrengthReduction, 0.0, cohesion),
                      "stab_planar_cohesion");
-  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
   ASSERT_TRUE(r.factor_of_safety.has_value());
   EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
   std::printf("psi 35 phi 30 c %.0f Pa: F = %.4f (closed form %.4f)\n", cohesion,

@@ -9,6 +9,7 @@
 
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/measures.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem::test {

@@ -14,6 +14,7 @@
 
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/measures.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
@@ -53,14 +54,14 @@ class Voussoir3d : public ::testing::TestWithParam<std::string> {};
 TEST_P(Voussoir3d, NoSidewaysBucklingAndThePlaneResultsWithoutTheConstraint) {
   const RunResult plane = run_variant(GetParam(), true, true);
   const RunResult free = run_variant(GetParam(), false, true);
-  ASSERT_EQ(plane.status, "completed") << plane.message;
-  ASSERT_EQ(free.status, "completed") << free.message;
-  ASSERT_EQ(free.levels.size(), plane.levels.size());
-  EXPECT_DOUBLE_EQ(free.levels.back().g_level, 40.0);
+  ASSERT_EQ(plane.status, RunStatus::completed) << plane.message;
+  ASSERT_EQ(free.status, RunStatus::completed) << free.message;
+  ASSERT_EQ(voussoir_levels(free).size(), voussoir_levels(plane).size());
+  EXPECT_DOUBLE_EQ(voussoir_levels(free).back().g_level, 40.0);
   double largest = 0.0;  // the largest relative difference over the levels
-  for (std::size_t k = 1; k < plane.levels.size(); ++k) {
-    const VoussoirLevel& p = plane.levels[k];
-    const VoussoirLevel& f = free.levels[k];
+  for (std::size_t k = 1; k < voussoir_levels(plane).size(); ++k) {
+    const VoussoirLevel& p = voussoir_levels(plane)[k];
+    const VoussoirLevel& f = voussoir_levels(free)[k];
     SCOPED_TRACE("g = " + std::to_string(p.g_level));
     EXPECT_NEAR(f.thrust, p.thrust, 0.01 * p.thrust);
     EXPECT_NEAR(f.midspan_deflection, p.midspan_deflection, 0.01 * p.midspan_deflection);
@@ -68,8 +69,8 @@ TEST_P(Voussoir3d, NoSidewaysBucklingAndThePlaneResultsWithoutTheConstraint) {
         {largest, std::abs(f.thrust - p.thrust) / p.thrust,
          std::abs(f.midspan_deflection - p.midspan_deflection) / std::abs(p.midspan_deflection)});
   }
-  const VoussoirLevel& p = plane.levels.back();
-  const VoussoirLevel& f = free.levels.back();
+  const VoussoirLevel& p = voussoir_levels(plane).back();
+  const VoussoirLevel& f = voussoir_levels(free).back();
   std::printf(
       "%s at %.0f g: thrust %.6f N (plane) / %.6f N (3D), midspan deflection %.6f / %.6f mm; "
       "largest relative difference over the levels %.2g\n",
@@ -86,9 +87,9 @@ INSTANTIATE_TEST_SUITE_P(Cases, Voussoir3d, ::testing::Values("T2-1", "T3-full")
 // (measured: at 10 g, last stable level 5 g).
 TEST(Voussoir3dControl, WithoutTwistTheUnconstrainedBeamBucklesSideways) {
   const RunResult r = run_variant("T2-1", false, false);
-  EXPECT_EQ(r.status, "collapsed") << r.message;
-  ASSERT_FALSE(r.levels.empty());
-  EXPECT_LT(r.levels.back().g_level, 40.0);
+  EXPECT_EQ(r.status, RunStatus::collapsed) << r.message;
+  ASSERT_FALSE(voussoir_levels(r).empty());
+  EXPECT_LT(voussoir_levels(r).back().g_level, 40.0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/studies/boon2015/cases.hpp"
+#include "blockdem/voussoir/measures.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
@@ -32,16 +33,16 @@ class VoussoirCase : public ::testing::TestWithParam<std::string> {};
 TEST_P(VoussoirCase, StaticsSymmetryAndPreload) {
   const std::string id = GetParam();
   const RunResult r = run_case(id);
-  ASSERT_EQ(r.status, "completed") << r.message;
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
   double g_max = 0;
   for (const auto& c : boon2015_cases()) {
     if (c.id == id) g_max = c.g_max;
   }
-  ASSERT_FALSE(r.levels.empty());
-  EXPECT_DOUBLE_EQ(r.levels.back().g_level, g_max);
+  ASSERT_FALSE(voussoir_levels(r).empty());
+  EXPECT_DOUBLE_EQ(voussoir_levels(r).back().g_level, g_max);
 
   // Preload: both abutments push with 60 N within 1%.
-  const VoussoirLevel& pre = r.levels.front();
+  const VoussoirLevel& pre = voussoir_levels(r).front();
   EXPECT_NEAR(pre.thrust, 60.0, 0.6);
   EXPECT_NEAR(pre.thrust_left, 60.0, 0.6);
 
@@ -53,7 +54,7 @@ TEST_P(VoussoirCase, StaticsSymmetryAndPreload) {
   // amplified by the relaxation, not a modelling asymmetry. Tolerance 1e-5.
   const bool plastic = id.rfind("T3-", 0) == 0 && id != "T3-half-old";
   const double sym = plastic ? 1e-4 : 1e-5;
-  for (const VoussoirLevel& lv : r.levels) {
+  for (const VoussoirLevel& lv : voussoir_levels(r)) {
     SCOPED_TRACE("g = " + std::to_string(lv.g_level));
     // Statics of the half span.
     ASSERT_TRUE(std::isfinite(lv.equilibrium_residual));
@@ -95,10 +96,10 @@ INSTANTIATE_TEST_SUITE_P(Boon2015, VoussoirCase,
 // Table 3 implies that the new laws predict (1 + new)/(1 + old) times the midspan deflection of
 // the old ones: 2.13 for the full beam (mean over three tests) and 2.125 for the half beam.
 TEST(VoussoirPaper, Table3DeflectionRatios) {
-  const double full = run_case("T3-full").levels.back().midspan_deflection /
-                      run_case("T2-2").levels.back().midspan_deflection;
-  const double half = run_case("T3-half").levels.back().midspan_deflection /
-                      run_case("T3-half-old").levels.back().midspan_deflection;
+  const double full = voussoir_levels(run_case("T3-full")).back().midspan_deflection /
+                      voussoir_levels(run_case("T2-2")).back().midspan_deflection;
+  const double half = voussoir_levels(run_case("T3-half")).back().midspan_deflection /
+                      voussoir_levels(run_case("T3-half-old")).back().midspan_deflection;
   EXPECT_NEAR(full, boon2015_ratio_full(), 0.05 * boon2015_ratio_full());
   EXPECT_NEAR(half, boon2015_ratio_half(), 0.05 * boon2015_ratio_half());
 }

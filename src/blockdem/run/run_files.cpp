@@ -7,6 +7,23 @@
 
 namespace blockdem {
 
+const std::vector<std::string>& run_output_names() {
+  static const std::vector<std::string> names = {"manifest.json",
+                                                 "summary.json",
+                                                 "history.csv",
+                                                 "time_history.csv",
+                                                 "blocks.csv",
+                                                 "contacts.csv",
+                                                 "joints.csv",
+                                                 "levels.csv",
+                                                 "strength_reduction.csv",
+                                                 "mechanism.csv",
+                                                 "collapse_search.csv",
+                                                 "collapse_mechanism.csv",
+                                                 "vtk"};
+  return names;
+}
+
 void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -27,11 +44,7 @@ void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints) 
       // An unreadable record: the standard names below still go.
     }
   }
-  for (const char* name :
-       {"manifest.json", "summary.json", "history.csv", "time_history.csv", "blocks.csv",
-        "contacts.csv", "joints.csv", "levels.csv", "strength_reduction.csv", "mechanism.csv",
-        "collapse_search.csv", "collapse_mechanism.csv", "vtk"})
-    fs::remove_all(out / name, ec);
+  for (const std::string& name : run_output_names()) fs::remove_all(out / name, ec);
   if (!keep_checkpoints) {
     fs::remove(out / kCheckpointName, ec);
     fs::remove(out / kPreviousCheckpointName, ec);

@@ -14,8 +14,12 @@ namespace blockdem {
 inline constexpr const char* kCheckpointName = "checkpoint.bdck";
 inline constexpr const char* kPreviousCheckpointName = "checkpoint.bdck.prev";
 
-/// Removes what an earlier run left in `out`: the files its summary.json lists, the files a run
-/// writes (history.csv ... summary.json), vtk/, and, unless `keep_checkpoints`, its checkpoints.
+/// The files and folders directly under the output folder that a run of any scene may write
+/// (history.csv ... summary.json, vtk), the checkpoints aside.
+const std::vector<std::string>& run_output_names();
+
+/// Removes what an earlier run left in `out`: the files its summary.json lists, run_output_names()
+/// and, unless `keep_checkpoints`, its checkpoints.
 /// Other files are left alone.
 void clear_earlier_run(const std::filesystem::path& out, bool keep_checkpoints);
 

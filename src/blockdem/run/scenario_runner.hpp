@@ -12,18 +12,19 @@
 #include <utility>
 #include <vector>
 
+#include "blockdem/scenario/run_observer.hpp"
 #include "blockdem/scenario/scenario.hpp"
-#include "blockdem/voussoir/measures.hpp"
 
 namespace blockdem {
 
 class MappedCheckpoint;
 
 struct RunResult {
-  /// "completed", "collapsed" (physical: a mechanism formed), "diverged" (numerical blow-up),
-  /// "not_converged" (no equilibrium and no mechanism within the step limit), "interrupted"
-  /// (RunControl::poll asked the run to stop).
-  std::string status = "completed";
+  /// completed, collapsed (physical: a mechanism formed), diverged (numerical blow-up),
+  /// not_converged (no equilibrium and no mechanism within the step limit), interrupted
+  /// (RunControl::poll asked the run to stop); failed is set by callers whose run threw (a
+  /// study's case).
+  RunStatus status = RunStatus::completed;
   std::string message;
   /// 0 completed, or collapsed with a collapse search asked for (the search found it);
   /// 130 interrupted (the caller maps it to its signal); 3 otherwise.
@@ -35,7 +36,9 @@ struct RunResult {
   std::optional<std::pair<double, double>> collapse;  ///< last stable, first failed (g)
   std::optional<double> factor_of_safety;             ///< of the last strength_reduction stage
   nlohmann::json summary;                             ///< what summary.json holds
-  std::vector<VoussoirLevel> levels;  ///< voussoir runs: the converged levels, preload first
+  /// The observer the scene handed in (BuiltScene::observer), for the caller to read what it
+  /// measured; null when the scene has none.
+  std::shared_ptr<const RunObserver> scene_output;
   std::vector<std::int64_t> steps_per_stage;
   std::int64_t steps = 0;
   double wall_time = 0.0;  ///< (s)

@@ -1,7 +1,9 @@
-// The list of built-in scene builders.
+// The list of built-in scene builders, and the voussoir levels a run's observer measured.
 #include "blockdem/run/scene_builders.hpp"
 
 #include "blockdem/rockmass/scene.hpp"
+#include "blockdem/run/scenario_runner.hpp"
+#include "blockdem/voussoir/recorder.hpp"
 #include "blockdem/voussoir/scene.hpp"
 
 namespace blockdem {
@@ -19,6 +21,12 @@ Scenario load_scenario(const std::string& path) {
 
 Scenario parse_scenario(const std::string& toml_text, const std::string& file) {
   return parse_scenario(toml_text, file, scene_builders());
+}
+
+const std::vector<VoussoirLevel>& voussoir_levels(const RunResult& result) {
+  static const std::vector<VoussoirLevel> none;
+  const auto* recorder = dynamic_cast<const VoussoirRecorder*>(result.scene_output.get());
+  return recorder ? recorder->stable_levels() : none;
 }
 
 }  // namespace blockdem

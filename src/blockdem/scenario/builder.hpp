@@ -3,11 +3,13 @@
 // in the layers above this one and are handed to the reader (run/scene_builders.hpp lists them).
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "blockdem/scenario/checked_table.hpp"
+#include "blockdem/scenario/run_observer.hpp"
 
 namespace blockdem {
 
@@ -17,6 +19,18 @@ struct Scenario;
 /// from it and find it again with dynamic_cast.
 struct BuiltScene {
   virtual ~BuiltScene() = default;
+  /// The observer that writes this scene's outputs of a run into `out` (null: none), made once the
+  /// world is built.
+  virtual std::unique_ptr<RunObserver> observer(const std::filesystem::path& /*out*/,
+                                                const World& /*world*/) const {
+    return nullptr;
+  }
+  /// Whether the observer writes history.csv and blocks.csv itself (the run then writes neither
+  /// those nor contacts.csv).
+  virtual bool writes_own_tables() const { return false; }
+  /// Empty when runs of this scene can take checkpoints and restart; otherwise what the scenes
+  /// are called in the message that says they cannot (e.g. "voussoir beam scenarios").
+  virtual std::string without_checkpoints() const { return {}; }
 };
 
 class SceneBuilder {

@@ -1,14 +1,16 @@
 // Voussoir outputs.
 #include "blockdem/voussoir/recorder.hpp"
-#include "blockdem/numerics/units.hpp"
 
 #include <cmath>
+#include <cstdio>
+
+#include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 
-namespace {}
-
-VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, const World&) {
+VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, VoussoirSpec spec,
+                                   VoussoirLayout layout)
+    : spec_(std::move(spec)), layout_(std::move(layout)) {
   history_ = std::make_unique<CsvWriter>(
       dir / "history.csv",
       std::vector<std::string>{
@@ -91,6 +93,38 @@ void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const
   }
   joints_->flush();
   levels_.push_back(lv);
+}
+
+void VoussoirRecorder::on_stage_end(const World& world, const StageEnd& end) {
+  if (end.diverged) return;
+  const double g_level = world.settings().gravity.norm() / kOneG;
+  if (end.level == 0) reference_ = capture_reference(world);
+  const VoussoirLevel lv = measure_voussoir(world, spec_, layout_, reference_, g_level);
+  record(world, lv, end.stage.name, end.result.converged, end.result.steps, end.level);
+  if (end.result.converged) stable_.push_back(lv);
+}
+
+void VoussoirRecorder::on_run_end() {
+  history_.reset();
+  blocks_.reset();
+  joints_.reset();
+}
+
+std::string VoussoirRecorder::failure_note() const {
+  if (stable_.empty()) return {};
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g g", stable_.back().g_level);
+  return std::string("; last stable level ") + buf;
+}
+
+void VoussoirRecorder::add_to_summary(nlohmann::json& summary, RunStatus status) const {
+  summary["voussoir"] = voussoir_summary(spec_, stable_);
+  // The headline numbers at the top level too, as the contract asks.
+  for (const char* key :
+       {"g_max", "thrust_N", "midspan_deflection_mm", "equilibrium_residual", "fits"}) {
+    if (summary["voussoir"].contains(key)) summary[key] = summary["voussoir"][key];
+  }
+  summary["lost_equilibrium"] = status != RunStatus::completed;
 }
 
 nlohmann::json fit_json(const VoussoirLevel& lv) {

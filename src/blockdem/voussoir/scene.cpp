@@ -2,6 +2,8 @@
 // preload can be reached with the joint law.
 #include "blockdem/voussoir/scene.hpp"
 
+#include "blockdem/voussoir/recorder.hpp"
+
 #include <sstream>
 #include <stdexcept>
 
@@ -69,6 +71,11 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
 }
 
 }  // namespace
+
+std::unique_ptr<RunObserver> VoussoirScene::observer(const std::filesystem::path& out,
+                                                     const World&) const {
+  return std::make_unique<VoussoirRecorder>(out, spec, layout);
+}
 
 const VoussoirScene* voussoir_scene(const Scenario& scenario) {
   return dynamic_cast<const VoussoirScene*>(scenario.built.get());

@@ -11,6 +11,12 @@ namespace blockdem {
 struct VoussoirScene : BuiltScene {
   VoussoirSpec spec;
   VoussoirLayout layout;
+
+  /// A VoussoirRecorder.
+  std::unique_ptr<RunObserver> observer(const std::filesystem::path& out,
+                                        const World& world) const override;
+  bool writes_own_tables() const override { return true; }
+  std::string without_checkpoints() const override { return "voussoir beam scenarios"; }
 };
 
 /// The voussoir scene of a scenario, or nullptr when it was not built by [voussoir].

@@ -3,6 +3,7 @@
 // used by UDEC/3DEC, applied to joint strengths.
 #include "blockdem/world/stability.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -25,6 +26,16 @@ JointLaw divide_strength(const JointLaw& law, double factor) {
   JointLaw out = law;
   out.shear = with_reduced_strength(law.shear, factor);
   return out;
+}
+
+std::vector<int> laws_named(const World& world, const std::vector<std::string>& names) {
+  std::vector<int> laws;
+  for (int i = 0; i < static_cast<int>(world.joint_laws().size()); ++i) {
+    if (names.empty() ||
+        std::find(names.begin(), names.end(), world.joint_laws()[i].name) != names.end())
+      laws.push_back(i);
+  }
+  return laws;
 }
 
 bool has_strength(const JointLaw& law) {

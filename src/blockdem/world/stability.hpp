@@ -59,6 +59,10 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
                                    double tolerance, const TrialFn& done = {});
 
+/// Indices into world.joint_laws() of the laws named in `names` (every law when it is empty), in
+/// the world's order: the laws a strength reduction divides.
+std::vector<int> laws_named(const World& world, const std::vector<std::string>& names);
+
 /// The law with its strengths divided by `factor` (with_reduced_strength: tan(phi)/F, c/F,
 /// sigma_t/F and the residual tan(phi_r)/F; stiffnesses unchanged).
 JointLaw divide_strength(const JointLaw& law, double factor);

@@ -28,7 +28,13 @@ double largest_face_area(const Polyhedron& shape) {
 }  // namespace
 
 const char* to_string(ContactMode mode) {
-  return mode == ContactMode::face_integrated ? "face_integrated" : "boon2012";
+  switch (mode) {
+    case ContactMode::boon2012:
+      return "boon2012";
+    case ContactMode::face_integrated:
+      return "face_integrated";
+  }
+  return "boon2012";
 }
 
 void WorldSettings::validate() const {

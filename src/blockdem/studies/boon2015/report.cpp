@@ -10,6 +10,8 @@
 
 #include "blockdem/analysis/voussoir_analytic.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/scene_builders.hpp"
+#include "blockdem/voussoir/measures.hpp"
 #include "blockdem/voussoir/scene.hpp"
 
 namespace blockdem {
@@ -22,7 +24,7 @@ std::string f(const char* format, double v) {
 }
 
 const VoussoirLevel* level_at(const RunResult& r, double g) {
-  for (const auto& lv : r.levels) {
+  for (const auto& lv : voussoir_levels(r)) {
     if (std::abs(lv.g_level - g) < 1e-9) return &lv;
   }
   return nullptr;
@@ -36,7 +38,8 @@ const Boon2015CaseRun* find(const std::vector<Boon2015CaseRun>& runs, const std:
 }
 
 double final_deflection(const Boon2015CaseRun& r) {
-  return r.result.levels.empty() ? std::nan("") : r.result.levels.back().midspan_deflection;
+  return voussoir_levels(r.result).empty() ? std::nan("")
+                                           : voussoir_levels(r.result).back().midspan_deflection;
 }
 
 int case_order(const std::string& id) {
@@ -48,8 +51,8 @@ int case_order(const std::string& id) {
 }
 
 bool complete(const Boon2015CaseRun& r) {
-  return r.result.status == "completed" && !r.result.levels.empty() &&
-         std::abs(r.result.levels.back().g_level - r.spec.g_max) < 1e-9;
+  return r.result.status == RunStatus::completed && !voussoir_levels(r.result).empty() &&
+         std::abs(voussoir_levels(r.result).back().g_level - r.spec.g_max) < 1e-9;
 }
 
 /// What every section of the report reads.
@@ -134,12 +137,13 @@ void write_collapse_section(std::ostream& o, const ReportInput& in) {
     o << ".\n";
   }
   for (const auto& r : runs) {
-    if (r.result.collapse || r.result.levels.empty()) continue;
-    if (r.result.status == "completed")
-      o << "- " << r.spec.id << ": no collapse up to " << f("%g", r.result.levels.back().g_level)
-        << " g.\n";
+    if (r.result.collapse || voussoir_levels(r.result).empty()) continue;
+    if (r.result.status == RunStatus::completed)
+      o << "- " << r.spec.id << ": no collapse up to "
+        << f("%g", voussoir_levels(r.result).back().g_level) << " g.\n";
     else
-      o << "- " << r.spec.id << ": " << r.result.status << " (no collapse search result).\n";
+      o << "- " << r.spec.id << ": " << to_string(r.result.status)
+        << " (no collapse search result).\n";
   }
   if (!any) o << "\nNo case collapsed.\n";
   o << "\n";
@@ -194,7 +198,7 @@ void write_headline_table(std::ostream& o, const ReportInput& in) {
        "max σ_n (MPa) | statics residual (max) | steps | status | the paper reports |\n"
     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
-    const auto& lv = r.result.levels;
+    const auto& lv = voussoir_levels(r.result);
     double worst = 0.0;
     for (const auto& l : lv) {
       if (std::isfinite(l.equilibrium_residual)) worst = std::max(worst, l.equilibrium_residual);
@@ -202,15 +206,16 @@ void write_headline_table(std::ostream& o, const ReportInput& in) {
     o << "| " << r.spec.id << " | " << r.spec.beam << " | " << r.spec.normal_law << " | "
       << r.spec.shear_law << " | ";
     if (lv.empty()) {
-      o << "- | - | - | - | - | - | " << r.result.steps << " | " << r.result.status << " | "
-        << r.spec.paper_reports << " |\n";
+      o << "- | - | - | - | - | - | " << r.result.steps << " | " << to_string(r.result.status)
+        << " | " << r.spec.paper_reports << " |\n";
       continue;
     }
     const auto& last = lv.back();
     o << f("%g", last.g_level) << " | " << f("%.1f", last.thrust) << " | "
       << f("%.4f", 1e3 * last.midspan_deflection) << " | " << f("%.4f", 1e3 * last.abutment_slip)
       << " | " << f("%.3f", 1e-6 * last.max_normal_stress) << " | " << f("%.2e", worst) << " | "
-      << r.result.steps << " | " << r.result.status << " | " << r.spec.paper_reports << " |\n";
+      << r.result.steps << " | " << to_string(r.result.status) << " | " << r.spec.paper_reports
+      << " |\n";
   }
   o << "\nThe statics residual is |H z − W S/8| / (W S/8) for the half span (H: midspan joint "
        "force, z: height of "
@@ -289,7 +294,7 @@ void write_thrust(std::ostream& o, const ReportInput& in) {
     o << (count > 1 ? f("%.1f%%", 100 * (hi - lo) / (sum / count)) : std::string("-")) << " |\n";
   }
   if (const auto* r = find(runs, "T2-1"); r != nullptr && complete(*r)) {
-    const double t = r->result.levels.back().thrust;
+    const double t = voussoir_levels(r->result).back().thrust;
     auto percent = [&](double reference) {
       return f("%+.0f%%", 100 * (t - reference) / reference);
     };
@@ -350,8 +355,8 @@ void write_rotations(std::ostream& o, const ReportInput& in) {
     << "| case | g | end blocks (deg) | blocks next to them (deg) | midspan blocks (deg) "
        "|\n|---|---|---|---|---|\n";
   for (const auto& r : runs) {
-    if (r.result.levels.empty()) continue;
-    const auto& lv = r.result.levels.back();
+    if (voussoir_levels(r.result).empty()) continue;
+    const auto& lv = voussoir_levels(r.result).back();
     const auto& b = lv.blocks;
     if (b.size() != 6) continue;
     auto mean_abs = [&](std::size_t i, std::size_t j) {
@@ -376,8 +381,8 @@ void write_analytical(std::ostream& o, const ReportInput& in) {
        "analytic f_m (MPa) | DEM max σ_n (MPa) |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
     const auto* lin = std::get_if<LinearNormal>(&voussoir_scene(r.scenario)->spec.law.normal);
-    if (lin == nullptr || r.result.levels.empty()) continue;
-    const auto& lv = r.result.levels.back();
+    if (lin == nullptr || voussoir_levels(r.result).empty()) continue;
+    const auto& lv = voussoir_levels(r.result).back();
     const VoussoirSpec& v = voussoir_scene(r.scenario)->spec;
     VoussoirBeamDef def;
     def.span = v.span();
@@ -429,8 +434,9 @@ void write_incomplete(std::ostream& o, const ReportInput& in) {
   o << "| case | last level in equilibrium | status | what happened |\n|---|---|---|---|\n";
   for (const auto* r : short_runs) {
     o << "| " << r->spec.id << " | "
-      << (r->result.levels.empty() ? std::string("-") : f("%g g", r->result.levels.back().g_level))
-      << " | " << r->result.status << " | " << r->result.message << " |\n";
+      << (voussoir_levels(r->result).empty() ? std::string("-")
+                                             : f("%g g", voussoir_levels(r->result).back().g_level))
+      << " | " << to_string(r->result.status) << " | " << r->result.message << " |\n";
   }
 }
 
@@ -453,11 +459,11 @@ void write_contact_modes(std::ostream& o, const ReportInput& in) {
       << "|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& fi : integrated) {
       const auto* pt = find(runs, fi.base_id);
-      if (fi.result.levels.empty()) {
-        o << "| " << fi.spec.id << " | - | " << fi.result.status << " | | | | | | |\n";
+      if (voussoir_levels(fi.result).empty()) {
+        o << "| " << fi.spec.id << " | - | " << to_string(fi.result.status) << " | | | | | | |\n";
         continue;
       }
-      const VoussoirLevel& b = fi.result.levels.back();
+      const VoussoirLevel& b = voussoir_levels(fi.result).back();
       const VoussoirLevel* a = pt != nullptr ? level_at(pt->result, b.g_level) : nullptr;
       auto pair = [&](double x, double y, const char* fm) {
         return (a != nullptr ? f(fm, x) : std::string("-")) + " / " + f(fm, y);

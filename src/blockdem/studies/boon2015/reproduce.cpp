@@ -91,7 +91,7 @@ void run_boon2015_cases(std::vector<Boon2015CaseRun>& runs, const std::filesyste
       try {
         r.result = run_scenario(r.scenario, out / r.spec.id, cb);
       } catch (const std::exception& e) {
-        r.result.status = "failed";
+        r.result.status = RunStatus::failed;
         r.result.message = e.what();
         r.result.exit_code = 1;
       }

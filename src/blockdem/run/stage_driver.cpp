@@ -1,0 +1,149 @@
+// The stage loop: each stage run (or its strength reduction), its failure classified and
+// explained, observers told, and the collapse search of a failed stage that asks for one.
+#include "blockdem/run/stage_driver.hpp"
+
+#include "blockdem/numerics/units.hpp"
+
+namespace blockdem {
+namespace {
+
+/// A strength-reduction stage: the factor of safety; the world stays in the state before it.
+void reduce_strength(const World& world, const World& before, const Stage& stage, int level,
+                     const DriveControl& control, const std::vector<RunObserver*>& observers) {
+  StabilitySearch search;
+  try {
+    search = strength_reduction(before, stage, laws_named(world, stage.strength.laws),
+                                stage.strength.lower, stage.strength.upper,
+                                stage.strength.tolerance, control.trial_done);
+  } catch (const std::invalid_argument& e) {
+    throw StrengthReductionError(level, e.what());
+  }
+  StageResult result;
+  result.name = stage.name;
+  result.converged = true;
+  for (const auto& t : search.trials) result.steps += t.steps;
+  result.time = world.time();
+  result.measures = world.equilibrium();
+  for (RunObserver* o : observers) o->on_strength_reduction(world, stage, level, search, result);
+}
+
+/// One stage run: a DivergenceError ends it with the last observation before the blow-up.
+struct StageRun {
+  StageResult result;
+  bool diverged = false;
+  bool refused = false;  ///< a StepFailure: a value refused inside a step
+  std::exception_ptr error;
+};
+
+StageRun run_one_stage(World& world, const Stage& stage, int level, DriveStart& start,
+                       bool resuming, std::optional<MotionMonitor>& monitor,
+                       const std::optional<World>& before, const DriveControl& control) {
+  AfterStepFn after_step;
+  if (control.after_step) {
+    after_step = [&](const StageResume& at) {
+      return control.after_step(level, at, *monitor, before ? &*before : nullptr);
+    };
+  }
+  StepFn on_step;
+  if (control.on_step) {
+    on_step = [&](const World& w, const Stage& s, std::int64_t) { control.on_step(w, s, level); };
+  }
+  const ProgressFn progress = control.progress ? control.progress(level) : ProgressFn{};
+  StageRun run;
+  try {
+    run.result = run_stage(world, stage, progress, &monitor, after_step,
+                           resuming ? start.resume : nullptr, on_step, control.sync);
+  } catch (const DivergenceError& e) {
+    run.diverged = true;
+    run.refused = dynamic_cast<const StepFailure*>(&e) != nullptr;
+    run.error = std::current_exception();
+    run.result.name = stage.name;
+    run.result.time = world.time();
+    run.result.measures = world.equilibrium();
+    run.result.message = e.what();
+    run.result.motion = monitor->report();
+  }
+  return run;
+}
+
+/// Bisects the collapse load of `stage` between the gravity of `before` and the stage's.
+std::pair<double, double> search_collapse(const World& before, const Stage& stage, int level,
+                                          const DriveControl& control,
+                                          const std::vector<RunObserver*>& observers) {
+  const double g_stable = before.settings().gravity.norm() / kOneG;
+  const double g_failed = stage.gravity->norm() / kOneG;
+  const StabilitySearch cs = find_collapse_load(before, stage, g_stable, g_failed,
+                                                stage.collapse_tolerance, control.trial_done);
+  for (RunObserver* o : observers) o->on_collapse_search(stage, level, cs);
+  return {cs.last_stable, cs.first_failed};
+}
+
+}  // namespace
+
+DriveResult drive_stages(World& world, const std::vector<Stage>& stages, int end, DriveStart start,
+                         const DriveControl& control, const std::vector<RunObserver*>& observers) {
+  const int first = start.level;
+  for (int level = first; level < end; ++level) {
+    const Stage& stage = stages[level];
+    const bool search = stage.find_collapse && stage.kind == Stage::Kind::equilibrium;
+    const bool reduce = stage.kind == Stage::Kind::strength_reduction;
+    const bool resuming = level == first && start.resume != nullptr;
+    // A stage starts from the whole world (the previous stage left each process its own part:
+    // the refresh that ended a stage now comes at the next one's start, and none after the last).
+    world.synchronize();
+    if (!resuming && control.at_boundary && control.at_boundary(level)) {
+      for (RunObserver* o : observers) o->on_interrupted(world, stage, level, nullptr);
+      DriveResult stopped{RunStatus::interrupted, level, {}, true, {}};
+      stopped.stage.name = stage.name;
+      return stopped;
+    }
+    // The state before the stage, from which every trial of a search starts.
+    std::optional<World> before;
+    if (resuming && start.before) {
+      before = std::move(start.before);
+    } else if (!resuming && (search || reduce)) {
+      before.emplace(world);
+    }
+    if (reduce) {
+      reduce_strength(world, *before, stage, level, control, observers);
+      continue;
+    }
+    std::optional<MotionMonitor> monitor;
+    if (resuming) monitor = std::move(start.monitor);
+    for (RunObserver* o : observers) o->on_stage_start(world, stage, level);
+    StageRun run = run_one_stage(world, stage, level, start, resuming, monitor, before, control);
+    StageResult& result = run.result;
+    if (result.interrupted) {
+      for (RunObserver* o : observers) o->on_interrupted(world, stage, level, &result);
+      return {RunStatus::interrupted, level, std::move(result), false, {}};
+    }
+    const bool failed = run.diverged || !result.converged;
+    bool reads = false;
+    for (const RunObserver* o : observers) reads = reads || o->reads_world_at_stage_end(stage);
+    // Collective, on every process alike (a no-op on a whole world).
+    if (failed || reads) world.synchronize();
+    // A value refused inside a step is numerical whatever the motion before it looked like.
+    const FailureKind kind = run.refused ? FailureKind::diverged
+                             : failed    ? classify_failure(*monitor, run.diverged)
+                                         : FailureKind::not_converged;
+    const StageEnd stage_end{stage,
+                             level,
+                             result,
+                             run.diverged,
+                             run.error,
+                             failed ? std::optional<FailureKind>(kind) : std::nullopt,
+                             failed ? explain_failure(kind, result.motion, world) : ""};
+    for (RunObserver* o : observers) o->on_stage_end(world, stage_end);
+    if (!failed) continue;
+    DriveResult ended{run_status(kind), level, result, false, {}};
+    ended.stage.message = stage_end.message();
+    if (search && (kind != FailureKind::diverged || control.search_after_any_failure)) {
+      ended.collapse = search_collapse(*before, stage, level, control, observers);
+      ended.status = RunStatus::collapsed;
+    }
+    return ended;
+  }
+  return {};
+}
+
+}  // namespace blockdem

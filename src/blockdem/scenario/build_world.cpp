@@ -1,0 +1,130 @@
+// The world a scenario describes: its blocks, joint laws and rules, with deep initial overlaps
+// and an absurd time step refused as input errors.
+#include <Eigen/Core>
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "blockdem/collision/boon2012.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
+#include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/scenario.hpp"
+
+namespace blockdem {
+
+void check_time_step(const Scenario& sc, const World& world) {
+  const double dt = world.next_time_step();
+  if (dt < 1e-9) {
+    std::ostringstream s;
+    s << "the time step would be " << dt
+      << " s: a second of model time would take more than 1e9 steps. Check the units of the "
+         "densities (kg/m^3), block sizes (m) and joint stiffnesses (Pa/m), or set time_step";
+    throw ScenarioError(sc.file, "settings.time_step", s.str());
+  }
+}
+
+namespace {
+
+// build_world with the blocks given apart: copied from the scenario's (const), or moved.
+template <class Blocks>
+World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
+  World w(sc.settings);
+  for (const auto& law : sc.joint_laws) w.add_joint_law(law);
+  for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
+  w.reserve_blocks(scenario_blocks.size());
+  for (auto& b : scenario_blocks) {
+    if constexpr (std::is_const_v<Blocks>) {
+      w.add_block(b);
+    } else {
+      w.add_block(std::move(b));
+    }
+  }
+  // The world holds the blocks now: their moved-from array (~0.6 KB per block) is freed before
+  // the initial-overlap check, whose narrow phase keeps the first step's contact states.
+  if constexpr (!std::is_const_v<Blocks>) Blocks().swap(scenario_blocks);
+  for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
+    if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
+  }
+  // Deep initial overlaps are input errors, not something to blow apart. Candidate pairs come
+  // from the broad phase (O(N log N)), sorted by (i, j); the narrow phase runs on every thread
+  // and the error names the first offending pair in that order, whatever the thread count.
+  const auto& blocks = w.blocks();
+  std::vector<Eigen::Vector3d> lo(blocks.size()), hi(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    blocks[i].world_box(lo[i], hi[i]);
+  }
+  // The stress an initial overlap may carry: 100 times the weight of a column of rock as high as
+  // the model, at the largest density and gravity of the run (at least 1 g). Closing a deeper
+  // overlap would fling the blocks apart (and past a law's own bound its stress is infinite).
+  double g_max = std::max(sc.settings.gravity.norm(), kOneG);
+  for (const auto& st : sc.stages) {
+    if (st.gravity) g_max = std::max(g_max, st.gravity->norm());
+  }
+  double rho_max = 0.0, z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    rho_max = std::max(rho_max, blocks[i].density);
+    z_lo = std::min(z_lo, lo[i].z());
+    z_hi = std::max(z_hi, hi[i].z());
+  }
+  const double stress_limit = 100.0 * rho_max * g_max * std::max(z_hi - z_lo, 0.0);
+  auto initial_stress = [&](int i, int j, double overlap) {
+    const int law = w.law_for(i, j);
+    return law < 0 ? 0.0 : normal_stress(w.joint_laws()[law].normal, overlap);
+  };
+  std::vector<std::pair<int, int>> pairs;
+  UniformGrid broad_phase;
+  broad_phase.find_pairs(
+      lo, hi, [](int, int) { return true; }, pairs, w.thread_count());
+  const std::int64_t n = static_cast<std::int64_t>(pairs.size());
+  std::int64_t first = n;
+  // The world keeps these results for its first step, which would solve the same pairs again.
+  w.prime_narrow_phase(pairs, [&](std::int64_t k, const ContactGeometry& g) {
+    const auto [pi, pj] = pairs[static_cast<std::size_t>(k)];
+    const Block& a = blocks[static_cast<std::size_t>(pi)];
+    const Block& b = blocks[static_cast<std::size_t>(pj)];
+    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+    if (g.touching && (g.overlap > sc.settings.max_overlap_fraction * size ||
+                       !(initial_stress(pi, pj, g.overlap) <= stress_limit))) {
+#pragma omp critical(blockdem_initial_overlap)
+      first = std::min(first, k);
+    }
+  });
+  if (first < n) {
+    const auto [i, j] = pairs[static_cast<std::size_t>(first)];
+    const Block& a = blocks[static_cast<std::size_t>(i)];
+    const Block& b = blocks[static_cast<std::size_t>(j)];
+    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+    const ContactGeometry g =
+        boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012);
+    std::ostringstream s;
+    const double stress = initial_stress(i, j, g.overlap);
+    s << "blocks \"" << a.name << "\" and \"" << b.name << "\" overlap by " << g.overlap
+      << " m at the start";
+    if (!(stress <= stress_limit)) {
+      s << ": closing it would press the joint at " << stress << " Pa, more than 100 times the "
+        << "weight of a rock column as high as the model (" << stress_limit << " Pa)";
+    } else {
+      s << ", more than " << sc.settings.max_overlap_fraction << " of the smaller block's radius";
+    }
+    s << ": check their positions and sizes";
+    throw ScenarioError(sc.file, "blocks[" + std::to_string(j + 1) + "]", s.str());
+  }
+  return w;
+}
+
+}  // namespace
+
+World build_world(const Scenario& sc) {
+  return build_world_from(sc, sc.blocks);
+}
+
+World build_world_taking_blocks(Scenario& sc) {
+  std::vector<Block> blocks = std::move(sc.blocks);
+  sc.blocks.clear();
+  return build_world_from(sc, blocks);
+}
+
+}  // namespace blockdem
