@@ -1,7 +1,7 @@
 // The area terms of a face contact's torsional spring: J of the cells about their centroid
 // (closed form a⁴/6 for a square), and the cheap lower bounds of ∫ σ_n r dA that let an elastic
 // step skip the full quadrature: they never exceed the quadrature's value.
-#include "blockdem/world/contact_twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,9 @@
 
 #include "blockdem/contact/normal_integral.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::response_contact_twist {
 namespace {
 
 constexpr double kSide = 0.046;  // square side a (m)
@@ -188,4 +190,4 @@ TEST(ContactTwist, ExactRadialMomentOfABarelyClosedCellIsNotNegative) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::test::response_contact_twist

@@ -10,9 +10,11 @@
 #include <numbers>
 #include <vector>
 
-#include "blockdem/collision/face_twist.hpp"
+#include "blockdem/response/face_twist.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::response_face_full_slip {
 namespace {
 
 constexpr double kSide = 0.046;                    // square side a (m)
@@ -409,4 +411,4 @@ TEST(ShearTwistKernel, SlipTestReducesToTheSeparateLimits) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::test::response_face_full_slip

@@ -1,5 +1,5 @@
-// The twisting resistance of a world contact over one step.
-#include "blockdem/world/contact_twist.hpp"
+// The twisting resistance of a contact over one step.
+#include "blockdem/response/contact_twist.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "blockdem/collision/face_twist.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
+#include "blockdem/response/face_twist.hpp"
 
 namespace blockdem {
 
@@ -118,32 +118,6 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
   return g;
 }
 
-Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
-                                         const Eigen::Vector3d& fallback) {
-  double area = 0.0;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();
-  for (const ClosureCell& cell : cells) {
-    const PolygonMoments pm = polygon_area_centroid(
-        std::span<const Eigen::Vector3d>(cell.vertices.data(), cell.vertices.size()));
-    area += pm.area;
-    first += pm.area * pm.centroid;
-  }
-  return area > 0.0 ? Eigen::Vector3d(first / area) : fallback;
-}
-
-Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback) {
-  // In the slice's plane coordinates, about x_c: one point to carry to the world.
-  if (!(slice.area() > 0.0)) return fallback;
-  return slice.to_world(slice.centroid_2d());
-}
-
-void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle) {
-  if (angle == 0.0) return;
-  const Eigen::AngleAxisd turn(angle, normal);
-  state.force = turn * state.force;
-  state.elastic_displacement = turn * state.elastic_displacement;
-}
-
 double step_contact_twist(TwistState& twist, const TwistLawTerms& terms,
                           const TwistGeometry& geometry, double spin) {
   TwistIncrement inc;
@@ -153,6 +127,117 @@ double step_contact_twist(TwistState& twist, const TwistLawTerms& terms,
   inc.radial_normal_moment = geometry.radial_normal_moment;
   inc.friction_coefficient = terms.friction_coefficient;
   return update_twist(twist, inc).stiffness;
+}
+
+TwistStep advance_twist(TwistState& twist, const ShearLaw& law, const ShearState& shear,
+                        double normal_stress, TwistGeometry& geometry, const FaceStress& stress,
+                        double spin) {
+  const double before = twist.moment;
+  const TwistLawTerms terms = twist_law_terms(law, shear, normal_stress);
+  if (!geometry.exact && terms.friction_coefficient > 0.0) {
+    const double trial =
+        std::abs(twist.moment - terms.shear_stiffness * geometry.polar_moment * spin);
+    if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+      geometry.radial_normal_moment = face_radial_normal_bound(stress.cells, stress.law, geometry);
+      if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+        geometry.radial_normal_moment =
+            face_radial_normal_moment(stress.cells, stress.law, geometry.centre);
+        geometry.exact = true;
+      }
+    }
+  }
+  TwistStep step;
+  step.stiffness = step_contact_twist(twist, terms, geometry, spin);
+  step.slip_work = twist_slip_work(before - step.stiffness * spin, twist.moment, step.stiffness);
+  return step;
+}
+
+ShearTwistResult interact_shear_twist(ShearState& shear, TwistState& twist, const ShearLaw& law,
+                                      const ContactLoad& load, const TwistGeometry& geometry,
+                                      const FaceStress& stress, const ContactMotion& motion) {
+  ShearTwistResult r;
+  if (twist.moment == 0.0 || shear.force.squaredNorm() == 0.0) return r;
+  if (strength_of(law).cohesion > 0.0 && !shear.broken()) return r;
+  const double mu = twist_law_terms(law, shear, load.stress).friction_coefficient;
+  if (!(mu > 0.0)) return r;
+  const Eigen::Vector3d& force_point = motion.point;
+  const Eigen::Vector3d& normal = motion.normal;
+  const double offset = load.force * (geometry.centre - force_point).norm();
+  const double force = shear.force.norm(), limit = mu * load.force;
+  if (certified_inside(force, twist.moment, limit, mu * (geometry.radial_normal_moment - offset)))
+    return r;
+  if (!geometry.exact &&
+      certified_inside(force, twist.moment, limit,
+                       mu * face_pressure_radial_bound(stress.cells, stress.law, geometry,
+                                                       load.force, force_point)))
+    return r;
+  // The test and return along a slip about `centre`.
+  const auto slip_about = [&](const SlipCentre& centre) {
+    const FullSlip full = face_full_slip(stress.cells, stress.law, normal, force_point, centre);
+    r.integrated = true;
+    if (!exceeds_full_slip(shear.force, twist.moment, centre, force_point, normal, full, mu))
+      return false;
+    shear.force = mu * full.force;
+    twist.moment = mu * full.moment;
+    r.slipped = true;
+    return true;
+  };
+  // 1. The step's own slip: the springs' response -(A du, J dθ) has its centre where the motion
+  // is still. A translation (dθ = 0, or a centre very far) has the law's limit |F| <= μ F_n.
+  const Eigen::Vector3d& slip = motion.slip;
+  const double turn = motion.turn;
+  if (slip.squaredNorm() > 0.0 || turn != 0.0) {
+    const SlipCentre centre =
+        slip_centre(-load.area * slip, -geometry.polar_moment * turn, normal, force_point,
+                    geometry.polar_moment, load.area, geometry.max_radius);
+    if (!centre.translation && slip_about(centre)) return r;
+    if (centre.translation && slip.squaredNorm() > 0.0) {
+      const Eigen::Vector3d along = slip.normalized();
+      if (-shear.force.dot(along) > limit) {
+        shear.force = -limit * along;
+        twist.moment = 0.0;
+        r.slipped = true;
+        return r;
+      }
+    }
+  }
+  // 2. The slip the state stands for.
+  const SlipCentre own = slip_centre(shear.force, twist.moment, normal, force_point,
+                                     geometry.polar_moment, load.area, geometry.max_radius);
+  if (!own.translation) slip_about(own);
+  return r;
+}
+
+ShearTwistLimit limit_shear_and_twist(ShearState& shear, TwistState& twist, const ShearLaw& law,
+                                      const ContactLoad& load, const TwistGeometry& geometry,
+                                      const FaceStress& stress, const ContactMotion& motion,
+                                      const Eigen::Vector3d& pressure_centre,
+                                      double shear_stiffness, double twist_stiffness) {
+  ShearTwistLimit out;
+  const double stored = shear.force.squaredNorm(), twisted = twist.moment;
+  const Eigen::Vector3d& xs = motion.point;
+  const Eigen::Vector3d& xp = pressure_centre;
+  const Eigen::Vector3d& n = motion.normal;
+  // The state about x_p: the moment with the couple that moves the shear force there from x_s,
+  // and the slip of x_p.
+  TwistState at_p{twist.moment + shear_couple(xs, xp, shear.force, n)};
+  ContactMotion at_pressure;
+  at_pressure.point = xp;
+  at_pressure.normal = n;
+  at_pressure.slip = motion.slip + motion.turn * n.cross(xp - xs);
+  at_pressure.turn = motion.turn;
+  if (!interact_shear_twist(shear, at_p, law, load, geometry, stress, at_pressure).slipped)
+    return out;
+  twist.moment = at_p.moment - shear_couple(xs, xp, shear.force, n);
+  out.slipped = true;
+  // The shear spring's energy released by the return, dissipated.
+  if (shear_stiffness > 0.0) {
+    out.shear_released = 0.5 * (stored - shear.force.squaredNorm()) / shear_stiffness;
+    shear.elastic_energy -= out.shear_released;
+  }
+  out.twist_released = twist_elastic_energy(twisted, twist_stiffness) -
+                       twist_elastic_energy(twist.moment, twist_stiffness);
+  return out;
 }
 
 }  // namespace blockdem
