@@ -666,17 +666,74 @@ void take_normal_response(Contact& ct, const NormalResponse& r) {
   }
 }
 
-// B's motion relative to A over the step dt at x, about the unit normal n: the slip of the
+// What the tangential steps of a pair read besides its contact state.
+struct TangentialInput {
+  const Block& a;
+  const Block& b;
+  const JointLaw& law;
+  const ContactGeometry& geometry;  // this step's narrow phase
+  const FaceContactGeometry& face;  // its cells (mode face_integrated), else none
+  const NormalResponse& normal;     // this step's normal response
+  const Eigen::Vector3d& previous;  // the normal of the last shear update
+  double dt = 0.0;                  // (s)
+  bool twist = false;               // the torsional spring acts
+};
+
+// B's motion relative to A over the step at x, about the unit normal n: the slip of the
 // material points in the tangent plane (none on the step the contact forms: `moved` false) and
 // the turn `turn` (rad).
-ContactMotion relative_motion(const Block& a, const Block& b, const Eigen::Vector3d& x,
-                              const Eigen::Vector3d& n, double dt, bool moved, double turn) {
+ContactMotion relative_motion(const TangentialInput& in, const Eigen::Vector3d& x,
+                              const Eigen::Vector3d& n, bool moved, double turn) {
   ContactMotion m;
   m.point = x;
   m.normal = n;
-  if (moved) m.slip = tangential_slip(b.point_velocity(x) - a.point_velocity(x), n, dt);
+  if (moved) m.slip = tangential_slip(in.b.point_velocity(x) - in.a.point_velocity(x), n, in.dt);
   m.turn = turn;
   return m;
+}
+
+// A contact's twist and shear over the step, after its normal response: the torsional spring
+// turned by B's spin relative to A (from the state before the shear update: bond and plastic
+// slip), the stored shear force carried into this step's frame and the law's increment from the
+// slip at the shear spring's point, then, on a face contact with twist, force and moment held
+// together against Coulomb's law at every point. Returns the shear law's step.
+ShearResult respond_tangentially(Contact& ct, const TangentialInput& in) {
+  const Block& a = in.a;
+  const Block& b = in.b;
+  const Eigen::Vector3d& n = ct.geometry.normal;
+  const double spin = in.twist && ct.has_history
+                          ? relative_spin(a.angular_velocity, b.angular_velocity, n, in.dt)
+                          : 0.0;
+  const FaceStress stress{in.face.cells, in.law.normal};
+  std::optional<TwistGeometry> twist_area;
+  TwistStep turned;
+  if (in.twist) {
+    twist_area = twist_geometry(in.normal, in.geometry, in.face, n);
+    turned = advance_twist(ct.twist, in.law.shear, ct.shear, in.normal.stress, *twist_area, stress,
+                           spin);
+    ct.twist_stiffness = turned.stiffness;
+  }
+  // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
+  if (ct.has_history) {
+    const double frame =
+        in.twist ? frame_spin(a.angular_velocity, b.angular_velocity, n, in.dt) : 0.0;
+    carry_shear_state(ct.shear, in.previous, n, frame);
+  }
+  const ContactMotion motion = relative_motion(in, in.normal.shear_point, n, ct.has_history, spin);
+  const ShearResult sr = shear_response(ct.shear, in.law.shear, in.normal.load(), motion);
+  ct.sliding = sr.sliding;
+  ct.slip_work = sr.plastic_work + turned.slip_work;
+  if (twist_area && in.normal.integrated) {
+    const ShearTwistLimit limit =
+        limit_shear_and_twist(ct.shear, ct.twist, in.law.shear, in.normal.load(), *twist_area,
+                              stress, motion, ct.force_point(), sr.stiffness, turned.stiffness);
+    if (limit.slipped) {
+      ct.sliding = true;
+      ct.slip_work += limit.shear_released;
+      ct.slip_work += limit.twist_released;
+    }
+  }
+  return sr;
 }
 
 }  // namespace
@@ -710,68 +767,33 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   ct.touching = g.touching;
   ct.integrated = false;
   const JointLaw& law = laws_[ct.law];
-  const Eigen::Vector3d& n = ct.geometry.normal;
-
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
   // cells of a face contact, acting at the centre of pressure (mode face_integrated).
   const FaceContactGeometry fc =
-      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, g.point, n, extent,
-                                        settings_.face_contact)
+      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
+                                        extent, settings_.face_contact)
                 : FaceContactGeometry{};
   const std::optional<NormalResponse> normal = normal_response(law.normal, g, fc);
   if (!normal) return open_bond(&start);
   take_normal_response(ct, *normal);
   slot.active = true;
-  // Twist, from the state before this step's shear update: B's spin relative to A about n.
-  const bool twist = settings_.twist_enabled() && advance_shear;
-  const double spin =
-      twist && ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
-  const FaceStress stress{fc.cells, law.normal};
-  std::optional<TwistGeometry> twist_area;
-  TwistStep turned;
-  if (twist) {
-    twist_area = twist_geometry(*normal, g, fc, n);
-    turned =
-        advance_twist(ct.twist, law.shear, ct.shear, normal->stress, *twist_area, stress, spin);
-    ct.twist_stiffness = turned.stiffness;
-  }
-  // A restore re-derives geometry and normal force only; the shear history stays as saved, and
-  // so does the normal it was last turned to.
-  const Eigen::Vector3d& xs = normal->shear_point;
-  if (!advance_shear) {
+  if (advance_shear) {
+    const bool twist = settings_.twist_enabled();
+    const ShearResult sr =
+        respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});
+    slot.broke = sr.broke;
+    ct.take_normal_as_previous();
+    ct.has_history = true;
+    // Stiffness for the automatic time step: normal and shear springs k A (N/m).
+    ct.stiffness = normal->stiffness + sr.stiffness;
+  } else {
+    // A restore re-derives geometry and normal force only; the shear history stays as saved,
+    // and so does the normal it was last turned to.
     ct.stiffness = normal->stiffness;
     ct.set_previous_normal(previous);
-    ct.shear_couple = shear_couple(xs, ct.force_point(), ct.shear.force, n);
-    return;
   }
-
-  // Shear: the stored force carried into this step's frame (with twist, also turned with the
-  // contact's spin about n, the blocks' mean), then the law's increment from the slip at x_s.
-  if (ct.has_history) {
-    carry_shear_state(ct.shear, previous, n,
-                      twist ? frame_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0);
-  }
-  const ContactMotion motion = relative_motion(a, b, xs, n, dt, ct.has_history, spin);
-  const ShearResult sr = shear_response(ct.shear, law.shear, normal->load(), motion);
-  ct.sliding = sr.sliding;
-  slot.broke = sr.broke;
-  ct.slip_work = sr.plastic_work + turned.slip_work;
-  // Force and moment together against Coulomb's law at every point of a face contact.
-  if (twist_area && normal->integrated) {
-    const ShearTwistLimit limit =
-        limit_shear_and_twist(ct.shear, ct.twist, law.shear, normal->load(), *twist_area, stress,
-                              motion, ct.force_point(), sr.stiffness, turned.stiffness);
-    if (limit.slipped) {
-      ct.sliding = true;
-      ct.slip_work += limit.shear_released;
-      ct.slip_work += limit.twist_released;
-    }
-  }
-  ct.shear_couple = shear_couple(xs, ct.force_point(), ct.shear.force, n);
-  ct.take_normal_as_previous();
-  ct.has_history = true;
-  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
-  ct.stiffness = normal->stiffness + sr.stiffness;
+  ct.shear_couple =
+      shear_couple(normal->shear_point, ct.force_point(), ct.shear.force, ct.geometry.normal);
 }
 
 void World::scatter_loads(const std::vector<char>* counted) {

@@ -27,7 +27,8 @@ ContactGeometry square_point_contact(double overlap) {
   return g;
 }
 
-// The square [0, a]² at z = 0 as two cells (split at x = a/2), the closure g = g0 + slope x (m).
+// The square [0, a]² at z = 0 as two cells (split at x = a/2), the closure g = g0 + slope x >= 0
+// (m).
 FaceContactGeometry square_cells(double g0, double slope) {
   FaceContactGeometry fc;
   fc.face_type = true;
@@ -99,33 +100,32 @@ TEST(NormalResponse, FaceContactUnderAUniformClosure) {
   }
 }
 
-// A partly open joint, closure g = s (x - a/2): only the half x > a/2 presses. Closed forms:
-// F_n = k_n s a³ / 8, the centre of pressure at x = 5a/6 (the centroid of a triangular load on
-// [a/2, a]), the shear spring at the compressed half's centroid x = 3a/4, σ_n = F_n / (a²/2),
-// the peak closure s a/2 and the spring k_n(g_max) a²/2. 1e-12 relative.
-TEST(NormalResponse, FaceContactOfAPartlyOpenJoint) {
+// A hinging joint, closure g = s x (zero along the edge x = 0): F_n = k_n s a³ / 2, the centre of
+// pressure at x = 2a/3 (the centroid of a triangular load), the shear spring at the area's
+// centroid x = a/2, σ_n = F_n / a², the peak closure s a and the spring k_n a². 1e-12 relative.
+TEST(NormalResponse, FaceContactOfAHingingJoint) {
   const NormalLaw law = LinearNormal{kStiffness};
   const double s = 1e-3;  // closure gradient (m/m)
   const std::optional<NormalResponse> r =
-      normal_response(law, ContactGeometry{}, square_cells(-s * kSide / 2, s));
+      normal_response(law, ContactGeometry{}, square_cells(0.0, s));
   ASSERT_TRUE(r.has_value());
-  const double force = kStiffness * s * std::pow(kSide, 3) / 8;
+  const double force = kStiffness * s * std::pow(kSide, 3) / 2;
   EXPECT_NEAR(r->force, force, 1e-12 * force);
-  EXPECT_NEAR(r->compressed_area, kArea / 2, 1e-12 * kArea);
-  EXPECT_NEAR(r->stress, force / (kArea / 2), 1e-12 * force / kArea);
-  EXPECT_NEAR(r->peak_closure, s * kSide / 2, 1e-12 * s * kSide);
-  EXPECT_NEAR(r->force_point.x(), 5 * kSide / 6, 1e-12 * kSide);
+  EXPECT_NEAR(r->compressed_area, kArea, 1e-12 * kArea);
+  EXPECT_NEAR(r->stress, force / kArea, 1e-12 * force / kArea);
+  EXPECT_NEAR(r->peak_closure, s * kSide, 1e-12 * s * kSide);
+  EXPECT_NEAR(r->force_point.x(), 2 * kSide / 3, 1e-12 * kSide);
   EXPECT_NEAR(r->force_point.y(), kSide / 2, 1e-12 * kSide);
-  EXPECT_NEAR(r->shear_point.x(), 3 * kSide / 4, 1e-12 * kSide);
+  EXPECT_NEAR(r->shear_point.x(), kSide / 2, 1e-12 * kSide);
   EXPECT_NEAR(r->shear_point.y(), kSide / 2, 1e-12 * kSide);
-  EXPECT_NEAR(r->stiffness, kStiffness * kArea / 2, 1e-12 * kStiffness * kArea);
+  EXPECT_NEAR(r->stiffness, kStiffness * kArea, 1e-12 * kStiffness * kArea);
 }
 
-// A face contact with no closure anywhere has no normal response (the world then looks for a
+// A face contact with zero closure everywhere has no normal response (the world then looks for a
 // bond that holds the faces); a contact without a face is a point contact.
 TEST(NormalResponse, NoClosureNoResponseAndNoFaceIsAPointContact) {
   const NormalLaw law = LinearNormal{kStiffness};
-  EXPECT_FALSE(normal_response(law, ContactGeometry{}, square_cells(-1e-6, 0.0)).has_value());
+  EXPECT_FALSE(normal_response(law, ContactGeometry{}, square_cells(0.0, 0.0)).has_value());
   const std::optional<NormalResponse> point =
       normal_response(law, square_point_contact(1e-6), FaceContactGeometry{});
   ASSERT_TRUE(point.has_value());

@@ -41,7 +41,7 @@ ContactMotion slip_along(const Eigen::Vector3d& du) {
   return m;
 }
 
-// Cohesionless joint slid along x in steps of 1e-7 m: F = -k_s A u while |F| < μ F_n, the stored
+// Cohesionless joint slid along x in steps of 1e-6 m: F = -k_s A u while |F| < μ F_n, the stored
 // energy F² / (2 k_s A), then full slip at exactly |F| = μ F_n (Coulomb's law). References:
 // the linear shear law with a Mohr-Coulomb cap (Boon et al. 2015, Table 2); 1e-12 relative.
 TEST(ShearResponse, ElasticThenCoulombSlipUnderTheFaceLoad) {
@@ -54,8 +54,8 @@ TEST(ShearResponse, ElasticThenCoulombSlipUnderTheFaceLoad) {
   double u = 0.0;
   bool slid = false;
   for (int i = 0; i < 400; ++i) {
-    const ShearResult r = shear_response(state, law, load, slip_along({1e-7, 0.0, 0.0}));
-    u += 1e-7;
+    const ShearResult r = shear_response(state, law, load, slip_along({1e-6, 0.0, 0.0}));
+    u += 1e-6;
     EXPECT_NEAR(r.stiffness, spring, 1e-12 * spring);
     if (spring * u < limit * (1 - 1e-12)) {
       EXPECT_FALSE(r.sliding);
@@ -81,7 +81,7 @@ TEST(ShearResponse, CohesionRaisesThePeakToMuFnPlusCA) {
   strength.cohesion = 0.2e6;  // Pa
   const LinearShear law{kShear, strength};
   const double mu = strength.friction_coefficient;
-  const double du = 1e-8, spring = kShear * kArea;
+  const double du = 1e-6, spring = kShear * kArea;
   const double peak = mu * load.force + strength.cohesion * kArea;
   ShearState state;
   double largest = 0.0;
