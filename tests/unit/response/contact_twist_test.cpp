@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "blockdem/contact/normal_integral.hpp"
+#include "square_cells.hpp"
 
 // A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
 // with other test files that define helpers of the same names.
@@ -21,18 +22,7 @@ constexpr double kSide = 0.046;  // square side a (m)
 // The square [0, a]² at z = 0 as two cells (split at x = a/2) with the closure linear in x,
 // g = g0 + slope x (m): one linear field over both cells.
 FaceContactGeometry square_cells(double g0, double slope) {
-  FaceContactGeometry fc;
-  fc.face_type = true;
-  for (int half = 0; half < 2; ++half) {
-    const double x0 = half * kSide / 2, x1 = x0 + kSide / 2;
-    ClosureCell cell;
-    for (const auto& [x, y] : {std::pair{x0, 0.0}, {x1, 0.0}, {x1, kSide}, {x0, kSide}}) {
-      cell.vertices.push_back(Eigen::Vector3d(x, y, 0.0));
-      cell.closures.push_back(g0 + slope * x);
-    }
-    fc.cells.push_back(cell);
-  }
-  return fc;
+  return test::square_cells(kSide, g0, slope);
 }
 
 /// F_n and the centre of pressure x_p of the cells, as the world's step forms them.

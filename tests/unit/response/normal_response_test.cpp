@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "square_cells.hpp"
+
 // A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
 // with other test files that define helpers of the same names.
 namespace blockdem::test::response_normal {
@@ -27,21 +29,9 @@ ContactGeometry square_point_contact(double overlap) {
   return g;
 }
 
-// The square [0, a]² at z = 0 as two cells (split at x = a/2), the closure g = g0 + slope x >= 0
-// (m).
+// The square [0, a]² as two cells, the closure g0 + slope x (m).
 FaceContactGeometry square_cells(double g0, double slope) {
-  FaceContactGeometry fc;
-  fc.face_type = true;
-  for (int half = 0; half < 2; ++half) {
-    const double x0 = half * kSide / 2, x1 = x0 + kSide / 2;
-    ClosureCell cell;
-    for (const auto& [x, y] : {std::pair{x0, 0.0}, {x1, 0.0}, {x1, kSide}, {x0, kSide}}) {
-      cell.vertices.push_back(Eigen::Vector3d(x, y, 0.0));
-      cell.closures.push_back(g0 + slope * x);
-    }
-    fc.cells.push_back(cell);
-  }
-  return fc;
+  return test::square_cells(kSide, g0, slope);
 }
 
 // Loading path of a point contact under the linear law: F_n = k_n δ A_c at every closure, the

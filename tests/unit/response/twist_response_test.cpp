@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "blockdem/response/face_twist.hpp"
+#include "square_cells.hpp"
 
 // A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
 // with other test files that define helpers of the same names.
@@ -23,27 +24,11 @@ constexpr double kClosure = 1e-5;  // uniform closure (m): σ_n = 0.1 MPa
 const Eigen::Vector3d kUp = Eigen::Vector3d::UnitZ();
 const Eigen::Vector3d kCentre(kSide / 2, kSide / 2, 0.0);
 
-// The square [0, a]² at z = 0 as two cells under the uniform closure.
-FaceContactGeometry square_cells() {
-  FaceContactGeometry fc;
-  fc.face_type = true;
-  for (int half = 0; half < 2; ++half) {
-    const double x0 = half * kSide / 2, x1 = x0 + kSide / 2;
-    ClosureCell cell;
-    for (const auto& [x, y] : {std::pair{x0, 0.0}, {x1, 0.0}, {x1, kSide}, {x0, kSide}}) {
-      cell.vertices.push_back(Eigen::Vector3d(x, y, 0.0));
-      cell.closures.push_back(kClosure);
-    }
-    fc.cells.push_back(cell);
-  }
-  return fc;
-}
-
 // The contact as the world's step sees it: normal response, twist area terms, stress field.
 struct SquareContact {
   NormalLaw normal_law = LinearNormal{kNormal};
   LinearShear shear_law{kShear, JointStrength::from_friction_deg(35.0)};
-  FaceContactGeometry face = square_cells();
+  FaceContactGeometry face = square_cells(kSide, kClosure, 0.0);
   NormalResponse normal = *normal_response(normal_law, ContactGeometry{}, face);
   TwistGeometry geometry = twist_geometry(normal, ContactGeometry{}, face, kUp);
   FaceStress stress() const { return {face.cells, normal_law}; }
