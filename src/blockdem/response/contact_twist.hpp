@@ -15,6 +15,7 @@
 #include "blockdem/contact/shear_twist.hpp"
 #include "blockdem/contact/twist.hpp"
 #include "blockdem/contact/twist_law.hpp"
+#include "blockdem/response/face_twist.hpp"
 #include "blockdem/response/normal_response.hpp"
 #include "blockdem/response/shear_response.hpp"
 
@@ -118,9 +119,28 @@ struct TwistStep {
 /// sharpened only as far as the step needs, and kept there for limit_shear_and_twist: when it is
 /// a lower bound that does not certify the elastic trial |M - k_s J dθ| <= μ bound, first to
 /// face_radial_normal_bound over `stress`, then to the exact face_radial_normal_moment.
-TwistStep advance_twist(TwistState& twist, const ShearLaw& law, const ShearState& shear,
-                        double normal_stress, TwistGeometry& geometry, const FaceStress& stress,
-                        double spin);
+inline TwistStep advance_twist(TwistState& twist, const ShearLaw& law, const ShearState& shear,
+                               double normal_stress, TwistGeometry& geometry,
+                               const FaceStress& stress, double spin) {
+  const double before = twist.moment;
+  const TwistLawTerms terms = twist_law_terms(law, shear, normal_stress);
+  if (!geometry.exact && terms.friction_coefficient > 0.0) {
+    const double trial =
+        std::abs(twist.moment - terms.shear_stiffness * geometry.polar_moment * spin);
+    if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+      geometry.radial_normal_moment = face_radial_normal_bound(stress.cells, stress.law, geometry);
+      if (trial > terms.friction_coefficient * geometry.radial_normal_moment) {
+        geometry.radial_normal_moment =
+            face_radial_normal_moment(stress.cells, stress.law, geometry.centre);
+        geometry.exact = true;
+      }
+    }
+  }
+  TwistStep step;
+  step.stiffness = step_contact_twist(twist, terms, geometry, spin);
+  step.slip_work = twist_slip_work(before - step.stiffness * spin, twist.moment, step.stiffness);
+  return step;
+}
 
 /// What the joint's force and moment together did in a step (interact_shear_twist).
 struct ShearTwistResult {
@@ -144,9 +164,63 @@ struct ShearTwistResult {
 /// 2. else along the slip the state itself stands for (slip_centre): the same test and return.
 /// μ is the law's at the state after its update (twist_law_terms). `load`: F_n (N), the
 /// compressed area (m^2) and the mean σ_n (Pa).
-ShearTwistResult interact_shear_twist(ShearState& shear, TwistState& twist, const ShearLaw& law,
-                                      const ContactLoad& load, const TwistGeometry& geometry,
-                                      const FaceStress& stress, const ContactMotion& motion);
+inline ShearTwistResult interact_shear_twist(ShearState& shear, TwistState& twist,
+                                             const ShearLaw& law, const ContactLoad& load,
+                                             const TwistGeometry& geometry,
+                                             const FaceStress& stress,
+                                             const ContactMotion& motion) {
+  ShearTwistResult r;
+  if (twist.moment == 0.0 || shear.force.squaredNorm() == 0.0) return r;
+  if (strength_of(law).cohesion > 0.0 && !shear.broken()) return r;
+  const double mu = twist_law_terms(law, shear, load.stress).friction_coefficient;
+  if (!(mu > 0.0)) return r;
+  const Eigen::Vector3d& force_point = motion.point;
+  const Eigen::Vector3d& normal = motion.normal;
+  const double offset = load.force * (geometry.centre - force_point).norm();
+  const double force = shear.force.norm(), limit = mu * load.force;
+  if (certified_inside(force, twist.moment, limit, mu * (geometry.radial_normal_moment - offset)))
+    return r;
+  if (!geometry.exact &&
+      certified_inside(force, twist.moment, limit,
+                       mu * face_pressure_radial_bound(stress.cells, stress.law, geometry,
+                                                       load.force, force_point)))
+    return r;
+  // The test and return along a slip about `centre`.
+  const auto slip_about = [&](const SlipCentre& centre) {
+    const FullSlip full = face_full_slip(stress.cells, stress.law, normal, force_point, centre);
+    r.integrated = true;
+    if (!exceeds_full_slip(shear.force, twist.moment, centre, force_point, normal, full, mu))
+      return false;
+    shear.force = mu * full.force;
+    twist.moment = mu * full.moment;
+    r.slipped = true;
+    return true;
+  };
+  // 1. The step's own slip: the springs' response -(A du, J dθ) has its centre where the motion
+  // is still. A translation (dθ = 0, or a centre very far) has the law's limit |F| <= μ F_n.
+  const Eigen::Vector3d& slip = motion.slip;
+  const double turn = motion.turn;
+  if (slip.squaredNorm() > 0.0 || turn != 0.0) {
+    const SlipCentre centre =
+        slip_centre(-load.area * slip, -geometry.polar_moment * turn, normal, force_point,
+                    geometry.polar_moment, load.area, geometry.max_radius);
+    if (!centre.translation && slip_about(centre)) return r;
+    if (centre.translation && slip.squaredNorm() > 0.0) {
+      const Eigen::Vector3d along = slip.normalized();
+      if (-shear.force.dot(along) > limit) {
+        shear.force = -limit * along;
+        twist.moment = 0.0;
+        r.slipped = true;
+        return r;
+      }
+    }
+  }
+  // 2. The slip the state stands for.
+  const SlipCentre own = slip_centre(shear.force, twist.moment, normal, force_point,
+                                     geometry.polar_moment, load.area, geometry.max_radius);
+  if (!own.translation) slip_about(own);
+  return r;
+}
 
 /// What limit_shear_and_twist did.
 struct ShearTwistLimit {
@@ -163,10 +237,37 @@ struct ShearTwistLimit {
 /// The spring energies a return releases, from the step's stiffnesses k_s A (`shear_stiffness`,
 /// N/m) and k_s J (`twist_stiffness`, N m/rad), are dissipated: the shear spring's comes off
 /// `shear.elastic_energy`.
-ShearTwistLimit limit_shear_and_twist(ShearState& shear, TwistState& twist, const ShearLaw& law,
-                                      const ContactLoad& load, const TwistGeometry& geometry,
-                                      const FaceStress& stress, const ContactMotion& motion,
-                                      const Eigen::Vector3d& pressure_centre,
-                                      double shear_stiffness, double twist_stiffness);
+inline ShearTwistLimit limit_shear_and_twist(ShearState& shear, TwistState& twist,
+                                             const ShearLaw& law, const ContactLoad& load,
+                                             const TwistGeometry& geometry,
+                                             const FaceStress& stress, const ContactMotion& motion,
+                                             const Eigen::Vector3d& pressure_centre,
+                                             double shear_stiffness, double twist_stiffness) {
+  ShearTwistLimit out;
+  const double stored = shear.force.squaredNorm(), twisted = twist.moment;
+  const Eigen::Vector3d& xs = motion.point;
+  const Eigen::Vector3d& xp = pressure_centre;
+  const Eigen::Vector3d& n = motion.normal;
+  // The state about x_p: the moment with the couple that moves the shear force there from x_s,
+  // and the slip of x_p.
+  TwistState at_p{twist.moment + shear_couple(xs, xp, shear.force, n)};
+  ContactMotion at_pressure;
+  at_pressure.point = xp;
+  at_pressure.normal = n;
+  at_pressure.slip = motion.slip + motion.turn * n.cross(xp - xs);
+  at_pressure.turn = motion.turn;
+  if (!interact_shear_twist(shear, at_p, law, load, geometry, stress, at_pressure).slipped)
+    return out;
+  twist.moment = at_p.moment - shear_couple(xs, xp, shear.force, n);
+  out.slipped = true;
+  // The shear spring's energy released by the return, dissipated.
+  if (shear_stiffness > 0.0) {
+    out.shear_released = 0.5 * (stored - shear.force.squaredNorm()) / shear_stiffness;
+    shear.elastic_energy -= out.shear_released;
+  }
+  out.twist_released = twist_elastic_energy(twisted, twist_stiffness) -
+                       twist_elastic_energy(twist.moment, twist_stiffness);
+  return out;
+}
 
 }  // namespace blockdem
