@@ -653,6 +653,13 @@ void clear_step_terms(Contact& ct) {
   ct.twist_stiffness = 0.0;
 }
 
+// The contact takes this step's geometry; no force yet.
+void take_geometry(Contact& ct, const ContactGeometry& g) {
+  ct.geometry = ContactGeometryRecord(g);
+  ct.touching = g.touching;
+  ct.integrated = false;
+}
+
 // The contact takes this step's normal response: F_n and σ_n, and the force values of a face
 // contact (a point contact's follow from its geometry and σ_n).
 void take_normal_response(Contact& ct, const NormalResponse& r) {
@@ -696,8 +703,9 @@ ContactMotion relative_motion(const TangentialInput& in, const Eigen::Vector3d& 
 // turned by B's spin relative to A (from the state before the shear update: bond and plastic
 // slip), the stored shear force carried into this step's frame and the law's increment from the
 // slip at the shear spring's point, then, on a face contact with twist, force and moment held
-// together against Coulomb's law at every point. Returns the shear law's step.
-ShearResult respond_tangentially(Contact& ct, const TangentialInput& in) {
+// together against Coulomb's law at every point; the contact then has a history, turned to this
+// step's normal, and its springs for the automatic time step. Returns whether the bond broke.
+bool respond_tangentially(Contact& ct, const TangentialInput& in) {
   const Block& a = in.a;
   const Block& b = in.b;
   const Eigen::Vector3d& n = ct.geometry.normal;
@@ -733,7 +741,11 @@ ShearResult respond_tangentially(Contact& ct, const TangentialInput& in) {
       ct.slip_work += limit.twist_released;
     }
   }
-  return sr;
+  ct.take_normal_as_previous();
+  ct.has_history = true;
+  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
+  ct.stiffness = in.normal.stiffness + sr.stiffness;
+  return sr.broke;
 }
 
 }  // namespace
@@ -763,9 +775,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
   const OpenBondStart start =
       face_mode ? OpenBondStart{ct.force_point(), previous, ct.compressed_area()} : OpenBondStart{};
-  ct.geometry = ContactGeometryRecord(g);
-  ct.touching = g.touching;
-  ct.integrated = false;
+  take_geometry(ct, g);
   const JointLaw& law = laws_[ct.law];
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
   // cells of a face contact, acting at the centre of pressure (mode face_integrated).
@@ -779,13 +789,7 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   slot.active = true;
   if (advance_shear) {
     const bool twist = settings_.twist_enabled();
-    const ShearResult sr =
-        respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});
-    slot.broke = sr.broke;
-    ct.take_normal_as_previous();
-    ct.has_history = true;
-    // Stiffness for the automatic time step: normal and shear springs k A (N/m).
-    ct.stiffness = normal->stiffness + sr.stiffness;
+    slot.broke = respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});
   } else {
     // A restore re-derives geometry and normal force only; the shear history stays as saved,
     // and so does the normal it was last turned to.
