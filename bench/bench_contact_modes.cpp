@@ -9,10 +9,10 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/face_contact.hpp"
-#include "blockdem/collision/face_twist.hpp"
 #include "blockdem/contact/normal_integral.hpp"
 #include "blockdem/geometry/polyhedron.hpp"
-#include "blockdem/world/contact_twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
+#include "blockdem/response/face_twist.hpp"
 
 namespace blockdem {
 namespace {
@@ -90,12 +90,10 @@ void BM_ContactFaceIntegratedTwist(benchmark::State& state) {
       area += r.compressed_area;
       if (r.centre_of_pressure) pressure += r.force * *r.centre_of_pressure;
     }
-    const TwistGeometry tg = face_twist_geometry(fc.cells, g.normal, force, pressure / force);
+    TwistGeometry tg = face_twist_geometry(fc.cells, g.normal, force, pressure / force);
     TwistState twist;
-    benchmark::DoNotOptimize(advance_contact_twist(
-        twist, shear, ShearState{}, force / area, tg, spin,
-        [&] { return face_radial_normal_bound(fc.cells, law, tg); },
-        [&] { return face_radial_normal_moment(fc.cells, law, tg.centre); }));
+    benchmark::DoNotOptimize(
+        advance_twist(twist, shear, ShearState{}, force / area, tg, {fc.cells, law}, spin));
     benchmark::DoNotOptimize(twist.moment);
     benchmark::DoNotOptimize(force);
   }
@@ -148,13 +146,7 @@ void BM_ContactFaceIntegratedShearTwist(benchmark::State& state) {
     TwistState twist;
     twist.moment = level * moment0;
     const double turn = 1e-9, stress = force / area;
-    advance_contact_twist(
-        twist, shear, shear_state, stress, tg, turn,
-        [&] { return tg.radial_normal_moment = face_radial_normal_bound(fc.cells, law, tg); },
-        [&] {
-          tg.exact = true;
-          return tg.radial_normal_moment = face_radial_normal_moment(fc.cells, law, tg.centre);
-        });
+    advance_twist(twist, shear, shear_state, stress, tg, {fc.cells, law}, turn);
     ShearIncrement inc;
     inc.displacement = -1e-9 * tangent;
     inc.normal_force = force;
@@ -162,10 +154,9 @@ void BM_ContactFaceIntegratedShearTwist(benchmark::State& state) {
     inc.contact_area = area;
     inc.normal = g.normal;
     update_shear(shear, shear_state, inc);
-    const ShearTwistResult st = interact_shear_twist(
-        shear_state, twist, shear, stress, force, area, tg, xp, g.normal, inc.displacement, turn,
-        [&] { return face_pressure_radial_bound(fc.cells, law, tg, force, xp); },
-        [&](const SlipCentre& c) { return face_full_slip(fc.cells, law, g.normal, xp, c); });
+    const ShearTwistResult st =
+        interact_shear_twist(shear_state, twist, shear, {stress, force, area}, tg, {fc.cells, law},
+                             {xp, g.normal, inc.displacement, turn});
     benchmark::DoNotOptimize(st);
     benchmark::DoNotOptimize(shear_state.force);
     benchmark::DoNotOptimize(twist.moment);

@@ -13,11 +13,12 @@ FLOORS = {
     "numerics": 0,
     "geometry": 1, "contact": 1,
     "collision": 2, "dynamics": 2, "analysis": 2,
-    "world": 3,
-    "scenario": 4, "io": 4, "parallel": 4,
-    "voussoir": 5, "lab": 5, "calibration": 5, "rockmass": 5,
-    "run": 6,
-    "studies": 7,
+    "response": 3,
+    "world": 4,
+    "scenario": 5, "io": 5, "parallel": 5,
+    "voussoir": 6, "lab": 6, "calibration": 6, "rockmass": 6,
+    "run": 7,
+    "studies": 8,
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"blockdem/([^/"]+)/')
 LAUNCH = re.compile(r'\b(popen|std::system|execv?p?e?|posix_spawnp?)\s*\(')

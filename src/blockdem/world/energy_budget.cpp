@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "blockdem/dynamics/integrator.hpp"
-#include "blockdem/world/contact_twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
 
 namespace blockdem {
 

@@ -11,10 +11,11 @@
 #include <optional>
 #include <stdexcept>
 
-#include "blockdem/collision/face_twist.hpp"
-#include "blockdem/contact/normal_integral.hpp"
-#include "blockdem/world/contact_twist.hpp"
-#include "blockdem/world/face_laws.hpp"
+#include "blockdem/contact/twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
+#include "blockdem/response/face_laws.hpp"
+#include "blockdem/response/normal_response.hpp"
+#include "blockdem/response/shear_response.hpp"
 #include "blockdem/world/world.hpp"
 
 #ifdef _OPENMP
@@ -672,196 +673,161 @@ void World::compact_contacts() {
   contacts_.resize(kept);
 }
 
-void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
-  slot.active = false;
-  slot.broke = false;
+namespace {
+
+// A contact's terms of this step, before its pair is evaluated: none until a force acts.
+void clear_step_terms(Contact& ct) {
   ct.slip_work = 0.0;
   ct.shear_couple = 0.0;
   ct.stiffness = 0.0;
   ct.twist_stiffness = 0.0;
+}
+
+// The contact takes this step's geometry; no force yet.
+void take_geometry(Contact& ct, const ContactGeometry& g) {
+  ct.geometry = ContactGeometryRecord(g);
+  ct.touching = g.touching;
+  ct.integrated = false;
+}
+
+// The contact takes this step's normal response: F_n and σ_n, and the force values of a face
+// contact (a point contact's follow from its geometry and σ_n).
+void take_normal_response(Contact& ct, const NormalResponse& r) {
+  ct.integrated = r.integrated;
+  ct.normal_force = r.force;
+  ct.normal_stress = r.stress;
+  if (r.integrated) {
+    ct.set_force_values(r.force_point, r.compressed_area, r.peak_stress, r.peak_closure, r.energy);
+  } else {
+    ct.take_point_values();
+  }
+}
+
+// What the tangential steps of a pair read besides its contact state.
+struct TangentialInput {
+  const Block& a;
+  const Block& b;
+  const JointLaw& law;
+  const ContactGeometry& geometry;  // this step's narrow phase
+  const FaceContactGeometry& face;  // its cells (mode face_integrated), else none
+  const NormalResponse& normal;     // this step's normal response
+  const Eigen::Vector3d& previous;  // the normal of the last shear update
+  double dt = 0.0;                  // (s)
+  bool twist = false;               // the torsional spring acts
+};
+
+// B's motion relative to A over the step at x, about the unit normal n: the slip of the
+// material points in the tangent plane (none on the step the contact forms: `moved` false) and
+// the turn `turn` (rad).
+ContactMotion relative_motion(const TangentialInput& in, const Eigen::Vector3d& x,
+                              const Eigen::Vector3d& n, bool moved, double turn) {
+  ContactMotion m;
+  m.point = x;
+  m.normal = n;
+  if (moved) m.slip = tangential_slip(in.b.point_velocity(x) - in.a.point_velocity(x), n, in.dt);
+  m.turn = turn;
+  return m;
+}
+
+// A contact's twist and shear over the step, after its normal response: the torsional spring
+// turned by B's spin relative to A (from the state before the shear update: bond and plastic
+// slip), the stored shear force carried into this step's frame and the law's increment from the
+// slip at the shear spring's point, then, on a face contact with twist, force and moment held
+// together against Coulomb's law at every point; the contact then has a history, turned to this
+// step's normal, and its springs for the automatic time step. Returns whether the bond broke.
+bool respond_tangentially(Contact& ct, const TangentialInput& in) {
+  const Block& a = in.a;
+  const Block& b = in.b;
+  const Eigen::Vector3d& n = ct.geometry.normal;
+  const double spin = in.twist && ct.has_history
+                          ? relative_spin(a.angular_velocity, b.angular_velocity, n, in.dt)
+                          : 0.0;
+  const FaceStress stress{in.face.cells, in.law.normal};
+  std::optional<TwistGeometry> twist_area;
+  TwistStep turned;
+  if (in.twist) {
+    twist_area = twist_geometry(in.normal, in.geometry, in.face, n);
+    turned = advance_twist(ct.twist, in.law.shear, ct.shear, in.normal.stress, *twist_area, stress,
+                           spin);
+    ct.twist_stiffness = turned.stiffness;
+  }
+  // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
+  if (ct.has_history) {
+    const double frame =
+        in.twist ? frame_spin(a.angular_velocity, b.angular_velocity, n, in.dt) : 0.0;
+    carry_shear_state(ct.shear, in.previous, n, frame);
+  }
+  const ContactMotion motion = relative_motion(in, in.normal.shear_point, n, ct.has_history, spin);
+  const ShearResult sr = shear_response(ct.shear, in.law.shear, in.normal.load(), motion);
+  ct.sliding = sr.sliding;
+  ct.slip_work = sr.plastic_work + turned.slip_work;
+  if (twist_area && in.normal.integrated) {
+    const ShearTwistLimit limit =
+        limit_shear_and_twist(ct.shear, ct.twist, in.law.shear, in.normal.load(), *twist_area,
+                              stress, motion, ct.force_point(), sr.stiffness, turned.stiffness);
+    if (limit.slipped) {
+      ct.sliding = true;
+      ct.slip_work += limit.shear_released;
+      ct.slip_work += limit.twist_released;
+    }
+  }
+  ct.take_normal_as_previous();
+  ct.has_history = true;
+  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
+  ct.stiffness = in.normal.stiffness + sr.stiffness;
+  return sr.broke;
+}
+
+}  // namespace
+
+void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
+  slot.active = false;
+  slot.broke = false;
+  clear_step_terms(ct);
   const std::vector<int>& face_laws_a = face_laws(ct.a);
   const std::vector<int>& face_laws_b = face_laws(ct.b);
-  if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) {
-    forget_history(ct);
-    return;
-  }
+  if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) return forget_history(ct);
+  // Faces that do not press on each other: a bond may hold them, else the contact is gone.
+  const auto open_bond = [&](const OpenBondStart* start) {
+    if (!evaluate_open_bond(slot, ct, start, dt, advance_shear)) forget_history(ct);
+  };
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];
   const double extent = 2.0 * (a.bounding_radius + b.bounding_radius);
   const ContactGeometry g = narrow_phase(slot, a, b, extent);
-  if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) {
-    if (!evaluate_open_bond(slot, ct, nullptr, dt, advance_shear)) forget_history(ct);
-    return;
-  }
+  if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) return open_bond(nullptr);
   // Last step's normal, before this step's geometry replaces it (the shear force turns from it).
   const Eigen::Vector3d previous = ct.previous_normal();
   // The joint law of the faces in contact (a joint set's), else the group rules'.
   ct.law = face_law_for_contact(a, face_laws_a, b, face_laws_b, g, slot.group_law);
-  if (ct.law < 0) {
-    forget_history(ct);
-    return;
-  }
+  if (ct.law < 0) return forget_history(ct);
   // An open bond met below starts from last step's values, which the new geometry replaces.
   const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
   const OpenBondStart start =
       face_mode ? OpenBondStart{ct.force_point(), previous, ct.compressed_area()} : OpenBondStart{};
-  ct.geometry = ContactGeometryRecord(g);
-  ct.touching = g.touching;
+  take_geometry(ct, g);
   const JointLaw& law = laws_[ct.law];
-  const Eigen::Vector3d& n = ct.geometry.normal;
-
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
-  // contact, acting at the centre of pressure (mode face_integrated).
-  ct.integrated = false;
-  // Twist (the contact's state before this step's shear update: bond and plastic slip): B's spin
-  // relative to A about n turns the torsional spring.
-  const bool twist = settings_.twist_enabled() && advance_shear;
-  double spin = 0.0;        // dθ of this step (rad)
-  double twist_work = 0.0;  // slip work of the twisting moment in this step (J)
-  const auto advance_twist = [&](const TwistGeometry& tg, auto&& better_bound,
-                                 auto&& exact_radial) {
-    spin = ct.has_history ? relative_spin(a.angular_velocity, b.angular_velocity, n, dt) : 0.0;
-    const double before = ct.twist.moment;
-    ct.twist_stiffness = advance_contact_twist(ct.twist, law.shear, ct.shear, ct.normal_stress, tg,
-                                               spin, better_bound, exact_radial);
-    twist_work =
-        twist_slip_work(before - ct.twist_stiffness * spin, ct.twist.moment, ct.twist_stiffness);
-  };
-  // A face contact's cells and the area terms of its twist, for the shear-twist interaction.
+  // cells of a face contact, acting at the centre of pressure (mode face_integrated).
   const FaceContactGeometry fc =
-      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, ct.geometry.point, n,
+      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
                                         extent, settings_.face_contact)
                 : FaceContactGeometry{};
-  std::optional<TwistGeometry> face_twist;
-  // Where the shear spring acts, x_s: the centroid of the compressed area, a point that moves
-  // with both faces (set below with the normal force). Not the centre of pressure, which slides
-  // across the face as the block rocks (millimetres per microradian on a stiff joint): a spring
-  // whose end moves over the block is not conservative, and a prism on its face, whose sliding
-  // and spinning frequencies are equal (I_z / m = J / A), flutters under it, undamped.
-  Eigen::Vector3d shear_point = g.point;
-  if (face_mode) {
-    if (fc.face_type) {
-      double force = 0.0, compressed = 0.0, peak = 0.0, closure = 0.0, energy = 0.0;
-      Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-      for (const auto& cell : fc.cells) {
-        const PolygonStressResultant r =
-            integrate_normal_stress_over_polygon(law.normal, cell.vertices, cell.closures);
-        force += r.force;
-        compressed += r.compressed_area;
-        peak = std::max(peak, r.peak_stress);
-        if (r.centre_of_pressure) moment += r.force * *r.centre_of_pressure;
-        energy += normal_energy_over_polygon(law.normal, cell.vertices, cell.closures, r.force);
-        for (double gc : cell.closures) closure = std::max(closure, gc);
-      }
-      if (!(force > 0.0)) {
-        // Touching, but no closure anywhere to integrate: no force this step, unless a bond
-        // holds the faces together.
-        if (!evaluate_open_bond(slot, ct, &start, dt, advance_shear)) forget_history(ct);
-        return;
-      }
-      ct.integrated = true;
-      ct.normal_force = force;
-      ct.normal_stress = force / compressed;
-      ct.set_force_values(moment / force, compressed, peak, closure, energy);
-      shear_point = compressed_area_centroid(fc.cells, ct.force_point());
-      if (twist) {
-        face_twist = face_twist_geometry(fc.cells, n, force, ct.force_point());
-        TwistGeometry& tg = *face_twist;
-        // The spring's cap sharpens the radial moment only as far as it needs; keep the value.
-        advance_twist(
-            tg,
-            [&] {
-              return tg.radial_normal_moment = face_radial_normal_bound(fc.cells, law.normal, tg);
-            },
-            [&] {
-              tg.exact = true;
-              return tg.radial_normal_moment =
-                         face_radial_normal_moment(fc.cells, law.normal, tg.centre);
-            });
-      }
-    }
-  }
-  if (!ct.integrated) {
-    ct.normal_stress = normal_stress(law.normal, ct.geometry.overlap);
-    ct.normal_force = ct.normal_stress * ct.geometry.area;
-    // Force point, compressed area, peak stress and closure: x_c, A_c, σ_n and δ.
-    ct.take_point_values();
-    // The shear spring at the slice's centroid, not at x_c (where the paper's point contact puts
-    // every force): x_c slides across the face as the block rocks.
-    shear_point = slice_centroid(g.slice, ct.geometry.point);
-    if (twist) {
-      const TwistGeometry tg = slice_twist_geometry(g.slice, ct.normal_stress);
-      const auto known = [&] { return tg.radial_normal_moment; };
-      advance_twist(tg, known, known);
-    }
-  }
+  const std::optional<NormalResponse> normal = normal_response(law.normal, g, fc);
+  if (!normal) return open_bond(&start);
+  take_normal_response(ct, *normal);
   slot.active = true;
-  const double kn = normal_tangent_stiffness(law.normal, ct.peak_closure()) * ct.compressed_area();
-  // A restore re-derives geometry and normal force only; the shear history stays as saved, and
-  // so does the normal it was last turned to.
-  if (!advance_shear) {
-    ct.stiffness = kn;
+  if (advance_shear) {
+    const bool twist = settings_.twist_enabled();
+    slot.broke = respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});
+  } else {
+    // A restore re-derives geometry and normal force only; the shear history stays as saved,
+    // and so does the normal it was last turned to.
+    ct.stiffness = normal->stiffness;
     ct.set_previous_normal(previous);
-    ct.shear_couple = (shear_point - ct.force_point()).cross(ct.shear.force).dot(n);
-    return;
   }
-  const Eigen::Vector3d& xf = shear_point;
-
-  // Shear: carry the stored force into the new tangent plane, then add the increment from the
-  // relative velocity of the material points at x_c over the step.
-  if (ct.has_history) rotate_into_plane(ct.shear, previous, n);
-  // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
-  if (twist && ct.has_history)
-    spin_shear_state(ct.shear, n, 0.5 * (a.angular_velocity + b.angular_velocity).dot(n) * dt);
-  const Eigen::Vector3d v_rel = b.point_velocity(xf) - a.point_velocity(xf);
-  ShearIncrement inc;
-  inc.displacement =
-      ct.has_history ? Eigen::Vector3d((v_rel - v_rel.dot(n) * n) * dt) : Eigen::Vector3d::Zero();
-  inc.normal_force = ct.normal_force;
-  inc.normal_stress = ct.normal_stress;
-  inc.contact_area = ct.compressed_area();
-  inc.normal = n;
-  const ShearResult sr = update_shear(law.shear, ct.shear, inc);
-  ct.sliding = sr.sliding;
-  slot.broke = sr.broke;
-  ct.slip_work = sr.plastic_work + twist_work;
-  // Force and moment together against Coulomb's law at every point of a face contact.
-  if (face_twist) {
-    const double stored = ct.shear.force.squaredNorm(), twisted = ct.twist.moment;
-    // Coulomb's limit surface is written about the centre of pressure x_p (a uniform slip's
-    // friction has no moment there): the state taken there, the shear force with the couple that
-    // moves it from x_s, and the slip of x_p; and back to x_s after.
-    const Eigen::Vector3d& xp = ct.force_point();
-    const auto couple_to_p = [&] { return (xf - xp).cross(ct.shear.force).dot(n); };
-    TwistState at_p{ct.twist.moment + couple_to_p()};
-    const Eigen::Vector3d slip_p = inc.displacement + spin * n.cross(xp - xf);
-    const ShearTwistResult st = interact_shear_twist(
-        ct.shear, at_p, law.shear, ct.normal_stress, ct.normal_force, ct.compressed_area(),
-        *face_twist, xp, n, slip_p, spin,
-        [&] {
-          return face_pressure_radial_bound(fc.cells, law.normal, *face_twist, ct.normal_force, xp);
-        },
-        [&](const SlipCentre& centre) {
-          return face_full_slip(fc.cells, law.normal, n, xp, centre);
-        });
-    if (st.slipped) ct.twist.moment = at_p.moment - couple_to_p();
-    if (st.slipped) {
-      ct.sliding = true;
-      // The shear spring's energy released by the return, dissipated.
-      if (sr.stiffness > 0.0) {
-        const double released = 0.5 * (stored - ct.shear.force.squaredNorm()) / sr.stiffness;
-        ct.slip_work += released;
-        ct.shear.elastic_energy -= released;
-      }
-      ct.slip_work += twist_elastic_energy(twisted, ct.twist_stiffness) -
-                      twist_elastic_energy(ct.twist.moment, ct.twist_stiffness);
-    }
-  }
-  ct.shear_couple = (shear_point - ct.force_point()).cross(ct.shear.force).dot(n);
-  ct.take_normal_as_previous();
-  ct.has_history = true;
-  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
-  ct.stiffness = kn + sr.stiffness;
+  ct.shear_couple =
+      shear_couple(normal->shear_point, ct.force_point(), ct.shear.force, ct.geometry.normal);
 }
 
 void World::scatter_loads(const std::vector<char>* counted) {

@@ -1,5 +1,5 @@
-// The twisting resistance of a world contact over one step.
-#include "blockdem/world/contact_twist.hpp"
+// The twisting resistance of a contact over one step.
+#include "blockdem/response/contact_twist.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "blockdem/collision/face_twist.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
+#include "blockdem/response/face_twist.hpp"
 
 namespace blockdem {
 
@@ -116,32 +116,6 @@ TwistGeometry slice_twist_geometry(const SlicePolygon& slice, double normal_stre
   g.exact = true;
   g.centre = pm.centroid;
   return g;
-}
-
-Eigen::Vector3d compressed_area_centroid(std::span<const ClosureCell> cells,
-                                         const Eigen::Vector3d& fallback) {
-  double area = 0.0;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();
-  for (const ClosureCell& cell : cells) {
-    const PolygonMoments pm = polygon_area_centroid(
-        std::span<const Eigen::Vector3d>(cell.vertices.data(), cell.vertices.size()));
-    area += pm.area;
-    first += pm.area * pm.centroid;
-  }
-  return area > 0.0 ? Eigen::Vector3d(first / area) : fallback;
-}
-
-Eigen::Vector3d slice_centroid(const SlicePolygon& slice, const Eigen::Vector3d& fallback) {
-  // In the slice's plane coordinates, about x_c: one point to carry to the world.
-  if (!(slice.area() > 0.0)) return fallback;
-  return slice.to_world(slice.centroid_2d());
-}
-
-void spin_shear_state(ShearState& state, const Eigen::Vector3d& normal, double angle) {
-  if (angle == 0.0) return;
-  const Eigen::AngleAxisd turn(angle, normal);
-  state.force = turn * state.force;
-  state.elastic_displacement = turn * state.elastic_displacement;
 }
 
 double step_contact_twist(TwistState& twist, const TwistLawTerms& terms,

@@ -1,5 +1,5 @@
 // Law of a contact from the faces in contact (per-face provenance of cut rock blocks).
-#include "blockdem/world/face_laws.hpp"
+#include "blockdem/response/face_laws.hpp"
 
 #include <limits>
 

@@ -1,5 +1,5 @@
-// Polar and radial moments over a face contact's cells, for the twisting resistance.
-#include "blockdem/collision/face_twist.hpp"
+// Polar and radial moments and full slip over a face contact's cells, for the twisting resistance.
+#include "blockdem/response/face_twist.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,6 +8,7 @@
 #include <optional>
 #include <variant>
 
+#include "blockdem/contact/overloaded.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
 
 namespace blockdem {
@@ -435,23 +436,44 @@ bool linear_cell_stress(const ClosureCell& cell, const NormalLaw& law, SmallVect
                         double& stress_per_closure) {
   const auto& g = cell.closures;
   out.clear();
-  if (const auto* linear = std::get_if<LinearNormal>(&law)) {
-    for (const double gi : g) out.push_back(linear->stiffness * std::max(gi, 0.0));
-    stress_per_closure = linear->stiffness;
-    return true;
-  }
-  const auto& e = std::get<ExponentialNormal>(law);
-  const auto [lo, hi] = std::minmax_element(g.begin(), g.end());
-  const double g0 = std::max(*lo, 0.0), g1 = std::max(*hi, 0.0), spread = g1 - g0;
-  const double s0 = normal_stress(law, g0), s1 = normal_stress(law, g1);
-  if (spread > 0.0) {
-    const double gap = e.b * e.b * (s1 + e.a) * spread * spread / 8.0;
-    if (!(gap <= kLinearStressTolerance * s1)) return false;
-  }
-  const double slope = spread > 0.0 ? (s1 - s0) / spread : 0.0;
-  for (const double gi : g) out.push_back(s0 + slope * (std::max(gi, 0.0) - g0));
-  stress_per_closure = e.b * (s1 + e.a);  // the law's largest slope on the cell
-  return true;
+  return std::visit(
+      Overloaded{
+          [&](const LinearNormal& linear) {
+            for (const double gi : g) out.push_back(linear.stiffness * std::max(gi, 0.0));
+            stress_per_closure = linear.stiffness;
+            return true;
+          },
+          [&](const ExponentialNormal& e) {
+            const auto [lo, hi] = std::minmax_element(g.begin(), g.end());
+            const double g0 = std::max(*lo, 0.0), g1 = std::max(*hi, 0.0), spread = g1 - g0;
+            const double s0 = normal_stress(law, g0), s1 = normal_stress(law, g1);
+            if (spread > 0.0) {
+              const double gap = e.b * e.b * (s1 + e.a) * spread * spread / 8.0;
+              if (!(gap <= kLinearStressTolerance * s1)) return false;
+            }
+            const double slope = spread > 0.0 ? (s1 - s0) / spread : 0.0;
+            for (const double gi : g) out.push_back(s0 + slope * (std::max(gi, 0.0) - g0));
+            stress_per_closure = e.b * (s1 + e.a);  // the law's largest slope on the cell
+            return true;
+          },
+      },
+      law);
+}
+
+// The closed forms of full slip over a cell whose stress is not linear: the exponential law's
+// (exponential_slip_sums, about `centre`); none for the linear law, whose stress is linear over
+// every cell (linear_cell_stress).
+std::optional<SlipSums> curved_slip_sums(std::span<const Eigen::Vector3d> vertices,
+                                         std::span<const double> closures, const NormalLaw& law,
+                                         const Eigen::Vector3d& normal,
+                                         const Eigen::Vector3d& centre) {
+  return std::visit(Overloaded{
+                        [](const LinearNormal&) -> std::optional<SlipSums> { return std::nullopt; },
+                        [&](const ExponentialNormal& e) {
+                          return exponential_slip_sums(vertices, closures, e, normal, centre);
+                        },
+                    },
+                    law);
 }
 
 // A unit normal of a cell's plane (Newell's sum; either sense).
@@ -567,12 +589,10 @@ FaceTwistMoments face_twist_moments(std::span<const ClosureCell> cells, const No
         continue;
       }
     }
-    if (const auto* e = std::get_if<ExponentialNormal>(&law)) {
-      const std::span<const double> g(cell.closures.data(), cell.closures.size());
-      if (const auto sums = exponential_slip_sums(vertices, g, *e, cell_normal(vertices), centre)) {
-        m.radial_normal_moment += sums->radial;
-        continue;
-      }
+    const std::span<const double> g(cell.closures.data(), cell.closures.size());
+    if (const auto sums = curved_slip_sums(vertices, g, law, cell_normal(vertices), centre)) {
+      m.radial_normal_moment += sums->radial;
+      continue;
     }
     const bool sliver = sliver_cell(vertices);
     for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
@@ -606,10 +626,10 @@ FullSlip face_full_slip(std::span<const ClosureCell> cells, const NormalLaw& law
             ? linear_slip_sums(vertices, std::span<const double>(stress.data(), stress.size()),
                                slope, normal, p)
             : std::nullopt;
-    if (const auto* e = std::get_if<ExponentialNormal>(&law); !sums && e) {
-      sums = exponential_slip_sums(
-          vertices, std::span<const double>(cell.closures.data(), cell.closures.size()), *e, normal,
-          p);
+    if (!sums) {
+      sums = curved_slip_sums(vertices,
+                              std::span<const double>(cell.closures.data(), cell.closures.size()),
+                              law, normal, p);
     }
     if (sums) {
       // Traction -σ s n × d / |d| (d = y - p): F = -s n × V, power W, and the moment about x_p

@@ -1,7 +1,7 @@
 // The area terms of a face contact's torsional spring: J of the cells about their centroid
 // (closed form a⁴/6 for a square), and the cheap lower bounds of ∫ σ_n r dA that let an elastic
 // step skip the full quadrature: they never exceed the quadrature's value.
-#include "blockdem/world/contact_twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,11 @@
 #include <numbers>
 
 #include "blockdem/contact/normal_integral.hpp"
+#include "square_cells.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::response_contact_twist {
 namespace {
 
 constexpr double kSide = 0.046;  // square side a (m)
@@ -19,18 +22,7 @@ constexpr double kSide = 0.046;  // square side a (m)
 // The square [0, a]² at z = 0 as two cells (split at x = a/2) with the closure linear in x,
 // g = g0 + slope x (m): one linear field over both cells.
 FaceContactGeometry square_cells(double g0, double slope) {
-  FaceContactGeometry fc;
-  fc.face_type = true;
-  for (int half = 0; half < 2; ++half) {
-    const double x0 = half * kSide / 2, x1 = x0 + kSide / 2;
-    ClosureCell cell;
-    for (const auto& [x, y] : {std::pair{x0, 0.0}, {x1, 0.0}, {x1, kSide}, {x0, kSide}}) {
-      cell.vertices.push_back(Eigen::Vector3d(x, y, 0.0));
-      cell.closures.push_back(g0 + slope * x);
-    }
-    fc.cells.push_back(cell);
-  }
-  return fc;
+  return test::square_cells(kSide, g0, slope);
 }
 
 /// F_n and the centre of pressure x_p of the cells, as the world's step forms them.
@@ -188,4 +180,4 @@ TEST(ContactTwist, ExactRadialMomentOfABarelyClosedCellIsNotNegative) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::test::response_contact_twist

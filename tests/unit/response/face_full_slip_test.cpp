@@ -10,9 +10,12 @@
 #include <numbers>
 #include <vector>
 
-#include "blockdem/collision/face_twist.hpp"
+#include "blockdem/response/face_twist.hpp"
+#include "square_cells.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::response_face_full_slip {
 namespace {
 
 constexpr double kSide = 0.046;                    // square side a (m)
@@ -25,18 +28,7 @@ const Eigen::Vector3d kCentre(kSide / 2, kSide / 2, 0.0);
 // The square [0, a]² at z = 0 as two cells, the closure g(x) = g0 + slope x (linear over the
 // square; uniform by default).
 FaceContactGeometry square_cells(double g0 = kClosure, double slope = 0.0) {
-  FaceContactGeometry fc;
-  fc.face_type = true;
-  for (int half = 0; half < 2; ++half) {
-    const double x0 = half * kSide / 2, x1 = x0 + kSide / 2;
-    ClosureCell cell;
-    for (const auto& [x, y] : {std::pair{x0, 0.0}, {x1, 0.0}, {x1, kSide}, {x0, kSide}}) {
-      cell.vertices.push_back(Eigen::Vector3d(x, y, 0.0));
-      cell.closures.push_back(g0 + slope * x);
-    }
-    fc.cells.push_back(cell);
-  }
-  return fc;
+  return test::square_cells(kSide, g0, slope);
 }
 
 SlipCentre centre_at(const Eigen::Vector3d& p, double sense) {
@@ -409,4 +401,4 @@ TEST(ShearTwistKernel, SlipTestReducesToTheSeparateLimits) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::test::response_face_full_slip

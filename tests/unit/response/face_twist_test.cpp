@@ -1,7 +1,7 @@
 // Twisting resistance of a face-integrated contact: a cube pressed on a base, its contact cells'
 // polar and radial moments against the square's closed forms, and the twisting kernel driven
 // with them: elastic M = k_s J θ (J = a⁴/6, 1%) and full slip M = μ σ_n ∫ r dA (2%).
-#include "blockdem/collision/face_twist.hpp"
+#include "blockdem/response/face_twist.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "../collision/random_shapes.hpp"
 #include "blockdem/contact/twist.hpp"
-#include "random_shapes.hpp"
 
-namespace blockdem {
+// A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
+// with other test files that define helpers of the same names.
+namespace blockdem::test::response_face_twist {
 namespace {
 
 constexpr double kSide = 0.046;    // cube side a (m)
@@ -120,4 +122,4 @@ TEST(FaceTwist, CubeTwistedOnABase) {
 }
 
 }  // namespace
-}  // namespace blockdem
+}  // namespace blockdem::test::response_face_twist
