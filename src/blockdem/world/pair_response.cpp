@@ -1,0 +1,178 @@
+// One pair's work in a step (World::evaluate_pair): the narrow phase, the joint law for the
+// contact, and its response through the named steps of response/ (normal, then shear and twist
+// held together against the limit surface). Force assembly: normal force, then shear.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "blockdem/contact/twist.hpp"
+#include "blockdem/response/contact_twist.hpp"
+#include "blockdem/response/face_laws.hpp"
+#include "blockdem/response/normal_response.hpp"
+#include "blockdem/response/shear_response.hpp"
+#include "blockdem/world/world.hpp"
+
+namespace blockdem {
+
+namespace {
+
+// A contact's terms of this step, before its pair is evaluated: none until a force acts.
+void clear_step_terms(Contact& ct) {
+  ct.slip_work = 0.0;
+  ct.shear_couple = 0.0;
+  ct.stiffness = 0.0;
+  ct.twist_stiffness = 0.0;
+}
+
+// The contact takes this step's geometry; no force yet.
+void take_geometry(Contact& ct, const ContactGeometry& g) {
+  ct.geometry = ContactGeometryRecord(g);
+  ct.touching = g.touching;
+  ct.integrated = false;
+}
+
+// The contact takes this step's normal response: F_n and σ_n, and the force values of a face
+// contact (a point contact's follow from its geometry and σ_n).
+void take_normal_response(Contact& ct, const NormalResponse& r) {
+  ct.integrated = r.integrated;
+  ct.normal_force = r.force;
+  ct.normal_stress = r.stress;
+  if (r.integrated) {
+    ct.set_force_values(r.force_point, r.compressed_area, r.peak_stress, r.peak_closure, r.energy);
+  } else {
+    ct.take_point_values();
+  }
+}
+
+// What the tangential steps of a pair read besides its contact state.
+struct TangentialInput {
+  const Block& a;
+  const Block& b;
+  const JointLaw& law;
+  const ContactGeometry& geometry;  // this step's narrow phase
+  const FaceContactGeometry& face;  // its cells (mode face_integrated), else none
+  const NormalResponse& normal;     // this step's normal response
+  const Eigen::Vector3d& previous;  // the normal of the last shear update
+  double dt = 0.0;                  // (s)
+  bool twist = false;               // the torsional spring acts
+};
+
+// B's motion relative to A over the step at x, about the unit normal n: the slip of the
+// material points in the tangent plane (none on the step the contact forms: `moved` false) and
+// the turn `turn` (rad).
+ContactMotion relative_motion(const TangentialInput& in, const Eigen::Vector3d& x,
+                              const Eigen::Vector3d& n, bool moved, double turn) {
+  ContactMotion m;
+  m.point = x;
+  m.normal = n;
+  if (moved) m.slip = tangential_slip(in.b.point_velocity(x) - in.a.point_velocity(x), n, in.dt);
+  m.turn = turn;
+  return m;
+}
+
+// A contact's twist and shear over the step, after its normal response: the torsional spring
+// turned by B's spin relative to A (from the state before the shear update: bond and plastic
+// slip), the stored shear force carried into this step's frame and the law's increment from the
+// slip at the shear spring's point, then, on a face contact with twist, force and moment held
+// together against Coulomb's law at every point; the contact then has a history, turned to this
+// step's normal, and its springs for the automatic time step. Returns whether the bond broke.
+bool respond_tangentially(Contact& ct, const TangentialInput& in) {
+  const Block& a = in.a;
+  const Block& b = in.b;
+  const Eigen::Vector3d& n = ct.geometry.normal;
+  const double spin = in.twist && ct.has_history
+                          ? relative_spin(a.angular_velocity, b.angular_velocity, n, in.dt)
+                          : 0.0;
+  const FaceStress stress{in.face.cells, in.law.normal};
+  std::optional<TwistGeometry> twist_area;
+  TwistStep turned;
+  if (in.twist) {
+    twist_area = twist_geometry(in.normal, in.geometry, in.face, n);
+    turned = advance_twist(ct.twist, in.law.shear, ct.shear, in.normal.stress, *twist_area, stress,
+                           spin);
+    ct.twist_stiffness = turned.stiffness;
+  }
+  // With twist, the stored force also turns with the contact's spin about n (the blocks' mean).
+  if (ct.has_history) {
+    const double frame =
+        in.twist ? frame_spin(a.angular_velocity, b.angular_velocity, n, in.dt) : 0.0;
+    carry_shear_state(ct.shear, in.previous, n, frame);
+  }
+  const ContactMotion motion = relative_motion(in, in.normal.shear_point, n, ct.has_history, spin);
+  const ShearResult sr = shear_response(ct.shear, in.law.shear, in.normal.load(), motion);
+  ct.sliding = sr.sliding;
+  ct.slip_work = sr.plastic_work + turned.slip_work;
+  if (twist_area && in.normal.integrated) {
+    const ShearTwistLimit limit =
+        limit_shear_and_twist(ct.shear, ct.twist, in.law.shear, in.normal.load(), *twist_area,
+                              stress, motion, ct.force_point(), sr.stiffness, turned.stiffness);
+    if (limit.slipped) {
+      ct.sliding = true;
+      ct.slip_work += limit.shear_released;
+      ct.slip_work += limit.twist_released;
+    }
+  }
+  ct.take_normal_as_previous();
+  ct.has_history = true;
+  // Stiffness for the automatic time step: normal and shear springs k A (N/m).
+  ct.stiffness = in.normal.stiffness + sr.stiffness;
+  return sr.broke;
+}
+
+}  // namespace
+
+void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
+  slot.active = false;
+  slot.broke = false;
+  clear_step_terms(ct);
+  const std::vector<int>& face_laws_a = face_laws(ct.a);
+  const std::vector<int>& face_laws_b = face_laws(ct.b);
+  if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) return forget_history(ct);
+  // Faces that do not press on each other: a bond may hold them, else the contact is gone.
+  const auto open_bond = [&](const OpenBondStart* start) {
+    if (!evaluate_open_bond(slot, ct, start, dt, advance_shear)) forget_history(ct);
+  };
+  const Block& a = blocks_[ct.a];
+  const Block& b = blocks_[ct.b];
+  const double extent = 2.0 * (a.bounding_radius + b.bounding_radius);
+  const ContactGeometry g = narrow_phase(slot, a, b, extent);
+  if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) return open_bond(nullptr);
+  // Last step's normal, before this step's geometry replaces it (the shear force turns from it).
+  const Eigen::Vector3d previous = ct.previous_normal();
+  // The joint law of the faces in contact (a joint set's), else the group rules'.
+  ct.law = face_law_for_contact(a, face_laws_a, b, face_laws_b, g, slot.group_law);
+  if (ct.law < 0) return forget_history(ct);
+  // An open bond met below starts from last step's values, which the new geometry replaces.
+  const bool face_mode = settings_.contact_mode == ContactMode::face_integrated;
+  const OpenBondStart start =
+      face_mode ? OpenBondStart{ct.force_point(), previous, ct.compressed_area()} : OpenBondStart{};
+  take_geometry(ct, g);
+  const JointLaw& law = laws_[ct.law];
+  // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
+  // cells of a face contact, acting at the centre of pressure (mode face_integrated).
+  const FaceContactGeometry fc =
+      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
+                                        extent, settings_.face_contact)
+                : FaceContactGeometry{};
+  const std::optional<NormalResponse> normal = normal_response(law.normal, g, fc);
+  if (!normal) return open_bond(&start);
+  take_normal_response(ct, *normal);
+  slot.active = true;
+  if (advance_shear) {
+    const bool twist = settings_.twist_enabled();
+    slot.broke = respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});
+  } else {
+    // A restore re-derives geometry and normal force only; the shear history stays as saved,
+    // and so does the normal it was last turned to.
+    ct.stiffness = normal->stiffness;
+    ct.set_previous_normal(previous);
+  }
+  ct.shear_couple =
+      shear_couple(normal->shear_point, ct.force_point(), ct.shear.force, ct.geometry.normal);
+}
+
+}  // namespace blockdem
