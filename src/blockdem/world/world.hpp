@@ -537,6 +537,11 @@ class World {
   void save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const;
   void save_counters(StateWriter& w, std::int64_t overlap_violation) const;
   void save_divergence_checkpoint(StateWriter& w) const;
+  // load_state's sections, in the order save_state writes them (world_state.cpp).
+  void load_blocks(StateReader& r);
+  void load_counters(StateReader& r);
+  void load_slots(StateReader& r);
+  void load_divergence_checkpoint(StateReader& r);
 };
 
 template <class F>

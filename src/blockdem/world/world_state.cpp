@@ -296,6 +296,15 @@ void World::load_state(StateReader& r) {
   r.pod(settings_.damping);
   if (r.size() != laws_.size())
     throw StateError("the saved state has another number of joint laws than the scenario");
+  load_blocks(r);
+  load_counters(r);
+  load_slots(r);
+  load_divergence_checkpoint(r);
+  checkpoint_.energy.load_state(r);
+  energy_.load_state(r);  // after remove_blocks above, which starts the accounting again
+}
+
+void World::load_blocks(StateReader& r) {
   // Blocks removed by earlier stages (an excavation) are removed here too, matched by name.
   const std::size_t n = r.size();
   std::vector<Block> saved(n);
@@ -355,6 +364,10 @@ void World::load_state(StateReader& r) {
     box_min_[i] = saved_min[i];
     box_max_[i] = saved_max[i];
   }
+}
+
+void World::load_counters(StateReader& r) {
+  const std::size_t n = blocks_.size();
   stiffness_ = read_doubles(r);
   rotational_stiffness_ = read_doubles(r);
   if (stiffness_.size() > n || rotational_stiffness_.size() > n)
@@ -367,6 +380,9 @@ void World::load_state(StateReader& r) {
   r.pod(overlap_violation_);
   const bool rules_current = r.pod<std::uint8_t>() != 0;
   slots_rules_version_ = rules_current ? rules_version_ : rules_version_ - 1;
+}
+
+void World::load_slots(StateReader& r) {
   const int block_count = static_cast<int>(blocks_.size());
   const int law_count = static_cast<int>(laws_.size());
   auto check_pair = [&](int a, int b) {
@@ -408,6 +424,14 @@ void World::load_state(StateReader& r) {
       contacts_.push_back(std::move(c));
     }
   }
+}
+
+void World::load_divergence_checkpoint(StateReader& r) {
+  const int block_count = static_cast<int>(blocks_.size());
+  const int law_count = static_cast<int>(laws_.size());
+  auto check_pair = [&](int a, int b) {
+    if (a < 0 || b <= a || b >= block_count) throw StateError("saved contact is corrupt");
+  };
   checkpoint_.valid = r.pod<std::uint8_t>() != 0;
   checkpoint_.partial = false;  // a restart file holds the whole checkpoint
   std::vector<int>().swap(checkpoint_.part_blocks);
@@ -457,8 +481,6 @@ void World::load_state(StateReader& r) {
       checkpoint_.contacts.push_back(h);
     }
   }
-  checkpoint_.energy.load_state(r);
-  energy_.load_state(r);  // after remove_blocks above, which starts the accounting again
 }
 
 }  // namespace blockdem
