@@ -140,7 +140,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
                                           const Eigen::Vector3d& origin,
                                           const Eigen::Vector3d& normal, double extent,
-                                          const FaceContactSettings& settings) {
+                                          const FaceContactSettings& settings,
+                                          const ClosureOffset* offset) {
   FaceContactGeometry out;
   // The angle is the same for every contact of a run: its cosine is kept per thread.
   thread_local double cached_angle = std::numeric_limits<double>::quiet_NaN(), cached_cos = 1.0;
@@ -172,12 +173,12 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // The same pass finds whether a block presents a face: A where one of its normals is within
   // the face angle of n, B where one is within it of -n.
   bool face = false;
-  auto add = [&](const Halfspace& p, bool of_a) {
+  auto add = [&](const Halfspace& p, bool of_a, bool bounds_laterally) {
     const double c = p.normal.dot(normal);
     face |= of_a ? c > cos_face : c < -cos_face;
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
-    if (std::abs(c) <= settings.lateral_tolerance) {
+    if (bounds_laterally || std::abs(c) <= settings.lateral_tolerance) {
       lateral[nl++] = {-slack.c0, -slack.c};
     } else if (c > 0.0) {
       top[nt++] = {slack.c0 / c, slack.c / c};
@@ -185,9 +186,24 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
       bottom[nb++] = {slack.c0 / c, slack.c / c};
     }
   };
-  for (const auto& p : planes_a) add(p, true);
+  // A prestressed face: only the two face planes close the chord; every other plane of either
+  // block bounds the face laterally, by its trace on the contact plane.
+  const auto lateral_for = [&](std::size_t j, int face_plane) {
+    return offset != nullptr && static_cast<int>(j) != face_plane;
+  };
+  for (std::size_t j = 0; j < planes_a.size(); ++j) {
+    const int before = nt;
+    add(planes_a[j], true, lateral_for(j, offset != nullptr ? offset->plane_a : -1));
+    // The closure added over A's face moves its end of the chord up by e(y), which is linear in
+    // the plane coordinates: e(origin + a u + b v) = e(origin) + (e'·u) a + (e'·v) b.
+    if (offset != nullptr && static_cast<int>(j) == offset->plane_a && nt > before) {
+      top[before].c0 += offset->value + offset->gradient.dot(origin - offset->point);
+      top[before].c += Eigen::Vector2d(offset->gradient.dot(u), offset->gradient.dot(v));
+    }
+  }
   const int top_a = nt, bottom_a = nb;
-  for (const auto& p : planes_b) add(p, false);
+  for (std::size_t j = 0; j < planes_b.size(); ++j)
+    add(planes_b[j], false, lateral_for(j, offset != nullptr ? offset->plane_b : -1));
   if (!face) return out;
   out.face_type = true;
   if (nt == 0 || nb == 0) return out;

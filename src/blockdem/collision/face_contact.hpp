@@ -36,6 +36,20 @@ struct FaceContactSettings {
   double lateral_tolerance = 1e-9;
 };
 
+/// A prestressed face: A's plane plane_a and B's plane plane_b coincide (opposite normals) where
+/// the blocks share a face, and the joint there carries the closure e(x) = value + gradient ·
+/// (x - point) (m), a field linear over the face, beyond the blocks' own overlap. The chord is
+/// then that between the two face planes plus e; every other plane bounds the face laterally.
+struct ClosureOffset {
+  int plane_a = -1;                                    ///< index into planes_a
+  int plane_b = -1;                                    ///< index into planes_b
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();     ///< (m)
+  double value = 0.0;                                  ///< e at point (m)
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  ///< (-)
+
+  double at(const Eigen::Vector3d& x) const { return value + gradient.dot(x - point); }
+};
+
 /// The chord of A∩B along n through a point y of the plane through `origin` normal to n is
 /// g(y) = min over planes facing +n of (s_j/c_j) - max over planes facing -n of (s_j/c_j),
 /// with c_j = n_j·n and s_j the slack of plane j at y. Each pair (upper plane, lower plane)
@@ -45,11 +59,13 @@ struct FaceContactSettings {
 /// where each upper plane is the lowest (and each lower plane the highest) is then clipped within
 /// it, and only pairs of non-empty regions whose boxes meet form cells. Polygons live in a stack
 /// buffer while no polygon can see more than 128 clips, and the planes in a stack table for up to
-/// 32 planes in all (heap buffers beyond).
+/// 32 planes in all (heap buffers beyond). With `offset`, a prestressed face (ClosureOffset):
+/// `origin` should lie on the face, where the other planes' traces bound it.
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
                                           const Eigen::Vector3d& origin,
                                           const Eigen::Vector3d& normal, double extent,
-                                          const FaceContactSettings& settings = {});
+                                          const FaceContactSettings& settings = {},
+                                          const ClosureOffset* offset = nullptr);
 
 }  // namespace blockdem

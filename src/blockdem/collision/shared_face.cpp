@@ -55,7 +55,9 @@ std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
       const PolygonMoments m =
           polygon_area_centroid(std::span<const Eigen::Vector3d>(poly->data(), poly->size()));
       if (!(m.area > tolerance * tolerance) || (best && m.area <= best->area)) continue;
-      best = SharedFace{face.plane, static_cast<int>(j), pa.normal, m.centroid, m.area};
+      best = SharedFace{face.plane, static_cast<int>(j),
+                        pa.normal,  m.centroid,
+                        m.area,     std::vector<Eigen::Vector3d>(poly->begin(), poly->end())};
     }
   }
   return best;

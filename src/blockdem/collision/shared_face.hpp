@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "blockdem/geometry/halfspace.hpp"
 #include "blockdem/geometry/polyhedron.hpp"
@@ -19,6 +20,7 @@ struct SharedFace {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   ///< A's outward normal, from A to B (-)
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< centroid of the shared polygon (m)
   double area = 0.0;                                   ///< area of the shared polygon (m^2)
+  std::vector<Eigen::Vector3d> polygon;                ///< its vertices, in order (m)
 };
 
 /// The largest face of A (shape `shape_a` at world vertices `vertices_a`, world planes `planes_a`)

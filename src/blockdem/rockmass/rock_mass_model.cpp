@@ -7,6 +7,7 @@
 
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/rockmass/excavation_shapes.hpp"
+#include "blockdem/scenario/in_situ_input.hpp"
 
 namespace blockdem {
 namespace {
@@ -174,7 +175,8 @@ std::string RockMassModel::label(const FaceTag& tag) const {
 
 RockMassModel read_rock_mass(const CheckedTable& root,
                              const std::map<std::string, double>& materials,
-                             const std::map<std::string, int>& laws) {
+                             const std::map<std::string, int>& laws,
+                             const std::optional<StressField>& in_situ) {
   RockMassModel m;
   const CheckedTable r = root.table("rock_mass");
   m.spec.region = read_region(r);
@@ -231,9 +233,21 @@ RockMassModel read_rock_mass(const CheckedTable& root,
       bc.faces.push_back(static_cast<int>(it - names.begin()));
     }
     if (bc.faces.empty()) b.fail("faces", "name at least one region face");
-    bc.kind = b.choice("condition", "fixed", {"fixed", "roller"}) == "roller"
-                  ? BoundaryCondition::Kind::roller
-                  : BoundaryCondition::Kind::fixed;
+    const std::string kind = b.choice("condition", "fixed", {"fixed", "roller", "stress"});
+    bc.kind = kind == "roller"   ? BoundaryCondition::Kind::roller
+              : kind == "stress" ? BoundaryCondition::Kind::stress
+                                 : BoundaryCondition::Kind::fixed;
+    if (b.has("stress")) {
+      if (bc.kind != BoundaryCondition::Kind::stress)
+        b.fail("stress", "a given stress needs condition = \"stress\"");
+      bc.stress.stress = read_stress_tensor(b, "stress");
+    } else if (bc.kind == BoundaryCondition::Kind::stress) {
+      if (!in_situ)
+        b.fail("condition",
+               "a stress boundary takes the [in_situ] field's traction: give [in_situ], or a "
+               "uniform stress = { xx = ..., ... } here");
+      bc.stress = *in_situ;
+    }
     if (bc.kind == BoundaryCondition::Kind::roller) {
       for (int f : bc.faces) {
         if (m.spec.region.planes[f].normal.cwiseAbs().maxCoeff() < 1.0 - 1e-12)
@@ -252,8 +266,40 @@ RockMassModel read_rock_mass(const CheckedTable& root,
     root.fail(key, why);
   }
   if (m.rock_mass.blocks.empty()) root.fail("rock_mass", "no block is left after slicing");
+  // A stress boundary loads the blocks on its faces: at least one must be there.
+  for (std::size_t k = 0; k < m.boundaries.size(); ++k) {
+    const BoundaryCondition& bc = m.boundaries[k];
+    if (bc.kind != BoundaryCondition::Kind::stress) continue;
+    bool touched = false;
+    for (const auto& cell : m.rock_mass.blocks) {
+      for (const auto& f : cell.faces()) {
+        touched |= f.tag.source == FaceSource::region &&
+                   std::find(bc.faces.begin(), bc.faces.end(), f.tag.index) != bc.faces.end();
+      }
+    }
+    if (!touched)
+      root.fail("boundaries[" + std::to_string(k + 1) + "].faces",
+                "no block has a face on these region faces: a stress there would load nothing");
+  }
   return m;
 }
+
+namespace {
+
+// The traction -σ m of `field` over a block's face (outward normal m) as constant loads on the
+// block: the force -∫ σ m dA and its moment about the block's centroid, exact for the field.
+void add_boundary_traction(Block& b, const ConvexCell& cell, const CellFace& face,
+                           const StressField& field) {
+  const int f = static_cast<int>(&face - cell.faces().data());
+  const std::vector<Eigen::Vector3d> polygon = cell.face_polygon(f);
+  const FaceTraction t = face_traction(field, polygon, face.plane.normal);
+  const Eigen::Vector3d force = -t.force;
+  const Eigen::Vector3d moment = -((t.centroid - b.position).cross(t.force) + t.moment);
+  b.set_external_force(b.external_force() + force);
+  b.set_external_torque(b.external_torque() + moment);
+}
+
+}  // namespace
 
 RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
   RockMassBlocks out;
@@ -285,6 +331,8 @@ RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
           continue;
         if (bc.kind == BoundaryCondition::Kind::fixed) {
           b.motion = Motion::fixed;
+        } else if (bc.kind == BoundaryCondition::Kind::stress) {
+          add_boundary_traction(b, c, f, bc.stress);
         } else {
           Eigen::Index axis = 0;
           f.plane.normal.cwiseAbs().maxCoeff(&axis);

@@ -4,21 +4,26 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "blockdem/response/in_situ.hpp"
 #include "blockdem/rockmass/rock_slicer.hpp"
 #include "blockdem/scenario/checked_table.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
 
-/// Blocks touching chosen region faces held in place or on rollers.
+/// Blocks touching chosen region faces held in place, on rollers, or loaded by a stress.
 struct BoundaryCondition {
   std::vector<int> faces;  ///< region face indices
   /// fixed: the block never moves; roller: it cannot move along the face normal (an axis) nor
-  /// rotate, and slides freely along the face.
-  enum class Kind { fixed, roller } kind = Kind::fixed;
+  /// rotate, and slides freely along the face; stress: the traction -σ m of a stress field on
+  /// the block's faces there (m their outward normal), a constant force and moment.
+  enum class Kind { fixed, roller, stress } kind = Kind::fixed;
+  /// stress: the field (the in-situ field, or a uniform stress given with the boundary).
+  StressField stress;
 };
 
 struct RockMassModel {
@@ -44,7 +49,8 @@ struct RockMassModel {
 /// the region. Throws ScenarioError naming file, key and reason.
 RockMassModel read_rock_mass(const CheckedTable& root,
                              const std::map<std::string, double>& materials,
-                             const std::map<std::string, int>& laws);
+                             const std::map<std::string, int>& laws,
+                             const std::optional<StressField>& in_situ = std::nullopt);
 
 /// The world blocks of a sliced rock mass, each with its per-plane joint laws (indices into the
 /// scenario's joint laws; -1 for a plane without one) and the boundary conditions applied.

@@ -19,7 +19,7 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   for (std::size_t i = 0; i < sc.joint_laws.size(); ++i)
     laws[sc.joint_laws[i].name] = static_cast<int>(i);
   auto scene = std::make_shared<RockMassScene>();
-  scene->model = read_rock_mass(root, sc.materials, laws);
+  scene->model = read_rock_mass(root, sc.materials, laws, sc.in_situ);
   if (scene->model.default_law < 0 && sc.joint_laws.size() > 1) {
     root.fail("rock_mass.law",
               "several joint laws: name the law of faces without one of their own (e.g. the "

@@ -632,6 +632,9 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   report_setup(cb, setup0,
                "world of " + std::to_string(world.blocks().size()) +
                    " blocks set up (initial-overlap check, first contacts' narrow phase)");
+  if (!world.preloads().empty() && cb.progress)
+    cb.progress("in-situ stress: " + std::to_string(world.preloads().size()) +
+                " joints start with the field's closure and shear (docs/ground-stress.md)");
   const auto& distribution = world.settings().distribution;
   const int ranks = distribution ? distribution->size() : 1;
   check_built_world(sc, world, ranks);

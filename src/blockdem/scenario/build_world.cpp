@@ -1,9 +1,11 @@
-// The world a scenario describes: its blocks, joint laws and rules, with deep initial overlaps
-// and an absurd time step refused as input errors.
+// The world a scenario describes: its blocks, joint laws and rules, joints prestressed by the
+// in-situ stress, with deep initial overlaps (unless allowed) and an absurd time step refused as
+// input errors.
 #include <Eigen/Core>
 #include <algorithm>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -78,6 +80,15 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   UniformGrid broad_phase;
   broad_phase.find_pairs(
       lo, hi, [](int, int) { return true; }, pairs, w.thread_count());
+  // Joints that carry the in-situ stress from the start (before the pass below primes the
+  // first step's narrow phase, which leaves their pairs to it).
+  if (sc.in_situ) {
+    try {
+      w.prestress_joints(*sc.in_situ, pairs);
+    } catch (const std::invalid_argument& e) {
+      throw ScenarioError(sc.file, "in_situ", e.what());
+    }
+  }
   const std::int64_t n = static_cast<std::int64_t>(pairs.size());
   std::int64_t first = n;
   // The world keeps these results for its first step, which would solve the same pairs again.
@@ -86,6 +97,7 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
     const Block& a = blocks[static_cast<std::size_t>(pi)];
     const Block& b = blocks[static_cast<std::size_t>(pj)];
     const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+    if (sc.allow_initial_overlap) return;  // prestressed contacts on purpose
     if (g.touching && (g.overlap > sc.settings.max_overlap_fraction * size ||
                        !(initial_stress(pi, pj, g.overlap) <= stress_limit))) {
 #pragma omp critical(blockdem_initial_overlap)

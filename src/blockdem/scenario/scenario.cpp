@@ -22,13 +22,14 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/in_situ_input.hpp"
 #include "blockdem/world/contact_mode.hpp"
 #include "blockdem/world/stability.hpp"
 
 namespace blockdem {
 namespace {
 
-void read_settings(const CheckedTable& t, WorldSettings& s) {
+void read_settings(const CheckedTable& t, WorldSettings& s, bool& allow_initial_overlap) {
   s.gravity = t.vec3("gravity", s.gravity);
   s.damping = t.number("damping", s.damping);
   if (!(s.damping >= 0.0 && s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
@@ -53,6 +54,7 @@ void read_settings(const CheckedTable& t, WorldSettings& s) {
   if (t.has("twist")) s.twist = t.boolean("twist", s.twist_enabled());
   s.max_speed = t.positive("max_speed", s.max_speed);
   s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
+  allow_initial_overlap = t.choice("initial_overlap", "refuse", {"refuse", "allow"}) == "allow";
   t.finish();
 }
 
@@ -488,7 +490,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   Scenario sc;
   sc.file = file;
   sc.title = t.string("title", "");
-  if (t.has("settings")) read_settings(t.table("settings"), sc.settings);
+  if (t.has("settings")) read_settings(t.table("settings"), sc.settings, sc.allow_initial_overlap);
 
   // At most one scene builder; the keys it builds itself must not stand beside it.
   const SceneBuilder* builder = nullptr;
@@ -508,6 +510,9 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   }
 
   sc.materials = read_materials(t);
+  // Before the scene is built: a rock mass's stress boundaries may take the field's traction.
+  if (t.has("in_situ"))
+    sc.in_situ = read_in_situ(t.table("in_situ"), sc.settings.gravity, sc.materials);
 
   std::map<std::string, int> law_index;
   for (const auto& l : t.tables("joint_laws")) {
@@ -593,6 +598,12 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
   }
   warn_point_contact_searches(sc);
+  if (sc.in_situ && sc.settings.contact_mode == ContactMode::boon2012)
+    sc.warnings.push_back(
+        "[in_situ] with contact_mode = \"boon2012\": the point contact carries each face's "
+        "in-situ normal force at its analytic centre, off the centroid of an irregular face, so "
+        "the blocks start with unbalanced moments; contact_mode = \"face_integrated\" carries "
+        "the field exactly (docs/ground-stress.md)");
   // A built scene without stages can be generated (blockdem generate), not run.
   if (sc.stages.empty() && !sc.built)
     t.fail("stages", "a scenario needs at least one [[stages]] entry");
@@ -611,6 +622,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
     if (centre.cwiseAbs().maxCoeff() > 1e4) {
       sc.settings.origin = centre.array().round().matrix();
+      if (sc.in_situ) sc.in_situ = sc.in_situ->shifted_by(sc.settings.origin);
       for (auto& b : sc.blocks) {
         b.position -= sc.settings.origin;
         b.initial_position -= sc.settings.origin;

@@ -4,9 +4,11 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "blockdem/response/in_situ.hpp"
 #include "blockdem/scenario/builder.hpp"
 #include "blockdem/scenario/checked_table.hpp"
 #include "blockdem/world/stage.hpp"
@@ -45,6 +47,11 @@ struct Scenario {
   std::vector<std::vector<int>> face_laws;
   /// Named sets of blocks that a stage can remove (`excavation = "NAME"`). Set by a builder.
   std::map<std::string, std::vector<std::string>> excavations;
+  /// [in_situ]: the stress field the joints carry from the start (simulation coordinates).
+  std::optional<StressField> in_situ;
+  /// [settings] initial_overlap = "allow": overlapping blocks at the start are deliberate
+  /// (prestressed contacts) and pass the set-up's check.
+  bool allow_initial_overlap = false;
 };
 
 /// Reads and checks a scenario file; `builders` are the scene builders whose tables the file may

@@ -9,7 +9,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "blockdem/collision/small_vector.hpp"
 #include "blockdem/contact/twist.hpp"
+#include "blockdem/geometry/polygon_moments.hpp"
 #include "blockdem/response/contact_twist.hpp"
 #include "blockdem/response/face_laws.hpp"
 #include "blockdem/response/normal_response.hpp"
@@ -123,6 +125,55 @@ bool respond_tangentially(Contact& ct, const TangentialInput& in) {
   return sr.broke;
 }
 
+// A prestressed pair's planes of A, its face plane moved out, and the closure to add over it.
+struct PrestressedPlanes {
+  SmallVector<Halfspace, 16> planes;
+  ClosureOffset offset;
+
+  std::span<const Halfspace> take(const Block& a, const ContactPreload& p) {
+    planes.clear();
+    for (const Halfspace& h : a.world_planes) planes.push_back(h);
+    planes[static_cast<std::size_t>(p.plane_a)].offset += p.shift;
+    offset = p.offset_in_world(a);
+    return {planes.data(), planes.size()};
+  }
+};
+
+// The point of plane h that lies from x along n (m).
+Eigen::Vector3d on_plane(const Halfspace& h, const Eigen::Vector3d& x, const Eigen::Vector3d& n) {
+  return x + ((h.offset - h.normal.dot(x)) / h.normal.dot(n)) * n;
+}
+
+// The area of a face contact's cells (m^2).
+double cells_area(const FaceContactGeometry& f) {
+  double area = 0.0;
+  for (const ClosureCell& c : f.cells) {
+    area += polygon_area_centroid(
+                std::span<const Eigen::Vector3d>(c.vertices.data(), c.vertices.size()))
+                .area;
+  }
+  return area;
+}
+
+// A prestressed contact's first step: the field's shear force (and its energy in the shear
+// spring, F² / (2 k_s A)) and, with twist, its twisting moment about the normal.
+void take_prestress(Contact& ct, const ContactPreload& p, const Block& a, const JointLaw& law,
+                    bool twist) {
+  const Eigen::Vector3d& n = ct.geometry.normal;
+  Eigen::Vector3d force = a.rotation() * p.shear_force;
+  force -= n.dot(force) * n;
+  ct.shear.force = force;
+  const double area = ct.compressed_area();
+  const double ks = shear_stiffness_estimate(law.shear, ct.normal_stress) * area;
+  if (ks > 0.0) {
+    ct.shear.elastic_energy = 0.5 * force.squaredNorm() / ks;
+    // The degrading law's elastic displacement U_e, with F = -k_s A U_e.
+    if (std::holds_alternative<DegradingShear>(law.shear))
+      ct.shear.elastic_displacement = -force / ks;
+  }
+  if (twist) ct.twist.moment = p.twisting_moment;
+}
+
 }  // namespace
 
 void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_shear) const {
@@ -139,7 +190,23 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   const Block& a = blocks_[ct.a];
   const Block& b = blocks_[ct.b];
   const double extent = 2.0 * (a.bounding_radius + b.bounding_radius);
-  const ContactGeometry g = narrow_phase(slot, a, b, extent);
+  // A prestressed joint: A's face plane moved out, and the closure of the field over it.
+  const ContactPreload* preload = preloads_.find(ct.a, ct.b);
+  PrestressedPlanes prestressed;
+  std::span<const Halfspace> planes_a = a.world_planes;
+  if (preload != nullptr) planes_a = prestressed.take(a, *preload);
+  ContactGeometry g = narrow_phase(slot, planes_a, a, b, extent);
+  // A prestressed joint's cells are those of the shared face, its closure the chord between the
+  // face planes plus the field's; the point contact's are its closure at x_c (the chord less the
+  // plane's move, plus the field's) over the compressed part of the face.
+  FaceContactGeometry shared;
+  if (preload != nullptr && g.touching) {
+    shared = face_contact_geometry(a.world_planes, b.world_planes,
+                                   on_plane(b.world_planes[preload->plane_b], g.point, g.normal),
+                                   g.normal, extent, settings_.face_contact, &prestressed.offset);
+    g.overlap += prestressed.offset.at(g.point) - preload->shift;
+    g.area = cells_area(shared);
+  }
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) return open_bond(nullptr);
   // Last step's normal, before this step's geometry replaces it (the shear force turns from it).
   const Eigen::Vector3d previous = ct.previous_normal();
@@ -155,13 +222,18 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   // Normal force: σ_n(δ) A_c at x_c (the paper's point contact), or the law integrated over the
   // cells of a face contact, acting at the centre of pressure (mode face_integrated).
   const FaceContactGeometry fc =
-      face_mode ? face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
-                                        extent, settings_.face_contact)
-                : FaceContactGeometry{};
+      !face_mode ? FaceContactGeometry{}
+      : preload != nullptr
+          ? std::move(shared)
+          : face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
+                                  extent, settings_.face_contact);
   const std::optional<NormalResponse> normal = normal_response(law.normal, g, fc);
   if (!normal) return open_bond(&start);
   take_normal_response(ct, *normal);
   slot.active = true;
+  // The field's shear force and twisting moment, held from the first step on.
+  if (preload != nullptr && advance_shear && !ct.has_history && step_count_ == 0)
+    take_prestress(ct, *preload, a, law, settings_.twist_enabled());
   if (advance_shear) {
     const bool twist = settings_.twist_enabled();
     slot.broke = respond_tangentially(ct, {a, b, law, g, fc, *normal, previous, dt, twist});

@@ -25,6 +25,7 @@
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/numerics/exact_sum.hpp"
 #include "blockdem/world/contact.hpp"
+#include "blockdem/world/contact_preload.hpp"
 #include "blockdem/world/decomposition.hpp"
 #include "blockdem/world/distribution.hpp"
 #include "blockdem/world/energy_budget.hpp"
@@ -32,6 +33,8 @@
 #include "blockdem/world/step_scratch.hpp"
 
 namespace blockdem {
+
+struct StressField;
 
 /// How contacts are detected and turned into forces.
 enum class ContactMode {
@@ -151,6 +154,19 @@ class World {
   const std::vector<int>& face_laws(int block) const;
   /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
   void remove_blocks(const std::vector<int>& indices);
+
+  /// Prestresses the joints of an in-situ stress field (world_prestress.cpp): every pair of
+  /// `pairs` (the set-up's candidate pairs, sorted by (a, b)) whose blocks share a face with a
+  /// joint law starts with the closure that law needs to carry the field's normal traction σ_n n
+  /// over the face (exact over the polygon in mode face_integrated, at the contact point in
+  /// boon2012), the field's shear force as its stored shear force and, with twist, the
+  /// traction's twisting moment. Call before the first step. Returns the number of prestressed
+  /// pairs. Throws std::invalid_argument naming the blocks, the point and the stress where the
+  /// field is not compressive on a face.
+  std::size_t prestress_joints(const StressField& field,
+                               const std::vector<std::pair<int, int>>& pairs);
+  /// The pairs prestressed by prestress_joints (empty: none).
+  const ContactPreloads& preloads() const { return preloads_; }
 
   /// The narrow phase (boon2012_contact, cold) of `pairs`, sorted by (a, b), at the blocks'
   /// present poses, on every thread: `visit(k, geometry)` sees the geometry of pairs[k], from
@@ -361,7 +377,9 @@ class World {
   void take_primed_slots();
   void drop_primed();
   /// The pair's narrow phase with its warm start, or its primed result.
-  ContactGeometry narrow_phase(PairSlot& slot, const Block& a, const Block& b, double extent) const;
+  /// `planes_a`: A's world planes, or a prestressed pair's with its face plane moved out.
+  ContactGeometry narrow_phase(PairSlot& slot, std::span<const Halfspace> planes_a, const Block& a,
+                               const Block& b, double extent) const;
   void keep_open_bonds();
   void merge_pairs();
   /// The contact a slot starts a step with when it has no state: no history, its bond.
@@ -426,6 +444,7 @@ class World {
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
+  ContactPreloads preloads_;                 ///< joints prestressed at set-up
   std::vector<std::pair<int, int>> pairs_;
 
   // Per-block stiffness sums of this step, for the automatic time step.

@@ -48,6 +48,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
     kept_face_area.push_back(max_face_area_[i]);
   }
   blocks_ = std::move(kept);
+  preloads_.renumber(new_index);
   energy_.restart();  // the removed blocks' energy leaves the budget
   face_laws_ = std::move(kept_laws);
   max_face_area_ = std::move(kept_face_area);

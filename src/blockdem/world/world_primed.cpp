@@ -111,6 +111,7 @@ void World::prime_narrow_phase(
     slot.b = j;
     slot.group_law = law_for(i, j);
     if (step_count_ > 0) slot.bond = BondState::unbonded;  // as merge_pairs opens it
+    if (preloads_.find(i, j) != nullptr) continue;         // solved with its face plane moved out
     // What the step reads of the geometry: a contact has a positive area and overlap.
     const bool contact = g.touching && g.area > 0.0 && g.overlap > 0.0;
     if (contact && !keep_contacts) continue;  // solved again, from an empty warm start
@@ -167,8 +168,8 @@ void World::take_primed_slots() {
   primed_slots_.clear();
 }
 
-ContactGeometry World::narrow_phase(PairSlot& slot, const Block& a, const Block& b,
-                                    double extent) const {
+ContactGeometry World::narrow_phase(PairSlot& slot, std::span<const Halfspace> planes_a,
+                                    const Block& a, const Block& b, double extent) const {
   const std::size_t k = static_cast<std::size_t>(&slot - slots_.data());
   // Each path builds its result in the caller's object: the geometry holds the slice polygon's
   // vertices inline (~300 bytes), which a copy per pair and step would move again.
@@ -192,7 +193,7 @@ ContactGeometry World::narrow_phase(PairSlot& slot, const Block& a, const Block&
   const auto solve = [&] {
     Boon2012Cache cache = unpack_warm_start(slot.narrow_cache);
     ContactGeometry g =
-        boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
+        boon2012_contact(planes_a, b.world_planes, extent, settings_.boon2012, &cache);
     slot.narrow_cache = pack_warm_start(cache);
     return g;
   };
