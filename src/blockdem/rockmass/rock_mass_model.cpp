@@ -313,6 +313,7 @@ RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
                          RockMassModel::block_name(i), m.group);
     // Each world plane of the block is one of the cell's faces: match by normal and offset.
     std::vector<int> laws(b.world_planes.size(), -1);
+    std::vector<int> sets(b.world_planes.size(), -1);
     const double scale = 1e-9 * (1.0 + b.position.norm() + b.shape.bounding_radius());
     for (std::size_t j = 0; j < b.world_planes.size(); ++j) {
       const Halfspace& h = b.world_planes[j];
@@ -320,6 +321,7 @@ RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
         if (h.normal.dot(f.plane.normal) > 1.0 - 1e-9 &&
             std::abs(h.offset - f.plane.offset) < scale) {
           laws[j] = m.law_of(f.tag);
+          if (f.tag.source == FaceSource::joint) sets[j] = f.tag.index;
           break;
         }
       }
@@ -343,6 +345,8 @@ RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
     }
     const bool any_law = std::any_of(laws.begin(), laws.end(), [](int l) { return l >= 0; });
     out.face_laws.push_back(any_law ? laws : std::vector<int>{});
+    const bool any_set = std::any_of(sets.begin(), sets.end(), [](int k) { return k >= 0; });
+    out.face_sets.push_back(any_set ? std::move(sets) : std::vector<int>{});
     out.blocks.push_back(std::move(b));
   }
   for (std::size_t e = 0; e < m.spec.excavations.size(); ++e) {

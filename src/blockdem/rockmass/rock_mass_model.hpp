@@ -57,6 +57,8 @@ RockMassModel read_rock_mass(const CheckedTable& root,
 struct RockMassBlocks {
   std::vector<Block> blocks;
   std::vector<std::vector<int>> face_laws;
+  /// Per block, the joint set that made each plane (-1: none).
+  std::vector<std::vector<int>> face_sets;
   /// The names of the blocks inside each excavation, by excavation name.
   std::map<std::string, std::vector<std::string>> excavated;
 };

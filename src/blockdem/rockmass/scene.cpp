@@ -28,11 +28,13 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   RockMassBlocks made = make_rock_mass_blocks(scene->model);
   // Face laws run parallel to the scenario's blocks; blocks given by hand have none.
   sc.face_laws.resize(sc.blocks.size());
+  sc.face_sets.resize(sc.blocks.size());
   // Rock-mass names are distinct (rock_1, rock_2, ...): only the blocks given by hand can clash.
   std::unordered_set<std::string> hand_names;
   for (const auto& b : sc.blocks) hand_names.insert(b.name);
   sc.blocks.reserve(sc.blocks.size() + made.blocks.size());
   sc.face_laws.reserve(sc.blocks.size() + made.blocks.size());
+  sc.face_sets.reserve(sc.blocks.size() + made.blocks.size());
   for (std::size_t i = 0; i < made.blocks.size(); ++i) {
     if (hand_names.count(made.blocks[i].name) != 0) {
       root.fail("blocks",
@@ -40,10 +42,12 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
     }
     sc.blocks.push_back(std::move(made.blocks[i]));
     sc.face_laws.push_back(std::move(made.face_laws[i]));
+    sc.face_sets.push_back(std::move(made.face_sets[i]));
   }
   for (auto& [name, blocks] : made.excavated) sc.excavations[name] = std::move(blocks);
   if (scene->model.default_law >= 0)
     sc.joint_rules.push_back(JointRule{"", "", scene->model.default_law});
+  for (const auto& set : scene->model.spec.joint_sets) sc.joint_sets.push_back(set.name);
   sc.built = std::move(scene);
 }
 

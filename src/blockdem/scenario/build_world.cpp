@@ -50,6 +50,9 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
     if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
   }
+  for (std::size_t i = 0; i < sc.face_sets.size(); ++i) {
+    if (!sc.face_sets[i].empty()) w.set_face_sets(static_cast<int>(i), sc.face_sets[i]);
+  }
   // Deep initial overlaps are input errors, not something to blow apart. Candidate pairs come
   // from the broad phase (O(N log N)), sorted by (i, j); the narrow phase runs on every thread
   // and the error names the first offending pair in that order, whatever the thread count.

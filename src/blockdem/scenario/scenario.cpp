@@ -333,8 +333,58 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
   }
 }
 
+/// What a stage's keys may name besides blocks and excavations: joint laws, joint sets, groups.
+struct StageNames {
+  const std::map<std::string, int>& laws;
+  const std::vector<std::string>& joint_sets;
+  const std::set<std::string>& groups;
+};
+
+/// A stage's `set_laws`: [{ joint_set = "J1", law = "J1_peak" }, { group = "rock", law =
+/// "elastic" }, ...]. "elastic" (unless a law has that name) is each face's elastic twin.
+std::vector<LawChange> read_law_changes(const CheckedTable& t, const StageNames& known) {
+  std::vector<LawChange> out;
+  const auto list_of = [](const auto& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+  };
+  for (const auto& e : t.tables("set_laws")) {
+    LawChange c;
+    if (e.has("joint_set") == e.has("group"))
+      e.fail("joint_set", "name either a joint_set or a group whose faces take the law");
+    if (e.has("joint_set")) {
+      const std::string name = e.string("joint_set");
+      const auto it = std::find(known.joint_sets.begin(), known.joint_sets.end(), name);
+      if (it == known.joint_sets.end())
+        e.fail("joint_set",
+               "no joint set named \"" + name + "\" (known: " + list_of(known.joint_sets) + ")");
+      c.joint_set = static_cast<int>(it - known.joint_sets.begin());
+    } else {
+      c.group = e.string("group");
+      if (!known.groups.count(c.group)) e.fail("group", "no block is in group \"" + c.group + "\"");
+    }
+    const std::string law = e.string("law");
+    const auto it = known.laws.find(law);
+    if (it != known.laws.end()) {
+      c.law = it->second;
+    } else if (law == "elastic") {
+      c.elastic = true;
+    } else {
+      std::vector<std::string> names;
+      for (const auto& [n, i] : known.laws) names.push_back(n);
+      e.fail("law",
+             "no joint law named \"" + law + "\" (known: " + list_of(names) + ", or \"elastic\")");
+    }
+    e.finish();
+    out.push_back(c);
+  }
+  return out;
+}
+
 Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names,
-                 const std::map<std::string, std::vector<std::string>>& excavations) {
+                 const std::map<std::string, std::vector<std::string>>& excavations,
+                 const StageNames& known) {
   Stage s;
   s.name = t.string("name");
   const std::string kind =
@@ -404,6 +454,8 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.hold = t.strings("hold");
   for (const auto& h : s.hold) check_block("hold", h);
   s.hold_servos_after = t.boolean("hold_servos_after", false);
+  s.set_laws = read_law_changes(t, known);
+  s.reset_displacements = t.boolean("reset_displacements", false);
   t.finish();
   return s;
 }
@@ -476,6 +528,29 @@ void warn_point_contact_searches(Scenario& sc) {
       "\"): the point contact can jam a key block against a joint it would leave and overestimate "
       "its stability; contact_mode = \"face_integrated\" integrates the joint law over the "
       "contact (docs/stability.md, \"Contact mode\")");
+}
+
+/// When a stage makes laws elastic: every joint law gets its twin "NAME (elastic)", the same
+/// stiffnesses with a strength no load reaches (cohesion and tensile strength of 1e30 Pa), so
+/// that no joint slips, opens a bond or breaks while it holds.
+void add_elastic_twins(Scenario& sc) {
+  bool elastic = false;
+  for (const Stage& st : sc.stages) {
+    for (const LawChange& c : st.set_laws) elastic |= c.elastic;
+  }
+  if (!elastic) return;
+  const std::size_t n = sc.joint_laws.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    JointLaw twin = sc.joint_laws[i];
+    twin.name += std::string(kElasticSuffix);
+    std::visit(
+        [](auto& l) {
+          l.strength.cohesion = 1e30;
+          l.strength.tensile_strength = 1e30;
+        },
+        twin.shear);
+    sc.joint_laws.push_back(std::move(twin));
+  }
 }
 
 }  // namespace
@@ -577,7 +652,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   }
 
   for (const auto& st : t.tables("stages")) {
-    sc.stages.push_back(read_stage(st, names, sc.excavations));
+    sc.stages.push_back(read_stage(st, names, sc.excavations, {law_index, sc.joint_sets, groups}));
     const Stage& stage = sc.stages.back();
     if (stage.kind != Stage::Kind::strength_reduction) continue;
     // The laws to reduce exist and at least one has a strength (friction) to divide.
@@ -597,6 +672,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     }
     if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
   }
+  add_elastic_twins(sc);
   warn_point_contact_searches(sc);
   if (sc.in_situ && sc.settings.contact_mode == ContactMode::boon2012)
     sc.warnings.push_back(

@@ -45,6 +45,10 @@ struct Scenario {
   /// Per block: its planes' own joint laws (empty: none; see World::set_face_laws). Set by a
   /// builder (a rock mass: one law per joint set).
   std::vector<std::vector<int>> face_laws;
+  /// Per block: the joint set that made each plane (empty: none; see World::set_face_sets), and
+  /// the joint sets' names. Set by a builder (a rock mass).
+  std::vector<std::vector<int>> face_sets;
+  std::vector<std::string> joint_sets;
   /// Named sets of blocks that a stage can remove (`excavation = "NAME"`). Set by a builder.
   std::map<std::string, std::vector<std::string>> excavations;
   /// [in_situ]: the stress field the joints carry from the start (simulation coordinates).

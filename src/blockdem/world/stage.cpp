@@ -57,8 +57,8 @@ bool servos_settled(const World& world) {
 
 namespace {
 
-/// The stage's start: new settings, servo commands, removals, the divergence checkpoint and a
-/// fresh motion monitor.
+/// The stage's start: new settings, servo commands, joint laws, the displacements' reference,
+/// removals, the divergence checkpoint and a fresh motion monitor.
 void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>& watch) {
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
   if (stage.damping) world.settings().damping = *stage.damping;
@@ -79,6 +79,8 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
       throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
     world.blocks()[i].edit_servo().hold = true;
   }
+  if (!stage.set_laws.empty()) world.change_laws(stage.set_laws);
+  if (stage.reset_displacements) world.reset_displacements();
   if (!stage.remove.empty()) {
     std::vector<int> gone;
     for (const auto& name : stage.remove) {

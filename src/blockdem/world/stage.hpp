@@ -38,6 +38,10 @@ struct Stage {
   bool hold_servos_after = false;    ///< stop every servo block when the stage ends
   /// Blocks removed from the world at the stage start (an excavation stage), by name.
   std::vector<std::string> remove;
+  /// Joint laws given anew at the stage start, in order (World::change_laws).
+  std::vector<LawChange> set_laws;
+  /// Displacement outputs count from the blocks' poses at the stage start.
+  bool reset_displacements = false;
 
   // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
   // every active servo is within its force tolerance.

@@ -60,6 +60,20 @@ struct JointRule {
   int law = 0;
 };
 
+/// A joint law given anew (a stage's start): the faces of a joint set, or every face of the
+/// blocks of a group, take `law`, or with `elastic` each its own law's elastic twin (the law
+/// named "NAME (elastic)": the same stiffnesses, strength without limit). A contact keeps its
+/// bond state, closure and shear history; a broken bond stays broken.
+struct LawChange {
+  int joint_set = -1;  ///< the faces of this joint set (World::set_face_sets), or -1
+  std::string group;   ///< with joint_set -1: every face of this group's blocks
+  int law = -1;        ///< the new law (index into joint_laws()), unless elastic
+  bool elastic = false;
+};
+
+/// The suffix of an elastic twin's name (LawChange::elastic).
+inline constexpr std::string_view kElasticSuffix = " (elastic)";
+
 struct WorldSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< (m/s^2)
   double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
@@ -152,6 +166,14 @@ class World {
   void set_face_laws(int block, std::vector<int> law_per_plane);
   /// The block's per-plane laws (empty: none).
   const std::vector<int>& face_laws(int block) const;
+  /// Tells which joint set made each plane of a block (one index per plane of its shape, -1 for
+  /// a plane of none), for law changes by joint set.
+  void set_face_sets(int block, std::vector<int> set_per_plane);
+  /// Gives faces their laws anew (world_laws.cpp). Throws std::invalid_argument for an unknown
+  /// law or a missing elastic twin.
+  void change_laws(const std::vector<LawChange>& changes);
+  /// Every block's displacement outputs count from its present pose from now on.
+  void reset_displacements();
   /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
   void remove_blocks(const std::vector<int>& indices);
 
@@ -444,6 +466,7 @@ class World {
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
+  std::vector<std::vector<int>> face_sets_;  ///< per block, one joint set per plane; empty: none
   ContactPreloads preloads_;                 ///< joints prestressed at set-up
   std::vector<std::pair<int, int>> pairs_;
 

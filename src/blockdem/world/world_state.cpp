@@ -227,6 +227,12 @@ void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loa
   }
   w.vec(box_min_[i]);
   w.vec(box_max_[i]);
+  // The displacements' reference and the faces' laws, which stages may change.
+  w.vec(b.initial_position);
+  w.quat(b.initial_orientation);
+  const std::vector<int>& laws = face_laws(static_cast<int>(i));
+  w.size(laws.size());
+  for (int law : laws) w.pod(static_cast<std::int32_t>(law));
 }
 
 void World::save_counters(StateWriter& w, std::int64_t overlap_violation) const {
@@ -309,6 +315,7 @@ void World::load_blocks(StateReader& r) {
   const std::size_t n = r.size();
   std::vector<Block> saved(n);
   std::vector<Eigen::Vector3d> saved_min(n), saved_max(n);
+  std::vector<std::vector<int>> saved_laws(n);
   for (std::size_t i = 0; i < n; ++i) {
     Block& b = saved[i];
     b.name = r.str();
@@ -329,6 +336,16 @@ void World::load_blocks(StateReader& r) {
     }
     saved_min[i] = r.vec();
     saved_max[i] = r.vec();
+    b.initial_position = r.vec();
+    b.initial_orientation = r.quat();
+    saved_laws[i].resize(r.size());
+    for (int& law : saved_laws[i]) {
+      std::int32_t l = 0;
+      r.pod(l);
+      if (l < -1 || l >= static_cast<std::int32_t>(laws_.size()))
+        throw StateError("block '" + b.name + "' has a face law the scenario does not have");
+      law = l;
+    }
   }
   if (n != blocks_.size()) {
     std::vector<int> gone;
@@ -363,6 +380,14 @@ void World::load_blocks(StateReader& r) {
     b.world_planes = std::move(s.world_planes);
     box_min_[i] = saved_min[i];
     box_max_[i] = saved_max[i];
+    b.initial_position = s.initial_position;
+    b.initial_orientation = s.initial_orientation;
+    if (!saved_laws[i].empty() && saved_laws[i].size() != b.shape.planes().size())
+      throw StateError("block '" + b.name + "' has another shape than in the saved state");
+    if (!saved_laws[i].empty() || i < face_laws_.size()) {
+      if (face_laws_.size() <= i) face_laws_.resize(blocks_.size());
+      face_laws_[i] = std::move(saved_laws[i]);
+    }
   }
 }
 
