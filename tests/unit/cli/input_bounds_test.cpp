@@ -160,6 +160,19 @@ INSTANTIATE_TEST_SUITE_P(
              {"stages[2].excavation", "every free block", "nothing can move"}}),
     [](const ::testing::TestParamInfo<Case>& p) { return std::string(p.param.name); });
 
+// A voussoir beam's collapse search brackets up to its highest level (40 g for the full beam):
+// a bracket of 1e-300 g is below what doubles resolve there.
+TEST(BoundedInput, VoussoirCollapseToleranceBelowResolutionExitsTwo) {
+  const fs::path dir = scratch("voussoir_collapse_tolerance");
+  std::ofstream(dir / "beam.toml")
+      << "[voussoir]\nfind_collapse = true\ncollapse_tolerance = 1e-300\n"
+         "normal = { law = \"linear\", stiffness = 1e10 }\n"
+         "shear = { law = \"linear\", stiffness = 1e9, friction_deg = "
+         "40 }\n";
+  expect_input_error(run(dir / "beam.toml", dir / "out"), dir / "out",
+                     {"beam.toml", "voussoir.collapse_tolerance", "at least 4e-11", "1e-300"});
+}
+
 // Options: each refused before anything is read or written, naming the option.
 TEST(BoundedInput, BadOptionsExitTwoNamingTheOption) {
   const fs::path dir = scratch("options");
