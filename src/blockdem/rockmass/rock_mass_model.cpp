@@ -27,6 +27,19 @@ int law_by_name(const CheckedTable& t, const std::string& key,
   return it->second;
 }
 
+// The most planes of a region or an excavation: far more than a convex outline drawn by hand
+// needs, and few enough for the outline's facets, each clipped by every other plane.
+constexpr std::size_t kMaxOutlinePlanes = 1000;
+
+// The rows of a plane list (`key`), at most kMaxOutlinePlanes.
+std::vector<std::vector<double>> plane_rows(const CheckedTable& t, const std::string& key) {
+  auto rows = t.rows(key, 4);
+  if (rows.size() > kMaxOutlinePlanes)
+    t.fail(key, "has " + std::to_string(rows.size()) + " planes, more than the limit of " +
+                    std::to_string(kMaxOutlinePlanes));
+  return rows;
+}
+
 Halfspace plane_row(const CheckedTable& t, const std::string& key, const std::vector<double>& r) {
   const Eigen::Vector3d n(r[0], r[1], r[2]);
   const double len = n.norm();
@@ -40,7 +53,7 @@ Region read_region(const CheckedTable& r) {
   if (g.has("planes")) {
     if (g.has("min") || g.has("max")) g.fail("planes", "give either planes or min and max");
     std::vector<Halfspace> planes;
-    for (const auto& row : g.rows("planes", 4)) planes.push_back(plane_row(g, "planes", row));
+    for (const auto& row : plane_rows(g, "planes")) planes.push_back(plane_row(g, "planes", row));
     region = Region::from_planes(planes);
   } else {
     const Eigen::Vector3d lo = g.vec3("min"), hi = g.vec3("max");
@@ -125,7 +138,8 @@ Excavation read_excavation(const CheckedTable& t, std::size_t i) {
     }
     ex.planes = Region::box(lo, hi).planes;
   } else if (shape == "planes") {
-    for (const auto& row : t.rows("planes", 4)) ex.planes.push_back(plane_row(t, "planes", row));
+    for (const auto& row : plane_rows(t, "planes"))
+      ex.planes.push_back(plane_row(t, "planes", row));
     if (ex.planes.empty()) t.fail("planes", "needs at least one plane");
   } else {
     TunnelSpec tu;

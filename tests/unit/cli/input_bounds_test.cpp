@@ -130,6 +130,16 @@ INSTANTIATE_TEST_SUITE_P(
              "",
              "[[excavations]]\ncentre = [2, 0, 2]\nradius = 1\nsides = 4294967300\n",
              {"excavations[1].sides", "[4, 256]", "4294967300"}},
+        Case{"excavation_of_1001_planes",
+             "",
+             "[[excavations]]\nshape = \"planes\"\nplanes = [" +
+                 [] {
+                   std::string rows;
+                   for (int i = 0; i < 1001; ++i) rows += "[0, 0, 1, 3.5], ";
+                   return rows;
+                 }() +
+                 "]\n",
+             {"excavations[1].planes", "1001 planes", "limit of 1000"}},
         Case{"face_names_listed",
              "faces = [\"z_min\"]",
              "faces = [\"west\"]",
