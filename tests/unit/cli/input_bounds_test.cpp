@@ -1,14 +1,18 @@
 // Inputs that once cost unbounded work, wrapped round, or ended in "internal error": each exits 2
 // with a message naming the file (or option), the key and the reason, and writes nothing; a
-// folder the system will not let the run write exits 4; numbers in messages read as %g.
+// folder the system will not let the run write, or memory it will not give, exits 4; numbers in
+// messages read as %g.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/sanitized_run.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem::input_bounds_test {
@@ -205,6 +209,34 @@ TEST(BoundedInput, AnOutputFolderThatCannotBeWrittenExitsFour) {
   EXPECT_EQ(r.err.rfind("blockdem: error:", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("/proc/blockdem-cannot-be-here"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
+// Memory the system will not give is not a defect either: a rock mass of a million blocks
+// (max_blocks raised) under a 400 MB address-space limit exits 4 with a message, not 1. Skipped
+// under a sanitizer, whose shadow memory needs more address space than the limit.
+TEST(BoundedInput, OutOfMemoryExitsFour) {
+  if (test::sanitized_run()) GTEST_SKIP() << "a sanitizer reserves more address space";
+  const fs::path dir = scratch("out_of_memory");
+  std::string text = kRockMass;
+  text.replace(text.find("max = [4, 4, 4]"), 15, "max = [10, 10, 10]");
+  text.replace(text.find("spacing = 1.3"), 13, "spacing = 0.1");
+  text.replace(text.find("law = \"j\"\n"), 10, "law = \"j\"\nmax_blocks = 100000000\n");
+  for (const char* direction : {"0", "90"}) {
+    text += "[[joint_sets]]\ndip_deg = 90\ndip_direction_deg = " + std::string(direction) +
+            "\nspacing = 0.1\n";
+  }
+  std::ofstream(dir / "case.toml") << text;
+  const fs::path err = dir / "err.txt";
+  const std::string command = "ulimit -v 400000; exec '" + std::string(BLOCKDEM_CLI_PATH) +
+                              "' run '" + (dir / "case.toml").string() + "' --out '" +
+                              (dir / "out").string() + "' --quiet --no-figures 2>'" + err.string() +
+                              "'";
+  const int status = std::system(("bash -c \"" + command + "\"").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 4);
+  std::ifstream in(err);
+  const std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(message.rfind("blockdem: error: out of memory", 0), 0u) << message;
 }
 
 // A stage that does not converge says its tolerances in %g: 1e-08, not 0.000000.
