@@ -156,7 +156,9 @@ std::vector<double> joint_plane_offsets(const JointSet& set, double lo, double h
     if (!constant && ++draws > kMaxSpacingDraws)
       throw std::invalid_argument("spacing: placing the joints would draw more than 1e8 spacings");
     if (static_cast<double>(below.size() + above.size()) > max_planes)
-      throw std::invalid_argument("spacing: more than the limit of joint planes cross the region");
+      throw std::invalid_argument("spacing: more than " + number_text(max_planes) +
+                                  " joint planes cross the region (the limit; [rock_mass] "
+                                  "max_blocks sets it for a scenario)");
     return next;
   };
   // A constant spacing from an origin outside [lo, hi] steps straight to the first plane in it.

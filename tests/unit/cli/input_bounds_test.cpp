@@ -200,15 +200,23 @@ TEST(BoundedInput, BadOptionsExitTwoNamingTheOption) {
   }
 }
 
-// A folder the system will not create is not a defect of the program: exit code 4.
+// A folder the system will not create is not a defect of the program: exit code 4, from `run`,
+// `generate` and `lab` alike.
 TEST(BoundedInput, AnOutputFolderThatCannotBeWrittenExitsFour) {
   const fs::path dir = scratch("unwritable");
   std::ofstream(dir / "case.toml") << kRockMass;
-  const auto r = run(dir / "case.toml", "/proc/blockdem-cannot-be-here");
-  EXPECT_EQ(r.exit_code, 4) << r.err;
-  EXPECT_EQ(r.err.rfind("blockdem: error:", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find("/proc/blockdem-cannot-be-here"), std::string::npos) << r.err;
-  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  const std::string out = "/proc/blockdem-cannot-be-here";
+  for (const auto& r :
+       {run(dir / "case.toml", out),
+        test::run_cli("generate '" + (dir / "case.toml").string() + "' --out " + out),
+        test::run_cli("lab compression --normal 'law=linear,stiffness=1e10' --max-closure 1e-4 "
+                      "--out " +
+                      out)}) {
+    EXPECT_EQ(r.exit_code, 4) << r.err;
+    EXPECT_EQ(r.err.rfind("blockdem: error:", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  }
 }
 
 // Memory the system will not give is not a defect either: a rock mass of a million blocks
