@@ -2,16 +2,27 @@
 // refused at input, a bisection stops where its midpoint equals an end, and a stop asked for
 // between two trials ends the search (status interrupted, a checkpoint before the stage that a
 // restart runs again to the same factor of safety).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "../../validation/stability_support.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/stage_driver.hpp"
+
+extern char** environ;
 
 namespace blockdem::search_bounds_test {
 
@@ -143,6 +154,59 @@ TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSa
   const RunResult resumed = run_scenario(sc, out, {}, again);
   ASSERT_TRUE(resumed.factor_of_safety) << resumed.message;
   EXPECT_EQ(*resumed.factor_of_safety, *whole.factor_of_safety);
+}
+
+// A real SIGINT to `blockdem run` while its strength reduction bisects (the signal is sent once
+// the first trial's line is on stderr; with a bracket of 0.001 about a dozen trials follow):
+// the search stops after the trial that is running, with exit code 130, status interrupted and a
+// checkpoint. Before, the signal waited for the search's end and was lost in the last stage.
+TEST(SearchBounds, SigintStopsTheSearchBetweenTrials) {
+  const auto dir = test::run_folder("search_sigint");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto scenario = dir / "srm.toml";
+  std::ofstream(scenario) << strength_reduction_last("0.001");
+  const auto out = dir / "out";
+  const auto err = dir / "err.txt";
+  std::vector<std::string> args = {BLOCKDEM_CLI_PATH, "run",        scenario.string(),
+                                   "--out",           out.string(), "--no-figures"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const auto start = std::chrono::steady_clock::now();
+  auto waited = [&] {
+    return std::chrono::steady_clock::now() - start > std::chrono::seconds(120);
+  };
+  auto stderr_has = [&](const std::string& text) {
+    std::ifstream in(err);
+    const std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return s.find(text) != std::string::npos;
+  };
+  while (!stderr_has("  trial ") && !waited())
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (waited()) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      FAIL() << "the run did not stop";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_TRUE(stderr_has("interrupted in the strength reduction of stage 'srm'"));
+  const auto summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  EXPECT_EQ(summary.at("stages").back().at("status"), "interrupted");
+  EXPECT_TRUE(std::filesystem::exists(out / kCheckpointName));
 }
 
 }  // namespace blockdem::search_bounds_test
