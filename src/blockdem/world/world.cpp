@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/numerics/number_text.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -42,7 +43,7 @@ void WorldSettings::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
   if (!gravity.allFinite()) fail("gravity must be finite");
   if (!(damping >= 0.0 && damping < 1.0))
-    fail("damping must be in [0, 1), got " + std::to_string(damping));
+    fail("damping must be in [0, 1), got " + number_text(damping));
   if (!(time_step >= 0.0) || !std::isfinite(time_step))
     fail("time_step must be >= 0 (0: automatic)");
   if (!(safety_factor > 0.0 && safety_factor <= 1.0)) fail("safety_factor must be in (0, 1]");
