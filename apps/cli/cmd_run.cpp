@@ -469,27 +469,18 @@ void register_run(CLI::App& app) {
   cmd->add_option("--max-steps", opt->max_steps,
                   "Stop every stage after at most N steps (a quick look at a scenario; a stage "
                   "cut short is reported as not converged)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("steps"));
   cmd->add_option("--threads", opt->threads,
                   "Threads for the step (default: OMP_NUM_THREADS, else every core; at most 64 "
                   "per core and 1024); results are bit-identical for any number")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("threads"));
   cmd->add_option("--checkpoint-every", opt->checkpoint_every,
                   "Write OUT/checkpoint.bdck every N steps and at every stage end (the one "
                   "before is kept as checkpoint.bdck.prev)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("steps"));
   cmd->add_option("--checkpoint-seconds", opt->checkpoint_seconds,
                   "Write a checkpoint every S seconds of wall time (and at every stage end)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // A finite positive number: nan and inf pass CLI11's own checks, or read badly.
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0.0))
-              return "must be a finite number of seconds > 0, got " + text;
-            return {};
-          },
-          "SECONDS"));
+      ->check(positive_number("seconds"));
   auto* restart = cmd->add_option("--restart", opt->restart,
                                   "Continue the run saved in this checkpoint (same scenario and "
                                   "--max-steps; any --threads): bit-identical to a run never "

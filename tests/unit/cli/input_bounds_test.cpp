@@ -192,11 +192,17 @@ TEST(BoundedInput, BadOptionsExitTwoNamingTheOption) {
   const fs::path dir = scratch("options");
   std::ofstream(dir / "case.toml") << kRockMass;
   for (const auto& [option, fragment] : std::vector<std::pair<std::string, std::string>>{
-           {"--checkpoint-seconds nan", "--checkpoint-seconds: must be a finite"},
-           {"--checkpoint-seconds inf", "--checkpoint-seconds: must be a finite"},
+           {"--checkpoint-seconds nan",
+            "--checkpoint-seconds: must be a finite positive number of seconds, got nan"},
+           {"--checkpoint-seconds inf",
+            "--checkpoint-seconds: must be a finite positive number of seconds, got inf"},
            {"--threads 2147483647", "--threads: at most"},
-           {"--threads 100000", "--threads: at most"}}) {
-    expect_input_error(run(dir / "case.toml", dir / "out", option), dir / "out", {fragment});
+           {"--threads 100000", "--threads: at most"},
+           {"--threads 0", "--threads: must be a finite positive number of threads, got 0"},
+           {"--max-steps 0", "--max-steps: must be a finite positive number of steps, got 0"}}) {
+    const auto r = run(dir / "case.toml", dir / "out", option);
+    expect_input_error(r, dir / "out", {fragment});
+    EXPECT_LT(r.err.size(), 300u) << "a short message, not a range to 300 digits: " << r.err;
   }
 }
 
