@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "blockdem/contact/law_params.hpp"
+#include "blockdem/io/output_error.hpp"
 #include "blockdem/lab/compression_test.hpp"
 #include "blockdem/lab/joint_law_figures.hpp"
 #include "blockdem/lab/lab_report.hpp"
@@ -31,6 +33,7 @@ constexpr const char* kPlotScript = "plot_joint_laws.py";
 // Exit codes: 0 success, 1 a run or figure failed, 2 invalid input.
 constexpr int kFailed = 1;
 constexpr int kInvalidInput = 2;
+constexpr int kSystem = 4;  ///< a file the system would not let it write, or memory
 
 struct CompressionArgs {
   std::string normal = kDefaultNormal;
@@ -191,7 +194,8 @@ int run_figures(const FiguresArgs& a) {
 }
 
 /// Runs a subcommand body: invalid input (a message naming the law and the parameter) exits with
-/// kInvalidInput, any other failure with kFailed.
+/// kInvalidInput, a file or memory the system refused with kSystem, any other failure with
+/// kFailed.
 template <class Body>
 void guarded(const char* name, Body&& body) {
   try {
@@ -199,6 +203,15 @@ void guarded(const char* name, Body&& body) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
     set_exit_code(kInvalidInput);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "blockdem: error: lab " << name << ": out of memory\n";
+    set_exit_code(kSystem);
+  } catch (const OutputError& e) {
+    std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
+    set_exit_code(kSystem);
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
+    set_exit_code(kSystem);
   } catch (const std::exception& e) {
     std::cerr << "blockdem: error: lab " << name << ": " << e.what() << "\n";
     set_exit_code(kFailed);

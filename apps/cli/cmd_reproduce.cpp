@@ -144,7 +144,7 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option(
          "--jobs", opt->jobs,
          "Cases run in parallel (default: number of cores); each case gets cores / jobs threads")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("jobs"));
   cmd->add_option("--scenarios", opt->scenarios,
                   "Folder of the case files (default: the installed scenarios/boon2015)");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");

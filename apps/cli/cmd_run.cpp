@@ -1,6 +1,7 @@
 // `blockdem run SCENARIO.toml --out DIR`: runs a scenario's stages and writes its outputs.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
+#include "blockdem/io/output_error.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/run_files.hpp"
@@ -23,6 +26,7 @@
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/voussoir/measures.hpp"
 #include "blockdem/voussoir/scene.hpp"
+#include "blockdem/world/world.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 #include "progress.hpp"
@@ -118,7 +122,17 @@ void install_stop_handlers() {
 
 int run_one(RunOptions opt, const MpiSession& mpi);
 
+/// The options checked against this machine: a bad one is an input error (exit code 2)
+/// before anything is written.
+void check_options(const RunOptions& opt) {
+  if (opt.threads > thread_limit())
+    throw std::invalid_argument("--threads: at most " + std::to_string(thread_limit()) +
+                                " on this machine (64 per core, at most 1024), got " +
+                                std::to_string(opt.threads));
+}
+
 int run(const RunOptions& opt) {
+  check_options(opt);
   // Under mpirun/srun every rank runs the scenario in lockstep (parallel/mpi_run.hpp); rank 0
   // writes the outputs, the others write into a private scratch folder removed at the end.
   const MpiSession mpi;
@@ -167,11 +181,15 @@ int run(const RunOptions& opt) {
   } catch (const std::exception& e) {
     // A failure on one process only (a full disk on the writer): the others would wait for it
     // in the next collective, so every process ends now (rank 0's files are whole or absent;
-    // summary.json is not written).
-    std::cerr << "blockdem: internal error on process " << mpi.rank() << ": " << e.what() << "\n";
+    // summary.json is not written). The system's refusals (exit code 4) are not defects.
+    const bool system = dynamic_cast<const OutputError*>(&e) != nullptr ||
+                        dynamic_cast<const std::filesystem::filesystem_error*>(&e) != nullptr ||
+                        dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
+    std::cerr << "blockdem: " << (system ? "error" : "internal error") << " on process "
+              << mpi.rank() << ": " << e.what() << "\n";
     // The abort ends this process without returning here: its scratch folder goes first.
     if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);
-    mpi.abort(1);
+    mpi.abort(system ? 4 : 1);
   }
   if (mpi.rank() != 0) std::filesystem::remove_all(mine.out, ec);
   // No process ends before the writer has finished: the launcher stops the others as soon as
@@ -451,18 +469,18 @@ void register_run(CLI::App& app) {
   cmd->add_option("--max-steps", opt->max_steps,
                   "Stop every stage after at most N steps (a quick look at a scenario; a stage "
                   "cut short is reported as not converged)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("steps"));
   cmd->add_option("--threads", opt->threads,
-                  "Threads for the step (default: OMP_NUM_THREADS, else every core); results are "
-                  "bit-identical for any number")
-      ->check(CLI::PositiveNumber);
+                  "Threads for the step (default: OMP_NUM_THREADS, else every core; at most 64 "
+                  "per core and 1024); results are bit-identical for any number")
+      ->check(positive_number("threads"));
   cmd->add_option("--checkpoint-every", opt->checkpoint_every,
                   "Write OUT/checkpoint.bdck every N steps and at every stage end (the one "
                   "before is kept as checkpoint.bdck.prev)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("steps"));
   cmd->add_option("--checkpoint-seconds", opt->checkpoint_seconds,
                   "Write a checkpoint every S seconds of wall time (and at every stage end)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number("seconds"));
   auto* restart = cmd->add_option("--restart", opt->restart,
                                   "Continue the run saved in this checkpoint (same scenario and "
                                   "--max-steps; any --threads): bit-identical to a run never "

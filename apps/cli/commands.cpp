@@ -1,5 +1,8 @@
-// Shared state of the command-line program: version and exit code.
+// Shared state of the command-line program: version, exit code, option checks.
 #include "commands.hpp"
+
+#include <cmath>
+#include <cstdlib>
 
 namespace blockdem::cli {
 namespace {
@@ -14,6 +17,18 @@ int exit_code() {
 }
 void set_exit_code(int code) {
   g_exit_code = code;
+}
+
+CLI::Validator positive_number(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0.0))
+          return "must be a finite positive number of " + what + ", got " + text;
+        return {};
+      },
+      "> 0");
 }
 
 }  // namespace blockdem::cli

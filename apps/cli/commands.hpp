@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace blockdem::cli {
 
 /// Version string of the program.
@@ -11,6 +13,10 @@ const char* version();
 int exit_code();
 /// Records the exit code the program returns.
 void set_exit_code(int code);
+
+/// An option's check: a finite number > 0 ("a finite positive number of WHAT, got TEXT"; CLI11's
+/// own PositiveNumber lets nan and inf through and prints its range to 300 digits).
+CLI::Validator positive_number(const std::string& what);
 
 void register_run(CLI::App& app);
 void register_reproduce(CLI::App& app);

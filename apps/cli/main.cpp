@@ -2,9 +2,12 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 
+#include "blockdem/io/output_error.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
@@ -36,6 +39,18 @@ int main(int argc, char** argv) {
     // A subcommand's check of a value it was given.
     std::cerr << "blockdem: error: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    // The system's limit, not a defect: exit code 4 (README, exit codes).
+    std::cerr << "blockdem: error: out of memory: the model needs more memory than the system "
+                 "gives this program (a smaller model, or a machine with more memory)\n";
+    return 4;
+  } catch (const blockdem::OutputError& e) {
+    // A folder that cannot be written, a full disk.
+    std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 4;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "blockdem: error: " << e.what() << "\n";
+    return 4;
   } catch (const std::exception& e) {
     std::cerr << "blockdem: internal error: " << e.what() << "\n";
     return 1;

@@ -11,7 +11,14 @@ enum class ParamRange {
   positive,        ///< finite and > 0
   non_negative,    ///< finite and >= 0
   friction_angle,  ///< an angle strictly between 0 and 90 degrees
+  /// A joint stiffness (Pa/m): finite and at least kMinJointStiffness.
+  stiffness,
 };
+
+/// The softest joint stiffness a law takes (Pa/m): a metre of closure or slip per pascal, far
+/// below any rock joint (1e6-1e13 Pa/m). Softer joints' elastic energies sigma^2 / (2 k) A
+/// overflow a double at joint stresses, and their displacements are not small.
+inline constexpr double kMinJointStiffness = 1.0;
 
 /// A parameter of a law struct `Law`. `get` and `set` work in the units of `unit` (degrees for
 /// angles, which the struct stores as tangents).

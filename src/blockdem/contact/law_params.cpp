@@ -59,6 +59,12 @@ void check_range(std::string_view kind, std::string_view law, std::string_view k
       ok = std::isfinite(value) && value > 0.0 && value < 90.0;
       requirement = "an angle strictly between 0 and 90 degrees";
       break;
+    case ParamRange::stiffness:
+      ok = std::isfinite(value) && value >= kMinJointStiffness;
+      requirement = "a finite stiffness of at least " + format_value(kMinJointStiffness) + " " +
+                    std::string(unit) +
+                    " (softer joints' elastic energies overflow; rock joints are 1e6-1e13 Pa/m)";
+      break;
   }
   if (!ok) {
     throw std::invalid_argument(law_error_prefix(kind, law) + "parameter '" + std::string(key) +

@@ -33,7 +33,7 @@ struct LawTraits<LinearNormal> {
   static constexpr std::string_view name = "linear";
   static constexpr std::string_view formula = "linear normal law sigma_n = k_n u_n";
   static constexpr std::array<LawParam<LinearNormal>, 1> params{{
-      {"stiffness", "Pa/m", "normal stiffness k_n", ParamRange::positive,
+      {"stiffness", "Pa/m", "normal stiffness k_n", ParamRange::stiffness,
        [](const LinearNormal& l) { return l.stiffness; },
        [](LinearNormal& l, double v) { l.stiffness = v; }},
   }};
@@ -64,7 +64,7 @@ struct LawTraits<LinearShear> {
       "linear shear law, constant k_s (Boon et al. 2015 "
       "Table 2)";
   static constexpr std::array<LawParam<LinearShear>, 1> params{{
-      {"stiffness", "Pa/m", "shear stiffness k_s", ParamRange::positive,
+      {"stiffness", "Pa/m", "shear stiffness k_s", ParamRange::stiffness,
        [](const LinearShear& l) { return l.stiffness; },
        [](LinearShear& l, double v) { l.stiffness = v; }},
   }};
@@ -77,7 +77,7 @@ struct LawTraits<StressLinearShear> {
   static constexpr std::string_view formula =
       "stress-linear shear law k_s = k0 + c sigma_n (Boon et al. 2015 eq 2)";
   static constexpr std::array<LawParam<StressLinearShear>, 2> params{{
-      {"k0", "Pa/m", "shear stiffness at zero normal stress", ParamRange::positive,
+      {"k0", "Pa/m", "shear stiffness at zero normal stress", ParamRange::stiffness,
        [](const StressLinearShear& l) { return l.k0; },
        [](StressLinearShear& l, double v) { l.k0 = v; }},
       {"c", "1/m", "growth of the stiffness with normal stress", ParamRange::non_negative,

@@ -10,6 +10,8 @@
 #include <string>
 #include <variant>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
 namespace {
 
@@ -169,7 +171,7 @@ void compressed_triangle_moments(const ExponentialNormal& e, const Eigen::Vector
 
 [[noreturn, gnu::cold, gnu::noinline]] void throw_not_finite(const char* what, double value) {
   throw std::invalid_argument(std::string("integrate_normal_stress: ") + what +
-                              " must be finite, got " + std::to_string(value));
+                              " must be finite, got " + number_text(value));
 }
 
 // A test inlined where it is made (once per closure and coordinate); the message is built out of

@@ -5,13 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
 namespace {
 
 void require(bool ok, const char* name, double value) {
   if (!ok) {
     throw std::invalid_argument(std::string("update_twist: ") + name +
-                                " must be finite and non-negative, got " + std::to_string(value));
+                                " must be finite and non-negative, got " + number_text(value));
   }
 }
 

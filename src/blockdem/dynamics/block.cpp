@@ -10,6 +10,7 @@
 #include <set>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -17,7 +18,7 @@ namespace blockdem {
 Block make_block(const Polyhedron& world_shape, double density, std::string name,
                  std::string group) {
   if (!(density > 0.0) || !std::isfinite(density)) {
-    throw GeometryError("density must be positive and finite, got " + std::to_string(density));
+    throw GeometryError("density must be positive and finite, got " + number_text(density));
   }
   Block b;
   b.name = std::move(name);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/number_text.hpp"
 
 namespace blockdem {
 namespace {
@@ -181,7 +182,7 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
     }
     if (std::abs(h.normal.norm() - 1.0) > 1e-9) {
       throw GeometryError("plane " + std::to_string(i) + " normal " + fmt_vec(h.normal) +
-                          " is not a unit vector (length " + std::to_string(h.normal.norm()) + ")");
+                          " is not a unit vector (length " + number_text(h.normal.norm()) + ")");
     }
     scale = std::max(scale, std::abs(h.offset));
   }

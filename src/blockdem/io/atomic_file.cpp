@@ -13,12 +13,14 @@
 #include <string_view>
 #include <vector>
 
+#include "blockdem/io/output_error.hpp"
+
 namespace blockdem {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const char* what) {
-  throw std::runtime_error("cannot write " + path.string() + ": " + what + " (" +
-                           std::strerror(errno) + ")");
+  throw OutputError("cannot write " + path.string() + ": " + what + " (" + std::strerror(errno) +
+                    ")");
 }
 
 }  // namespace

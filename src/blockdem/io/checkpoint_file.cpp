@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/output_error.hpp"
 
 namespace blockdem {
 namespace {
@@ -58,8 +59,8 @@ void keep_previous(const std::filesystem::path& file) {
 }
 
 [[noreturn]] void fail(const std::filesystem::path& file, const char* what) {
-  throw std::runtime_error("cannot write " + file.string() + ": " + what + " (" +
-                           std::strerror(errno) + ")");
+  throw OutputError("cannot write " + file.string() + ": " + what + " (" + std::strerror(errno) +
+                    ")");
 }
 
 constexpr std::size_t kBufferBytes = std::size_t{1} << 20;

@@ -1,11 +1,14 @@
 // CSV writer.
 #include "blockdem/io/csv.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+
+#include "blockdem/io/output_error.hpp"
 
 namespace blockdem {
 
@@ -102,7 +105,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
       out_(path, append ? std::ios::app : std::ios::trunc),
       buffer_(new char[kBuffer]),
       columns_(columns.size()) {
-  if (!out_) throw std::runtime_error("cannot write " + path.string());
+  if (!out_) throw OutputError("cannot write " + path.string() + ": " + std::strerror(errno));
   if (append) return;
   for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
   // In the file at once: a restart file taken before the first rows are flushed (a checkpoint
@@ -139,14 +142,16 @@ void CsvWriter::write_buffer() {
   }
   out_.write(buffer_.get(), static_cast<std::streamsize>(used_));
   used_ = 0;
-  if (!out_) throw std::runtime_error("write failed: " + path_.string());
+  if (!out_)
+    throw OutputError("cannot write " + path_.string() + ": the write failed (a full disk?)");
 }
 
 void CsvWriter::flush() {
   write_buffer();
   if (memory_) return;
   out_.flush();
-  if (!out_) throw std::runtime_error("write failed: " + path_.string());
+  if (!out_)
+    throw OutputError("cannot write " + path_.string() + ": the write failed (a full disk?)");
 }
 
 void CsvWriter::append(const char* text, std::size_t size) {

@@ -17,7 +17,8 @@ char* write_general12(char* out, double value);
 class CsvWriter {
  public:
   /// Creates (truncates) the file and writes the header; with `append`, adds rows to the end of
-  /// an existing file that has the header (a restarted run). Throws std::runtime_error on failure.
+  /// an existing file that has the header (a restarted run). Throws OutputError (a
+  /// std::runtime_error) when the file cannot be written, here or when rows are flushed.
   CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
             bool append = false);
   /// A writer into memory (no file, no header): take() returns the rows so far, formatted as

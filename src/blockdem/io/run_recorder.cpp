@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/io/output_error.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -19,8 +20,7 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
     : dir_(dir), pieces_(pieces.empty() ? dir / "vtk" : std::move(pieces)), vtk_(vtk) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  if (ec)
-    throw std::runtime_error("cannot create output folder " + dir_.string() + ": " + ec.message());
+  if (ec) throw OutputError("cannot create output folder " + dir_.string() + ": " + ec.message());
   if (vtk_) {
     std::filesystem::create_directories(dir_ / "vtk", ec);
     blocks_pvd_ = std::make_unique<PvdCollection>(dir_ / "vtk" / "blocks.pvd");

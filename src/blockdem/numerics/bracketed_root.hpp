@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
 
 /// Finds x in [lo, hi] with f(x) = 0, given f_lo = f(lo) and f_hi = f(hi) of opposite signs (or
@@ -23,7 +25,7 @@ double find_root_bracketed(Function&& f, double lo, double hi, double f_lo, doub
   if (f_hi == 0.0) return hi;
   if ((f_lo > 0.0) == (f_hi > 0.0) || std::isnan(f_lo) || std::isnan(f_hi)) {
     throw std::invalid_argument("find_root_bracketed: no sign change in the bracket, f(lo) = " +
-                                std::to_string(f_lo) + ", f(hi) = " + std::to_string(f_hi));
+                                number_text(f_lo) + ", f(hi) = " + number_text(f_hi));
   }
   constexpr double eps = std::numeric_limits<double>::epsilon();
   // b: best estimate; a: previous b; c: the point that brackets the root with b.

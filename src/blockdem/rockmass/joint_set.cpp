@@ -1,10 +1,12 @@
 // Joint set orientation, checks, and joint plane positions from constant or random spacing.
 #include "blockdem/rockmass/joint_set.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -91,15 +93,14 @@ void JointSet::validate() const {
     throw std::invalid_argument(key + ": " + why);
   };
   if (!(dip_deg >= 0.0 && dip_deg <= 90.0))
-    fail("dip_deg", "must be in [0, 90] degrees, got " + std::to_string(dip_deg));
+    fail("dip_deg", "must be in [0, 90] degrees, got " + number_text(dip_deg));
   if (!(dip_direction_deg >= 0.0 && dip_direction_deg < 360.0))
-    fail("dip_direction_deg",
-         "must be in [0, 360) degrees, got " + std::to_string(dip_direction_deg));
+    fail("dip_direction_deg", "must be in [0, 360) degrees, got " + number_text(dip_direction_deg));
   if (!origin.allFinite()) fail("origin", "must be finite");
   const bool explicit_joints = extent && !centres.empty();
   if (!explicit_joints) {
     if (!(spacing.mean > 0.0) || !std::isfinite(spacing.mean))
-      fail("spacing", "must be positive, got " + std::to_string(spacing.mean));
+      fail("spacing", "must be positive, got " + number_text(spacing.mean));
     if (spacing.distribution != Spacing::Distribution::constant && !spacing.seed)
       fail("spacing.seed", "a spacing distribution needs a seed (same seed, same blocks)");
     const bool needs_sd = spacing.distribution == Spacing::Distribution::normal ||
@@ -124,18 +125,52 @@ void JointSet::validate() const {
   }
 }
 
-std::vector<double> joint_plane_offsets(const JointSet& set, double lo, double hi) {
+JointPlaneEstimate estimate_joint_planes(const JointSet& set, double lo, double hi) {
   const double start = set.normal().dot(set.origin);
+  JointPlaneEstimate e;
+  e.planes = std::floor((hi - lo) / set.spacing.mean) + 1.0;
+  // A random spacing is drawn from the origin's joint to the far side of [lo, hi].
+  if (set.spacing.distribution != Spacing::Distribution::constant)
+    e.draws = (std::max(hi, start) - std::min(lo, start)) / set.spacing.mean + 1.0;
+  return e;
+}
+
+std::vector<double> joint_plane_offsets(const JointSet& set, double lo, double hi,
+                                        double max_planes) {
+  const double start = set.normal().dot(set.origin);
+  const bool constant = set.spacing.distribution == Spacing::Distribution::constant;
   std::vector<double> below, above;
   // Separate streams up and down from the origin's joint, so that enlarging the region keeps
   // the joints already placed.
   const std::uint64_t seed = set.spacing.seed.value_or(0);
   PortableRandom up(seed), down(seed ^ 0xA5A5A5A5A5A5A5A5ULL);
-  for (double d = start; d <= hi; d += draw_spacing(set.spacing, up)) {
+  double draws = 0.0;
+  // The next offset from d, one spacing s up (sign 1) or down (-1): it must move, and the
+  // planes and draws stay within their limits, whatever the numbers.
+  auto step = [&](double d, double s, double sign) {
+    const double next = d + sign * s;
+    if (constant && next == d)
+      throw std::invalid_argument("spacing: " + number_text(s) +
+                                  " m does not move a joint plane at n.x = " + number_text(d) +
+                                  " m (below the resolution of a double there)");
+    if (!constant && ++draws > kMaxSpacingDraws)
+      throw std::invalid_argument("spacing: placing the joints would draw more than 1e8 spacings");
+    if (static_cast<double>(below.size() + above.size()) > max_planes)
+      throw std::invalid_argument("spacing: more than " + number_text(max_planes) +
+                                  " joint planes cross the region (the limit; [rock_mass] "
+                                  "max_blocks sets it for a scenario)");
+    return next;
+  };
+  // A constant spacing from an origin outside [lo, hi] steps straight to the first plane in it.
+  const double s0 = set.spacing.mean;
+  double first_up = start, first_down = start - s0;
+  if (constant && start < lo) first_up = start + std::ceil((lo - start) / s0) * s0;
+  if (constant && start - s0 > hi) first_down = start - std::ceil((start - hi) / s0) * s0;
+  for (double d = first_up; d <= hi; d = step(d, draw_spacing(set.spacing, up), 1.0)) {
     if (d >= lo) above.push_back(d);
   }
-  for (double d = start - draw_spacing(set.spacing, down); d >= lo;
-       d -= draw_spacing(set.spacing, down)) {
+  if (!constant) first_down = step(start, draw_spacing(set.spacing, down), -1.0);
+  for (double d = first_down; d >= lo; d = step(d, draw_spacing(set.spacing, down), -1.0)) {
     if (d <= hi) below.push_back(d);
   }
   std::vector<double> out(below.rbegin(), below.rend());

@@ -65,8 +65,25 @@ struct Joint {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< non-persistent: centre (m)
 };
 
-/// Offsets of the joint planes of a set covering [lo, hi] along its normal (m), ascending.
-std::vector<double> joint_plane_offsets(const JointSet& set, double lo, double hi);
+/// The most spacings drawn to place one set's joints: a random spacing is drawn joint by joint
+/// from the origin's joint, also across the gap between an origin outside the region and it.
+constexpr double kMaxSpacingDraws = 1e8;
+
+/// The work of placing a set's joint planes over [lo, hi] along its normal, from its mean
+/// spacing, before any is placed.
+struct JointPlaneEstimate {
+  double planes = 0.0;  ///< joint planes crossing [lo, hi] (-)
+  double draws = 0.0;   ///< spacings drawn to place them (a constant spacing draws none) (-)
+};
+JointPlaneEstimate estimate_joint_planes(const JointSet& set, double lo, double hi);
+
+/// Offsets of the joint planes of a set covering [lo, hi] along its normal (m), ascending. A
+/// constant spacing steps straight to the first plane in [lo, hi] from an origin outside it.
+/// Throws std::invalid_argument "spacing: REASON" when a spacing does not advance the offset
+/// (below the resolution of a double there), or when more than `max_planes` planes or
+/// kMaxSpacingDraws draws would be needed: estimate_joint_planes says so beforehand.
+std::vector<double> joint_plane_offsets(const JointSet& set, double lo, double hi,
+                                        double max_planes = kMaxSpacingDraws);
 
 /// A small, portable random source (SplitMix64): the same seed gives the same numbers with any
 /// compiler and standard library.

@@ -28,6 +28,19 @@ int law_by_name(const CheckedTable& t, const std::string& key,
   return it->second;
 }
 
+// The most planes of a region or an excavation: far more than a convex outline drawn by hand
+// needs, and few enough for the outline's facets, each clipped by every other plane.
+constexpr std::size_t kMaxOutlinePlanes = 1000;
+
+// The rows of a plane list (`key`), at most kMaxOutlinePlanes.
+std::vector<std::vector<double>> plane_rows(const CheckedTable& t, const std::string& key) {
+  auto rows = t.rows(key, 4);
+  if (rows.size() > kMaxOutlinePlanes)
+    t.fail(key, "has " + std::to_string(rows.size()) + " planes, more than the limit of " +
+                    std::to_string(kMaxOutlinePlanes));
+  return rows;
+}
+
 Halfspace plane_row(const CheckedTable& t, const std::string& key, const std::vector<double>& r) {
   const Eigen::Vector3d n(r[0], r[1], r[2]);
   const double len = n.norm();
@@ -41,7 +54,7 @@ Region read_region(const CheckedTable& r) {
   if (g.has("planes")) {
     if (g.has("min") || g.has("max")) g.fail("planes", "give either planes or min and max");
     std::vector<Halfspace> planes;
-    for (const auto& row : g.rows("planes", 4)) planes.push_back(plane_row(g, "planes", row));
+    for (const auto& row : plane_rows(g, "planes")) planes.push_back(plane_row(g, "planes", row));
     region = Region::from_planes(planes);
   } else {
     const Eigen::Vector3d lo = g.vec3("min"), hi = g.vec3("max");
@@ -126,7 +139,8 @@ Excavation read_excavation(const CheckedTable& t, std::size_t i) {
     }
     ex.planes = Region::box(lo, hi).planes;
   } else if (shape == "planes") {
-    for (const auto& row : t.rows("planes", 4)) ex.planes.push_back(plane_row(t, "planes", row));
+    for (const auto& row : plane_rows(t, "planes"))
+      ex.planes.push_back(plane_row(t, "planes", row));
     if (ex.planes.empty()) t.fail("planes", "needs at least one plane");
   } else {
     TunnelSpec tu;
@@ -139,8 +153,10 @@ Excavation read_excavation(const CheckedTable& t, std::size_t i) {
     if (!(tu.trend_deg >= 0.0 && tu.trend_deg < 360.0)) t.fail("trend_deg", "must be in [0, 360)");
     tu.plunge_deg = t.number("plunge_deg", 0.0);
     if (!(std::abs(tu.plunge_deg) < 90.0)) t.fail("plunge_deg", "must be in (-90, 90)");
-    tu.sides = static_cast<int>(t.integer("sides", tu.sides));
-    if (tu.sides < 4 || tu.sides > 256) t.fail("sides", "must be in [4, 256]");
+    const std::int64_t sides = t.integer("sides", tu.sides);
+    if (sides < 4 || sides > 256)
+      t.fail("sides", "must be in [4, 256], got " + std::to_string(sides));
+    tu.sides = static_cast<int>(sides);
     if (t.has("length")) tu.length = t.positive("length", 0.0);
     ex.planes = tunnel_planes(tu);
   }
@@ -198,6 +214,10 @@ RockMassModel read_rock_mass(const CheckedTable& root,
                        ? SlicingSettings::SmallBlocks::remove
                        : SlicingSettings::SmallBlocks::merge;
   s.cut_tolerance = r.positive("cut_tolerance", 0.0, true);
+  s.max_blocks = r.integer("max_blocks", s.max_blocks);
+  if (s.max_blocks < 1) r.fail("max_blocks", "must be at least 1");
+  s.max_joints = r.integer("max_joints", s.max_joints);
+  if (s.max_joints < 1) r.fail("max_joints", "must be at least 1");
   m.default_law = law_by_name(r, "law", laws);
   m.bonded_law = law_by_name(r, "bonded_law", laws);
   r.finish();
@@ -213,6 +233,12 @@ RockMassModel read_rock_mass(const CheckedTable& root,
   const auto sets = root.tables("joint_sets");
   for (std::size_t i = 0; i < sets.size(); ++i) {
     m.spec.joint_sets.push_back(read_joint_set(sets[i], i, centre));
+    for (std::size_t k = 0; k < i; ++k) {
+      if (m.spec.joint_sets[k].name == m.spec.joint_sets[i].name)
+        sets[i].fail("name", "joint set \"" + m.spec.joint_sets[i].name +
+                                 "\" is defined twice (also joint_sets[" + std::to_string(k + 1) +
+                                 "]): faces and outputs name joints by their set");
+    }
     m.set_laws.push_back(law_by_name(sets[i], "law", laws));
     sets[i].finish();
   }
@@ -229,7 +255,11 @@ RockMassModel read_rock_mass(const CheckedTable& root,
     for (const auto& face : b.strings("faces")) {
       const auto& names = m.spec.region.face_names;
       const auto it = std::find(names.begin(), names.end(), face);
-      if (it == names.end()) b.fail("faces", "the region has no face \"" + face + "\"");
+      if (it == names.end()) {
+        std::string valid;
+        for (const auto& n : names) valid += (valid.empty() ? "\"" : ", \"") + n + "\"";
+        b.fail("faces", "the region has no face \"" + face + "\" (its faces: " + valid + ")");
+      }
       bc.faces.push_back(static_cast<int>(it - names.begin()));
     }
     if (bc.faces.empty()) b.fail("faces", "name at least one region face");

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "blockdem/io/csv.hpp"
+#include "blockdem/io/output_error.hpp"
 
 namespace blockdem {
 namespace {
@@ -23,7 +24,7 @@ std::vector<int> excavation_of_blocks(const RockMassModel& m) {
 
 void write_vtk(const RockMassModel& m, const std::filesystem::path& path) {
   std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path.string());
+  if (!f) throw OutputError("cannot write " + path.string());
   const auto& blocks = m.rock_mass.blocks;
   std::size_t points = 0, faces = 0, refs = 0;
   for (const auto& b : blocks) {
@@ -64,7 +65,7 @@ void write_vtk(const RockMassModel& m, const std::filesystem::path& path) {
   cell_ints("bonded", [](std::size_t, const CellFace& fc) { return fc.tag.bonded ? 1L : 0L; });
   cell_ints("excavation",
             [&](std::size_t i, const CellFace&) { return static_cast<long>(exc[i]); });
-  if (!f) throw std::runtime_error("cannot write " + path.string());
+  if (!f) throw OutputError("cannot write " + path.string());
 }
 
 }  // namespace
@@ -176,7 +177,7 @@ void write_rock_mass(const RockMassModel& m, const std::filesystem::path& out) {
   }
   std::ofstream j(out / "rock_mass.json");
   j << rock_mass_summary(m).dump(2) << "\n";
-  if (!j) throw std::runtime_error("cannot write " + (out / "rock_mass.json").string());
+  if (!j) throw OutputError("cannot write " + (out / "rock_mass.json").string());
 }
 
 }  // namespace blockdem

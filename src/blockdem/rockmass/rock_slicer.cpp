@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/rockmass/slicing_bounds.hpp"
 
 namespace blockdem {
 namespace {
@@ -59,14 +60,34 @@ bool inside_convex(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector
   return true;
 }
 
-// The joints of one set inside the region, sorted by offset, and their extents.
-void place_joints(const JointSet& set, const ConvexCell& region, double snap,
-                  std::vector<Joint>& joints, std::vector<PlanarExtent>& extents) {
+// A point drawn uniformly in the convex polygon p (in the plane's (s, dv) coordinates, inside
+// the box [bmin, bmax]) by rejection. A polygon so thin that 10,000 draws miss it takes its
+// vertex mean instead: the loop ends whatever its shape.
+Eigen::Vector2d random_point(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& bmin,
+                             const Eigen::Vector2d& bmax, PortableRandom& rng) {
+  Eigen::Vector2d q;
+  int tries = 0;
+  do {
+    if (++tries > 10000) {
+      q = Eigen::Vector2d::Zero();
+      for (const auto& x : p) q += x / static_cast<double>(p.size());
+      break;
+    }
+    q = bmin + (bmax - bmin).cwiseProduct(Eigen::Vector2d(rng.uniform(), rng.uniform()));
+  } while (!inside_convex(p, q));
+  return q;
+}
+
+// The joints of one set inside the region, sorted by offset, and their extents; at most
+// `max_planes` planes and `max_joints` joints (check_slicing_work refused more beforehand).
+void place_joints(const JointSet& set, const ConvexCell& region, double snap, double max_planes,
+                  double max_joints, std::vector<Joint>& joints,
+                  std::vector<PlanarExtent>& extents) {
   const Eigen::Vector3d n = set.normal();
   const auto [lo, hi] = region.extent_along(n);
   std::vector<Joint> raw;
   if (!set.extent) {
-    for (double d : joint_plane_offsets(set, lo, hi))
+    for (double d : joint_plane_offsets(set, lo, hi, max_planes))
       raw.push_back(Joint{d, true, Eigen::Vector3d::Zero()});
   } else if (!set.centres.empty()) {
     for (const auto& c : set.centres) raw.push_back(Joint{n.dot(c), false, c});
@@ -75,7 +96,7 @@ void place_joints(const JointSet& set, const ConvexCell& region, double snap,
     // the covered fraction of the section's area equal to the persistence (overlaps allowed).
     PortableRandom rng(*set.placement_seed);
     const Eigen::Vector3d s = set.strike_vector(), dv = set.dip_vector();
-    for (double d : joint_plane_offsets(set, lo, hi)) {
+    for (double d : joint_plane_offsets(set, lo, hi, max_planes)) {
       const auto sec = region.section(Halfspace{n, d}, snap);
       if (sec.size() < 3) continue;
       std::vector<Eigen::Vector2d> p;
@@ -87,13 +108,14 @@ void place_joints(const JointSet& set, const ConvexCell& region, double snap,
       }
       if (signed_area(p) < 0.0) std::reverse(p.begin(), p.end());
       const double area = signed_area(p);
-      const auto count =
-          std::max<long>(1, std::lround(set.persistence * area / set.extent->area()));
+      if (!(area > 0.0)) continue;  // a section without area: no joint lies on it
+      const double want = std::max(1.0, std::round(set.persistence * area / set.extent->area()));
+      if (!(static_cast<double>(raw.size()) + want <= max_joints))
+        throw std::invalid_argument("extent: more joints than the limit of " +
+                                    std::to_string(static_cast<long long>(max_joints)));
+      const auto count = static_cast<long>(want);
       for (long k = 0; k < count; ++k) {
-        Eigen::Vector2d q;
-        do {
-          q = bmin + (bmax - bmin).cwiseProduct(Eigen::Vector2d(rng.uniform(), rng.uniform()));
-        } while (!inside_convex(p, q));
+        const Eigen::Vector2d q = random_point(p, bmin, bmax, rng);
         raw.push_back(Joint{d, false, n * d + q.x() * s + q.y() * dv});
       }
     }
@@ -286,18 +308,29 @@ RockMass slice_rock_mass(const RockMassSpec& spec) {
   if (spec.settings.min_block_volume < 0.0) fail("min_block_volume", "must be >= 0");
   if (spec.settings.max_aspect_ratio < 0.0) fail("max_aspect_ratio", "must be >= 0");
 
+  for (std::size_t s = 0; s < spec.joint_sets.size(); ++s) {
+    try {
+      spec.joint_sets[s].validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("joint_sets[" + std::to_string(s + 1) + "]." + e.what());
+    }
+  }
+  // Before any joint is placed: what does not fit in memory or time is refused.
+  check_slicing_work(spec, region);
+
   Slicer slicer(spec.settings, tol, rm);
   std::vector<ConvexCell> cells{region};
   for (std::size_t s = 0; s < spec.joint_sets.size(); ++s) {
     const JointSet& set = spec.joint_sets[s];
+    rm.joints.emplace_back();
+    rm.joint_extents.emplace_back();
     try {
-      set.validate();
+      place_joints(set, region, 1e-3 * tol, static_cast<double>(spec.settings.max_blocks),
+                   static_cast<double>(spec.settings.max_joints), rm.joints.back(),
+                   rm.joint_extents.back());
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("joint_sets[" + std::to_string(s + 1) + "]." + e.what());
     }
-    rm.joints.emplace_back();
-    rm.joint_extents.emplace_back();
-    place_joints(set, region, 1e-3 * tol, rm.joints.back(), rm.joint_extents.back());
     const FaceTag tag{FaceSource::joint, static_cast<int>(s), -1, false};
     std::vector<ConvexCell> next;
     next.reserve(cells.size() * 2);

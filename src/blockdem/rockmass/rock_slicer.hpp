@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct SlicingSettings {
   /// A plane cuts a block only where it lies at least this far inside it on both sides (m);
   /// 0: 1e-6 of the region's diameter.
   double cut_tolerance = 0.0;
+  /// Limits of the work a rock mass may cause (check_slicing_work): the estimated blocks of all
+  /// joint sets together, and the estimated joints of one non-persistent set.
+  std::int64_t max_blocks = 2000000;
+  std::int64_t max_joints = 1000000;
 };
 
 struct RockMassSpec {
@@ -70,8 +75,9 @@ struct RockMass {
 };
 
 /// Cuts the region by every joint set in order, then along every excavation outline. Throws
-/// std::invalid_argument "KEY: REASON" for a region that is not closed, a bad joint set, or an
-/// excavation outside the region. Deterministic.
+/// std::invalid_argument "KEY: REASON" for a region that is not closed, a bad joint set, joint
+/// sets that would make more blocks or joints than the settings' limits (check_slicing_work,
+/// before any joint is placed), or an excavation outside the region. Deterministic.
 RockMass slice_rock_mass(const RockMassSpec& spec);
 
 }  // namespace blockdem

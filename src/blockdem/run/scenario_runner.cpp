@@ -328,6 +328,13 @@ void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySear
                               {"trials", trials_json(cs)}};
   write_trials_csv(out_ / "collapse_search.csv", "g_level", cs);
   write_mechanism(out_, "collapse_mechanism", cs, sc_.output.vtk);
+  if (cs.interrupted) {
+    res_.summary["collapse"]["interrupted"] = true;
+    interrupted_where_ = "in the collapse search of stage '" + stage.name + "' after " +
+                         std::to_string(cs.trials.size()) + " trials (bracket so far " +
+                         fmt("%.4g", cs.last_stable) + " to " + fmt("%.4g", cs.first_failed) +
+                         " g)";
+  }
 }
 
 void RunOutputs::on_interrupted(const World& world, const Stage& stage, int,
@@ -350,7 +357,9 @@ void RunOutputs::on_interrupted(const World& world, const Stage& stage, int,
                      {"time_s", world.time()},
                      {"message", result->message}});
   interrupted_where_ =
-      "in stage '" + stage.name + "' after " + std::to_string(result->steps) + " steps";
+      stage.kind == Stage::Kind::strength_reduction
+          ? "in the strength reduction of stage '" + stage.name + "', between two trials"
+          : "in stage '" + stage.name + "' after " + std::to_string(result->steps) + " steps";
 }
 
 /// Checkpoints (the world, where the run stands, and the files written so far) and the caller's
@@ -477,10 +486,13 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
   if (d.status == RunStatus::interrupted) {
     res.interrupted = true;
     res.exit_code = 130;
+    std::error_code ec;
+    const bool checkpoint = std::filesystem::exists(out / kCheckpointName, ec);
     res.message =
         "interrupted " + outputs.interrupted_where() +
-        (no_checkpoints.empty() ? "; continue with --restart " + (out / kCheckpointName).string()
-                                : "; no checkpoint (" + no_checkpoints + " have none yet)");
+        (!no_checkpoints.empty() ? "; no checkpoint (" + no_checkpoints + " have none yet)"
+         : checkpoint            ? "; continue with --restart " + (out / kCheckpointName).string()
+                                 : "; no checkpoint was written (--checkpoint-every keeps one)");
     return;
   }
   const std::string& name = sc.stages[d.level].name;
@@ -571,6 +583,13 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
   };
   dc.progress = [&sc, &world, &cb, first, resumed](int level) {
     return stage_progress(sc, world, cb, level, level == first ? resumed : nullptr);
+  };
+  // Between two trials of a search: stop if asked. A strength reduction has recorded nothing
+  // yet: the checkpoint before it continues the run by running it again.
+  dc.between_trials = [=, &checkpoints](int level, bool before_stage) {
+    const bool stop = checkpoints.poll().stop;
+    if (stop && before_stage && can_checkpoint) checkpoints.take(level, nullptr, nullptr, nullptr);
+    return stop;
   };
   dc.trial_done = [&cb](const StabilityTrial& t) {
     if (cb.stage_done)

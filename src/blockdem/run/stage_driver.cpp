@@ -7,24 +7,40 @@
 namespace blockdem {
 namespace {
 
+/// The caller's stop between the trials of stage `level`'s search.
+StopFn search_stop(const DriveControl& control, int level, bool before_stage) {
+  if (!control.between_trials) return {};
+  return [&control, level, before_stage] { return control.between_trials(level, before_stage); };
+}
+
 /// A strength-reduction stage: the factor of safety; the world stays in the state before it.
-void reduce_strength(const World& world, const World& before, const Stage& stage, int level,
+/// Returns false when the caller stopped it between two trials (observers told: interrupted).
+bool reduce_strength(const World& world, const World& before, const Stage& stage, int level,
                      const DriveControl& control, const std::vector<RunObserver*>& observers) {
   StabilitySearch search;
   try {
-    search = strength_reduction(before, stage, laws_named(world, stage.strength.laws),
-                                stage.strength.lower, stage.strength.upper,
-                                stage.strength.tolerance, control.trial_done);
+    search =
+        strength_reduction(before, stage, laws_named(world, stage.strength.laws),
+                           stage.strength.lower, stage.strength.upper, stage.strength.tolerance,
+                           control.trial_done, search_stop(control, level, true));
   } catch (const std::invalid_argument& e) {
     throw StrengthReductionError(level, e.what());
   }
   StageResult result;
   result.name = stage.name;
-  result.converged = true;
+  result.converged = !search.interrupted;
   for (const auto& t : search.trials) result.steps += t.steps;
   result.time = world.time();
   result.measures = world.equilibrium();
+  if (search.interrupted) {
+    result.interrupted = true;
+    result.message = "stopped between the trials of the strength reduction, after " +
+                     std::to_string(search.trials.size()) + " trials";
+    for (RunObserver* o : observers) o->on_interrupted(world, stage, level, &result);
+    return false;
+  }
   for (RunObserver* o : observers) o->on_strength_reduction(world, stage, level, search, result);
+  return true;
 }
 
 /// One stage run: a DivergenceError ends it with the last observation before the blow-up.
@@ -66,15 +82,19 @@ StageRun run_one_stage(World& world, const Stage& stage, int level, DriveStart& 
   return run;
 }
 
-/// Bisects the collapse load of `stage` between the gravity of `before` and the stage's.
+/// Bisects the collapse load of `stage` between the gravity of `before` and the stage's; `stopped`
+/// says whether the caller stopped it between two trials (the bracket is the one so far).
 std::pair<double, double> search_collapse(const World& before, const Stage& stage, int level,
                                           const DriveControl& control,
-                                          const std::vector<RunObserver*>& observers) {
+                                          const std::vector<RunObserver*>& observers,
+                                          bool& stopped) {
   const double g_stable = before.settings().gravity.norm() / kOneG;
   const double g_failed = stage.gravity->norm() / kOneG;
-  const StabilitySearch cs = find_collapse_load(before, stage, g_stable, g_failed,
-                                                stage.collapse_tolerance, control.trial_done);
+  const StabilitySearch cs =
+      find_collapse_load(before, stage, g_stable, g_failed, stage.collapse_tolerance,
+                         control.trial_done, search_stop(control, level, false));
   for (RunObserver* o : observers) o->on_collapse_search(stage, level, cs);
+  stopped = cs.interrupted;
   return {cs.last_stable, cs.first_failed};
 }
 
@@ -105,8 +125,10 @@ DriveResult drive_stages(World& world, const std::vector<Stage>& stages, int end
       before.emplace(world);
     }
     if (reduce) {
-      reduce_strength(world, *before, stage, level, control, observers);
-      continue;
+      if (reduce_strength(world, *before, stage, level, control, observers)) continue;
+      DriveResult stopped{RunStatus::interrupted, level, {}, false, {}};
+      stopped.stage.name = stage.name;
+      return stopped;
     }
     std::optional<MotionMonitor> monitor;
     if (resuming) monitor = std::move(start.monitor);
@@ -138,8 +160,9 @@ DriveResult drive_stages(World& world, const std::vector<Stage>& stages, int end
     DriveResult ended{run_status(kind), level, result, false, {}};
     ended.stage.message = stage_end.message();
     if (search && (kind != FailureKind::diverged || control.search_after_any_failure)) {
-      ended.collapse = search_collapse(*before, stage, level, control, observers);
-      ended.status = RunStatus::collapsed;
+      bool stopped = false;
+      ended.collapse = search_collapse(*before, stage, level, control, observers, stopped);
+      ended.status = stopped ? RunStatus::interrupted : RunStatus::collapsed;
     }
     return ended;
   }

@@ -38,6 +38,10 @@ struct DriveControl {
   std::function<ProgressFn(int level)> progress;
   /// After each trial of a stability search.
   TrialFn trial_done;
+  /// Between two trials of a stability search of stage `level`: returns true to stop the run
+  /// there. `before_stage`: nothing of the stage is recorded yet (a strength reduction, whose
+  /// outputs come at its end), so that the stage may be run again from its start.
+  std::function<bool(int level, bool before_stage)> between_trials;
   /// Handed to run_stage (a world spread over processes); null: run_stage's default.
   const StageSync* sync = nullptr;
   /// Search for the collapse after any failure that World::step did not throw, also one

@@ -62,17 +62,63 @@ CheckedTable::CheckedTable(const toml::table& table, std::string file, std::stri
     : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
 
 bool CheckedTable::has(const std::string& key) const {
+  asked_.push_back(key);
   return table_->contains(key);
 }
 
 bool CheckedTable::is_string(const std::string& key) const {
+  asked_.push_back(key);
   const toml::node* n = table_->get(key);
   return n != nullptr && n->is_string();
 }
 
 bool CheckedTable::is_table(const std::string& key) const {
+  asked_.push_back(key);
   const toml::node* n = table_->get(key);
   return n != nullptr && n->is_table();
+}
+
+std::string nearest_name(const std::string& key, const std::vector<std::string>& names) {
+  // Levenshtein distance, one row at a time.
+  auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        diagonal = above;
+      }
+    }
+    return row[b.size()];
+  };
+  auto starts = [](const std::string& a, const std::string& b) {
+    return a.size() >= 4 && b.size() > a.size() && b.compare(0, a.size(), a) == 0;
+  };
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, key.size() / 3) + 1;
+  for (const auto& name : names) {
+    if (name == key) continue;
+    const std::size_t d = starts(key, name) || starts(name, key) ? 1 : distance(key, name);
+    if (d < best_distance) {
+      best = name;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+void CheckedTable::missing(const std::string& key, const std::string& what) const {
+  std::vector<std::string> unread;
+  for (const auto& [k, v] : *table_) {
+    if (std::find(used_.begin(), used_.end(), &v) == used_.end()) unread.emplace_back(k.str());
+  }
+  const std::string near = nearest_name(key, unread);
+  fail(key,
+       "is required" + (what.empty() ? std::string() : " (" + what + ")") +
+           (near.empty() ? "" : "; the table has \"" + near + "\": did you mean \"" + key + "\"?"));
 }
 
 void CheckedTable::fail(const std::string& key, const std::string& reason) const {
@@ -86,6 +132,7 @@ void CheckedTable::check_length(const std::string& key, std::size_t entries) con
 }
 
 const toml::node* CheckedTable::get(const std::string& key) const {
+  asked_.push_back(key);
   const toml::node* n = table_->get(key);
   if (n != nullptr) used_.push_back(n);
   return n;
@@ -93,7 +140,7 @@ const toml::node* CheckedTable::get(const std::string& key) const {
 
 double CheckedTable::number(const std::string& key) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required (a number)");
+  if (n == nullptr) missing(key, "a number");
   const auto v = as_number(*n);
   if (!v) fail(key, "must be a number, got " + type_name(*n));
   if (!std::isfinite(*v)) fail(key, "must be finite");
@@ -130,7 +177,7 @@ bool CheckedTable::boolean(const std::string& key, bool fallback) const {
 
 std::string CheckedTable::string(const std::string& key) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required (a string)");
+  if (n == nullptr) missing(key, "a string");
   if (auto v = n->value_exact<std::string>()) return *v;
   fail(key, "must be a string, got " + type_name(*n));
 }
@@ -152,7 +199,7 @@ std::string CheckedTable::choice(const std::string& key, const std::string& fall
 
 Eigen::Vector3d CheckedTable::vec3(const std::string& key) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required");
+  if (n == nullptr) missing(key, "");
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
   check_length(key, a->size());
@@ -168,7 +215,7 @@ Eigen::Vector3d CheckedTable::vec3(const std::string& key, const Eigen::Vector3d
 std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
                                                     std::size_t width) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required");
+  if (n == nullptr) missing(key, "");
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array, got " + type_name(*n));
   check_length(key, a->size());
@@ -192,7 +239,7 @@ std::vector<std::vector<double>> CheckedTable::rows(const std::string& key,
 
 std::vector<double> CheckedTable::numbers(const std::string& key) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required (an array of numbers)");
+  if (n == nullptr) missing(key, "an array of numbers");
   const toml::array* a = n->as_array();
   if (a == nullptr) fail(key, "must be an array of numbers, got " + type_name(*n));
   check_length(key, a->size());
@@ -225,7 +272,7 @@ std::vector<std::string> CheckedTable::strings(const std::string& key) const {
 
 CheckedTable CheckedTable::table(const std::string& key) const {
   const toml::node* n = get(key);
-  if (n == nullptr) fail(key, "is required (a table)");
+  if (n == nullptr) missing(key, "a table");
   const toml::table* t = n->as_table();
   if (t == nullptr) fail(key, "must be a table, got " + type_name(*n));
   return CheckedTable(*t, file_, key_path(key));
@@ -246,6 +293,7 @@ std::size_t CheckedTable::for_each_table(
 }
 
 std::size_t CheckedTable::table_count(const std::string& key) const {
+  asked_.push_back(key);
   const toml::node* n = table_->get(key);
   if (n == nullptr) return 0;
   const toml::array* a = n->as_array();
@@ -272,8 +320,11 @@ std::map<std::string, double> CheckedTable::numbers_except(
 
 void CheckedTable::finish() const {
   for (const auto& [k, v] : *table_) {
-    if (std::find(used_.begin(), used_.end(), &v) == used_.end())
-      fail(std::string(k.str()), "unknown key (misspelt, or not a setting of this table)");
+    if (std::find(used_.begin(), used_.end(), &v) != used_.end()) continue;
+    const std::string key(k.str());
+    const std::string near = nearest_name(key, asked_);
+    fail(key, "unknown key (misspelt, or not a setting of this table)" +
+                  (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
   }
 }
 

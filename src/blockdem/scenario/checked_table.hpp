@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
 
 /// An error in a scenario file. what() reads "FILE: KEY: REASON".
@@ -83,6 +85,9 @@ class CheckedTable {
 
  private:
   const toml::node* get(const std::string& key) const;
+  /// Fails for a required key that is absent: "is required (WHAT)", and the table's unread key
+  /// nearest to it when there is one (a misspelling).
+  [[noreturn]] void missing(const std::string& key, const std::string& what) const;
   /// Fails for an array longer than the limit.
   void check_length(const std::string& key, std::size_t entries) const;
   const toml::table* table_;
@@ -90,6 +95,13 @@ class CheckedTable {
   /// The values read (a key read with a fallback but absent from the table is not one): finish()
   /// fails for the table's other keys.
   mutable std::vector<const toml::node*> used_;
+  /// Every key the reader asked for, present or not: the names finish() suggests for an
+  /// unknown key.
+  mutable std::vector<std::string> asked_;
 };
+
+/// The name in `names` nearest to `key` (by edit distance, at most 2 or a third of the key's
+/// length, or one of them the other's start), or "" when none is near.
+std::string nearest_name(const std::string& key, const std::vector<std::string>& names);
 
 }  // namespace blockdem

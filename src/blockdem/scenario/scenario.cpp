@@ -312,6 +312,17 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
     if (!(tol > 0.0)) t.fail("collapse_tolerance", "must be > 0 (g)");
     s.collapse_tolerance = tol;
   }
+  if (s.find_collapse) {
+    // The bracket ends below the stage's gravity: a width doubles cannot resolve there would
+    // repeat the same trial.
+    const double g = s.gravity->norm() / kOneG;
+    if (s.collapse_tolerance < kNarrowestRelativeBracket * g)
+      t.fail("collapse_tolerance",
+             "must be at least " + number_text(kNarrowestRelativeBracket * g) +
+                 " g (1e-12 of the stage's gravity, " + number_text(g) +
+                 " g: a narrower bracket is below the resolution of the search), got " +
+                 number_text(s.collapse_tolerance));
+  }
   const bool sr = s.kind == Stage::Kind::strength_reduction;
   for (const char* key : {"laws", "factor_bounds", "tolerance"}) {
     if (!sr && t.has(key)) t.fail(key, "only a stage of kind \"strength_reduction\" takes this");
@@ -331,6 +342,12 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
     if (!(tol > 0.0)) t.fail("tolerance", "must be > 0 (a width of the factor's bracket)");
     s.strength.tolerance = tol;
   }
+  if (s.strength.tolerance < kNarrowestRelativeBracket * s.strength.upper)
+    t.fail("tolerance", "must be at least " +
+                            number_text(kNarrowestRelativeBracket * s.strength.upper) +
+                            " (1e-12 of the upper factor bound, " + number_text(s.strength.upper) +
+                            ": a narrower bracket is below the resolution of the search), got " +
+                            number_text(s.strength.tolerance));
 }
 
 /// What a stage's keys may name besides blocks and excavations: joint laws, joint sets, groups.
@@ -651,9 +668,22 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
            "several joint laws and no [[joints]] rule saying which acts between which groups");
   }
 
+  // The free blocks no stage has removed yet: with an automatic time step, a stage needs one.
+  std::set<std::string> free_left;
+  for (const auto& b : sc.blocks) {
+    if (b.motion == Motion::free || b.motion == Motion::servo) free_left.insert(b.name);
+  }
   for (const auto& st : t.tables("stages")) {
     sc.stages.push_back(read_stage(st, names, sc.excavations, {law_index, sc.joint_sets, groups}));
     const Stage& stage = sc.stages.back();
+    const std::size_t free_before = free_left.size();
+    for (const auto& name : stage.remove) free_left.erase(name);
+    if (free_left.empty() && free_before > 0 && sc.settings.time_step == 0.0)
+      st.fail("excavation",
+              "removes every free block left (" + std::to_string(free_before) +
+                  "): every block left is fixed or prescribed, so nothing can move "
+                  "and no automatic time step exists (fix fewer region faces, excavate less, or "
+                  "set [settings] time_step)");
     if (stage.kind != Stage::Kind::strength_reduction) continue;
     // The laws to reduce exist and at least one has a strength (friction) to divide.
     bool strength = false;
@@ -680,12 +710,12 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
         "in-situ normal force at its analytic centre, off the centroid of an irregular face, so "
         "the blocks start with unbalanced moments; contact_mode = \"face_integrated\" carries "
         "the field exactly (docs/ground-stress.md)");
+  if (t.has("output")) read_output(t.table("output"), sc.output);
+  // Unknown keys first: a misspelt [[stages]] is named as such.
+  t.finish();
   // A built scene without stages can be generated (blockdem generate), not run.
   if (sc.stages.empty() && !sc.built)
     t.fail("stages", "a scenario needs at least one [[stages]] entry");
-
-  if (t.has("output")) read_output(t.table("output"), sc.output);
-  t.finish();
   // A scene at map coordinates (centre farther than 10 km from the origin) is simulated relative
   // to its centre rounded to the metre: subtracting it is exact (Sterbenz), and contacts keep the
   // precision they have at the origin. Outputs add it back. Scenes nearer keep origin 0.

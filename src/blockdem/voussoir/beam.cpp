@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "blockdem/numerics/number_text.hpp"
+#include "blockdem/world/stability.hpp"
+
 namespace blockdem {
 
 void VoussoirSpec::validate() const {
@@ -12,7 +15,7 @@ void VoussoirSpec::validate() const {
   if (blocks < 1) fail("blocks: a beam needs at least one block, got " + std::to_string(blocks));
   auto positive = [&](double v, const char* name) {
     if (!(v > 0.0) || !std::isfinite(v))
-      fail(std::string(name) + ": must be positive, got " + std::to_string(v));
+      fail(std::string(name) + ": must be positive, got " + number_text(v));
   };
   positive(block_length, "block_length");
   positive(block_width, "block_width");
@@ -25,14 +28,14 @@ void VoussoirSpec::validate() const {
   positive(unbalanced_tolerance, "unbalanced_tolerance");
   positive(kinetic_tolerance, "kinetic_tolerance");
   if (abutment_height < block_depth) {
-    fail("abutment_height: must be at least the beam depth (" + std::to_string(block_depth) +
+    fail("abutment_height: must be at least the beam depth (" + number_text(block_depth) +
          " m) so the abutments cover the beam's end faces");
   }
   if (g_levels.empty()) fail("g_levels: at least one gravity level after the preload is needed");
   double previous = 1.0;
   for (double g : g_levels) {
     if (!(g >= 1.0) || !std::isfinite(g))
-      fail("g_levels: every level must be at least 1 g, got " + std::to_string(g));
+      fail("g_levels: every level must be at least 1 g, got " + number_text(g));
     if (g < previous) fail("g_levels: levels must not decrease");
     previous = g;
   }
@@ -42,6 +45,14 @@ void VoussoirSpec::validate() const {
   if (max_steps_per_level <= 0) fail("max_steps_per_level: must be positive");
   if (ramp_steps < 0) fail("ramp_steps: must be zero or positive");
   if (!(collapse_tolerance > 0.0)) fail("collapse_tolerance: must be positive (g)");
+  // The search brackets a level up to the highest: a width doubles cannot resolve there would
+  // repeat the same trial.
+  const double narrowest = kNarrowestRelativeBracket * g_levels.back();
+  if (collapse_tolerance < narrowest)
+    fail("collapse_tolerance: must be at least " + number_text(narrowest) +
+         " g (1e-12 of the highest level: a narrower bracket is below the resolution of the "
+         "search), got " +
+         number_text(collapse_tolerance));
 }
 
 VoussoirModel build_voussoir(const VoussoirSpec& spec) {

@@ -20,6 +20,12 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+// A bisection's midpoint that differs from both ends of its bracket; where it does not, the
+// bracket is as narrow as doubles resolve and the search ends.
+bool strictly_between(double mid, double lo, double hi) {
+  return mid > lo && mid < hi;
+}
+
 }  // namespace
 
 JointLaw divide_strength(const JointLaw& law, double factor) {
@@ -66,7 +72,8 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter) {
 }
 
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
-                                   double g_failed, double tolerance, const TrialFn& done) {
+                                   double g_failed, double tolerance, const TrialFn& done,
+                                   const StopFn& stop) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("collapse_tolerance: must be positive");
   if (!stage.gravity || stage.gravity->norm() == 0.0)
     throw std::invalid_argument("find_collapse: the stage must set a gravity");
@@ -76,6 +83,11 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
   s.first_failed = g_failed;
   while (s.first_failed - s.last_stable > tolerance) {
     const double g = 0.5 * (s.last_stable + s.first_failed);
+    if (!strictly_between(g, s.last_stable, s.first_failed)) break;
+    if (stop && stop()) {
+      s.interrupted = true;
+      break;
+    }
     // From the last stable equilibrium: the load rises monotonically, in steps that halve with
     // the bracket (docs/stability.md, "Collapse load").
     World w = s.stable_world ? *s.stable_world : saved;
@@ -98,7 +110,7 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
-                                   double tolerance, const TrialFn& done) {
+                                   double tolerance, const TrialFn& done, const StopFn& stop) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("tolerance: must be positive");
   if (!(lower > 0.0 && upper > lower))
     throw std::invalid_argument("factor_bounds: need 0 < lo < hi");
@@ -121,6 +133,10 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     return t;
   };
   const StabilityTrial lo = trial(lower);
+  if (stop && stop()) {
+    s.interrupted = true;
+    return s;
+  }
   const StabilityTrial hi = trial(upper);
   if (!lo.stable || hi.stable) {
     // What to do about it. Both failed with F <= 1 at the lower bound: the joints at their full
@@ -143,7 +159,15 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   }
   s.last_stable = lower;
   s.first_failed = upper;
-  while (s.first_failed - s.last_stable > tolerance) trial(0.5 * (s.last_stable + s.first_failed));
+  while (s.first_failed - s.last_stable > tolerance) {
+    const double factor = 0.5 * (s.last_stable + s.first_failed);
+    if (!strictly_between(factor, s.last_stable, s.first_failed)) break;
+    if (stop && stop()) {
+      s.interrupted = true;
+      break;
+    }
+    trial(factor);
+  }
   return s;
 }
 

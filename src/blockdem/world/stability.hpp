@@ -32,10 +32,19 @@ struct StabilitySearch {
   /// The world at the end of the first-failed trial (the mechanism), and of the last stable one.
   std::optional<World> failed_world;
   std::optional<World> stable_world;
+  /// The caller stopped the search between two trials (StopFn): the bracket is the one so far.
+  bool interrupted = false;
 };
 
 /// Called after each trial.
 using TrialFn = std::function<void(const StabilityTrial&)>;
+/// Asked between two trials of a search: true stops it there.
+using StopFn = std::function<bool()>;
+
+/// The narrowest bracket a search may be asked for, relative to the largest magnitude it
+/// brackets: 1e-12 (about 4,500 times the resolution of a double there, so that every midpoint
+/// differs from both ends; a search stops anyway where the midpoint equals an end).
+inline constexpr double kNarrowestRelativeBracket = 1e-12;
 
 /// Runs `stage` (Kind::equilibrium) on a copy of `saved` and says whether it reached
 /// equilibrium without a mechanism. The stage stops as soon as a mechanism forms.
@@ -47,7 +56,8 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter);
 /// equilibrium (from `saved` until one holds) and ramps gravity along the stage's direction over
 /// the stage's ramp_steps, so the load only rises, by at most the bracket's width.
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
-                                   double g_failed, double tolerance, const TrialFn& done = {});
+                                   double g_failed, double tolerance, const TrialFn& done = {},
+                                   const StopFn& stop = {});
 
 /// The strength reduction of a stage: divides tan(phi), cohesion and tensile strength of the
 /// joint laws `laws` (indices into saved.joint_laws()) by F and seeks equilibrium with the
@@ -55,9 +65,14 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 /// tried and what happened) when they do not bracket the failure, saying that the model is
 /// unstable with its full strength when both failed and lower <= 1; then bisects until
 /// first_failed - last_stable <= tolerance.
+///
+/// Both searches end whatever the tolerance: where the bracket's midpoint equals one of its ends
+/// (the bracket as narrow as doubles go), or where `stop` says so between two trials
+/// (StabilitySearch::interrupted).
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
-                                   double tolerance, const TrialFn& done = {});
+                                   double tolerance, const TrialFn& done = {},
+                                   const StopFn& stop = {});
 
 /// Indices into world.joint_laws() of the laws named in `names` (every law when it is empty), in
 /// the world's order: the laws a strength reduction divides.

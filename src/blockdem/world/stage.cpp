@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
 
 void Stage::validate() const {
@@ -173,10 +175,10 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       world.synchronize();
       const EquilibriumMeasures m = world.equilibrium();
       r.message = "no equilibrium after " + std::to_string(k) + " steps: unbalanced force ratio " +
-                  std::to_string(m.unbalanced_force_ratio) + " (tolerance " +
-                  std::to_string(stage.unbalanced_tolerance) + "), kinetic energy ratio " +
-                  std::to_string(m.kinetic_energy_ratio) + " (tolerance " +
-                  std::to_string(stage.kinetic_tolerance) + ")" +
+                  number_text(m.unbalanced_force_ratio) + " (tolerance " +
+                  number_text(stage.unbalanced_tolerance) + "), kinetic energy ratio " +
+                  number_text(m.kinetic_energy_ratio) + " (tolerance " +
+                  number_text(stage.kinetic_tolerance) + ")" +
                   (servos_settled(world) ? "" : ", a servo has not reached its target force");
       break;
     }

@@ -8,8 +8,10 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include "blockdem/dynamics/integrator.hpp"
+#include "blockdem/numerics/number_text.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -41,7 +43,7 @@ void WorldSettings::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
   if (!gravity.allFinite()) fail("gravity must be finite");
   if (!(damping >= 0.0 && damping < 1.0))
-    fail("damping must be in [0, 1), got " + std::to_string(damping));
+    fail("damping must be in [0, 1), got " + number_text(damping));
   if (!(time_step >= 0.0) || !std::isfinite(time_step))
     fail("time_step must be >= 0 (0: automatic)");
   if (!(safety_factor > 0.0 && safety_factor <= 1.0)) fail("safety_factor must be in (0, 1]");
@@ -49,6 +51,14 @@ void WorldSettings::validate() const {
   if (!(max_speed > 0.0)) fail("max_speed must be positive");
   if (!(max_overlap_fraction > 0.0)) fail("max_overlap_fraction must be positive");
   if (threads < 0) fail("threads must be >= 0 (0: every core)");
+  if (threads > thread_limit())
+    fail("threads must be at most " + std::to_string(thread_limit()) +
+         " (64 per core of this machine, at most 1024), got " + std::to_string(threads));
+}
+
+int thread_limit() {
+  const auto cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::min(1024, 64 * cores);
 }
 
 World::World(WorldSettings settings) : settings_(std::move(settings)) {
@@ -191,8 +201,13 @@ double World::next_time_step() const {
   double dt = a_priori_time_step();
   if (contact_dt_ > 0.0) dt = std::min(dt, contact_dt_);
   if (!std::isfinite(dt)) {
-    throw std::runtime_error(
-        "cannot choose an automatic time step: no joint law has stiffness; set time_step");
+    const bool any_free =
+        std::any_of(blocks_.begin(), blocks_.end(), [](const Block& b) { return b.is_dynamic(); });
+    throw std::invalid_argument(
+        any_free ? "cannot choose an automatic time step: no joint law has stiffness; set "
+                   "time_step"
+                 : "cannot choose an automatic time step: no block is free to move (every block "
+                   "is fixed or prescribed); set time_step");
   }
   return dt;
 }

@@ -74,6 +74,10 @@ struct LawChange {
 /// The suffix of an elastic twin's name (LawChange::elastic).
 inline constexpr std::string_view kElasticSuffix = " (elastic)";
 
+/// The most threads a step may be given: 64 per core of this machine, and at most 1024. Threads
+/// beyond the cores only wait for each other, and each holds its own scratch buffers.
+int thread_limit();
+
 struct WorldSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< (m/s^2)
   double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
@@ -93,8 +97,8 @@ struct WorldSettings {
   /// Scene origin in the user's coordinates (m): block positions inside the world are relative
   /// to it (full precision at map coordinates); outputs add it back.
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core).
-  /// Results are bit-identical for every thread count.
+  /// Threads for the passes of a step; 0: OpenMP's default (OMP_NUM_THREADS, else every core);
+  /// at most thread_limit(). Results are bit-identical for every thread count.
   int threads = 0;
   /// Processes sharing the per-pair work (an MPI run; parallel/); null: this process does all.
   /// Results are bit-identical for every number of processes.

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
-#include "support/temp_path.hpp"
+#include "support/input_error.hpp"
 
 namespace blockdem {
 namespace {
@@ -52,10 +52,7 @@ struct ScenarioCase {
 };
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = test::temp_path("bad_input") / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_case_dir("bad_input", name);
 }
 
 std::string mutate(const ScenarioCase& c) {
@@ -65,14 +62,6 @@ std::string mutate(const ScenarioCase& c) {
   EXPECT_NE(at, std::string::npos) << c.name << ": '" << c.from << "' is not in the scenario";
   if (at != std::string::npos) s.replace(at, c.from.size(), c.to);
   return s;
-}
-
-void expect_input_error(const test::CommandOutput& r, const fs::path& out,
-                        const std::vector<std::string>& fragments) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(r.err.rfind("blockdem:", 0), 0u) << r.err;
-  for (const auto& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << f << "\n" << r.err;
-  EXPECT_FALSE(fs::exists(out)) << "an input error wrote " << out;
 }
 
 class BadScenario : public ::testing::TestWithParam<ScenarioCase> {};
@@ -94,7 +83,7 @@ TEST_P(BadScenario, ExitsTwoNamingFileKeyAndReasonAndWritesNothing) {
   const fs::path out = dir / "out";
   const auto r = test::run_cli("run '" + file.string() + "' --out '" + out.string() +
                                "' --quiet --no-figures");
-  expect_input_error(r, out, {file.string(), c.key, c.reason});
+  test::expect_input_error(r, out, {file.string(), c.key, c.reason});
 }
 
 const std::string kTop = "name = \"top\"\nmaterial = \"rock\"\nsize = [0.2, 0.2, 0.2]\n";
@@ -279,7 +268,7 @@ TEST_P(BadVoussoir, ExitsTwoNamingFileKeyAndReasonAndWritesNothing) {
   const fs::path out = dir / "out";
   const auto r = test::run_cli("run '" + file.string() + "' --out '" + out.string() +
                                "' --quiet --no-figures");
-  expect_input_error(r, out, {file.string(), c.key, c.reason});
+  test::expect_input_error(r, out, {file.string(), c.key, c.reason});
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -321,7 +310,7 @@ TEST_P(BadCommand, ExitsTwoWithAMessageAndWritesNothing) {
     const auto at = args.find(token);
     if (at != std::string::npos) args.replace(at, token.size(), "'" + value.string() + "'");
   }
-  expect_input_error(test::run_cli(args), out, c.fragments);
+  test::expect_input_error(test::run_cli(args), out, c.fragments);
 }
 
 const std::string kCalibrate = "calibrate normal --modulus 5.6e9 --height 0.138 --joints 3 ";

@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "blockdem/io/output_error.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
@@ -147,6 +149,21 @@ TEST(CsvWriter, General12IsPrintfsText) {
     if (got != theirs && ++differ <= 10) ADD_FAILURE() << "ours " << got << ", printf " << theirs;
   }
   EXPECT_EQ(differ, 0) << "of " << values.size() << " values";
+}
+
+// /dev/full refuses every write as a full disk does: the writer says so with an OutputError
+// naming the file (the command-line program's exit code 4, not an internal error).
+TEST(CsvWriter, AFullDiskIsAnOutputErrorNamingTheFile) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this system";
+  try {
+    CsvWriter w("/dev/full", {"a"});
+    w.cell(1.0);
+    w.end_row();
+    w.flush();
+    ADD_FAILURE() << "a write to /dev/full did not fail";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
