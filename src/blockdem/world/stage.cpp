@@ -2,6 +2,7 @@
 // kinetic energy ratio fall below tolerances, or report the stage as not converged.
 #include "blockdem/world/stage.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -21,6 +22,8 @@ void Stage::validate() const {
   if (!(kinetic_tolerance > 0.0)) fail("kinetic_tolerance must be positive");
   if (max_steps <= 0) fail("max_steps must be positive");
   if (ramp_steps < 0) fail("ramp_steps must be zero or positive");
+  if (relax_steps < 0) fail("relax_steps must be zero or positive");
+  if (relax_steps > 0 && remove.empty()) fail("relax_steps needs blocks to remove");
   if (check_interval <= 0) fail("check_interval must be positive");
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
@@ -91,7 +94,11 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
         throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
       gone.push_back(i);
     }
-    world.remove_blocks(gone);
+    if (stage.relax_steps > 0) {
+      world.remove_blocks_gradually(gone);
+    } else {
+      world.remove_blocks(gone);
+    }
   }
   world.save_checkpoint();
   watch.emplace(world, stage.mechanism);
@@ -123,10 +130,17 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   const double t0 = resume ? resume->start_time : world.time();
   auto last_report = std::chrono::steady_clock::now();
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
-    const bool ramping = stage.gravity && k <= stage.ramp_steps;
-    if (ramping) {
+    const bool relaxing = world.relaxing();
+    const bool ramping = (stage.gravity && k <= stage.ramp_steps) || relaxing;
+    if (stage.gravity && k <= stage.ramp_steps) {
       const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
       world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
+    }
+    // A gradual excavation: the removed blocks' loads down to zero at step relax_steps.
+    if (relaxing) {
+      const double done = static_cast<double>(std::min(k, stage.relax_steps)) /
+                          static_cast<double>(stage.relax_steps);
+      world.relax(1.0 - done);
     }
     world.step();
     r.steps = k;

@@ -42,6 +42,9 @@ struct Stage {
   std::vector<LawChange> set_laws;
   /// Displacement outputs count from the blocks' poses at the stage start.
   bool reset_displacements = false;
+  /// A gradual excavation: the loads the removed blocks exerted on the others go linearly to
+  /// zero over this many steps (0: removed at once).
+  std::int64_t relax_steps = 0;
 
   // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
   // every active servo is within its force tolerance.

@@ -178,6 +178,16 @@ class World {
   void change_laws(const std::vector<LawChange>& changes);
   /// Every block's displacement outputs count from its present pose from now on.
   void reset_displacements();
+  /// A gradual excavation (world_relaxation.cpp): removes the blocks and puts the forces and
+  /// moments their contacts exerted on the blocks left as constant loads on those blocks, which
+  /// relax() then takes down. One process only: throws std::invalid_argument on a distributed
+  /// world.
+  void remove_blocks_gradually(const std::vector<int>& indices);
+  /// The removed blocks' loads at `remaining` (1 at the removal, 0 gone) of their value; at 0
+  /// the relaxation ends.
+  void relax(double remaining);
+  /// Whether removed blocks' loads are still being relaxed.
+  bool relaxing() const { return !relaxation_.empty(); }
   /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
   void remove_blocks(const std::vector<int>& indices);
 
@@ -472,6 +482,13 @@ class World {
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
   std::vector<std::vector<int>> face_sets_;  ///< per block, one joint set per plane; empty: none
   ContactPreloads preloads_;                 ///< joints prestressed at set-up
+  /// A gradual excavation's loads on a block: its applied loads before, and the removed blocks'.
+  struct Relaxation {
+    int block = -1;
+    Eigen::Vector3d base_force, base_torque;  ///< (N), (N m)
+    Eigen::Vector3d force, torque;            ///< (N), (N m)
+  };
+  std::vector<Relaxation> relaxation_;
   std::vector<std::pair<int, int>> pairs_;
 
   // Per-block stiffness sums of this step, for the automatic time step.

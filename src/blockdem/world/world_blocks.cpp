@@ -51,6 +51,12 @@ void World::remove_blocks(const std::vector<int>& indices) {
   }
   blocks_ = std::move(kept);
   preloads_.renumber(new_index);
+  std::size_t kept_relaxing = 0;
+  for (Relaxation& r : relaxation_) {
+    r.block = new_index[static_cast<std::size_t>(r.block)];
+    if (r.block >= 0) relaxation_[kept_relaxing++] = r;
+  }
+  relaxation_.resize(kept_relaxing);
   energy_.restart();  // the removed blocks' energy leaves the budget
   face_laws_ = std::move(kept_laws);
   face_sets_ = std::move(kept_sets);

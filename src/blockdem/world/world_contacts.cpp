@@ -227,15 +227,24 @@ void World::find_step_pairs(StepScratch& s) {
 
 void World::keep_open_bonds() {
   // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
-  // blocks have moved apart) keeps its pair after the boxes part, until it breaks.
+  // blocks have moved apart) keeps its pair after the boxes part, until it breaks. So does a
+  // closed one that can open into tension: a joint compressed by less than its blocks move in a
+  // step (a sudden unloading) parts its boxes before its bond has been tried in tension.
   // Counted first in parallel (a settled scene has none): the list is made only if needed.
-  const auto is_open = [&](std::size_t k) {
-    return slots_[k].active && !contact_of(slots_[k]).touching;
+  std::vector<char> breakable(laws_.size());
+  for (std::size_t l = 0; l < laws_.size(); ++l)
+    breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
+  const auto keeps = [&](const PairSlot& s) {
+    if (!s.active) return false;
+    const Contact& c = contact_of(s);
+    return !c.touching || (c.shear.bond == BondState::intact && c.law >= 0 &&
+                           breakable[static_cast<std::size_t>(c.law)] != 0);
   };
+  const auto is_open = [&](std::size_t k) { return keeps(slots_[k]); };
   if (count_in_parallel(slots_.size(), thread_count(), is_open) == 0) return;
   std::vector<std::pair<int, int>> open;
   for (const auto& s : slots_) {
-    if (s.active && !contact_of(s).touching) open.emplace_back(s.a, s.b);
+    if (keeps(s)) open.emplace_back(s.a, s.b);
   }
   if (open.empty()) return;
   std::vector<std::pair<int, int>> all;

@@ -243,6 +243,12 @@ void World::save_counters(StateWriter& w, std::int64_t overlap_violation) const 
   w.pod(broken_bonds_);
   w.pod(overlap_violation);
   w.pod(static_cast<std::uint8_t>(slots_rules_version_ == rules_version_));
+  // A gradual excavation's loads (none on a distributed world, which refuses one).
+  w.size(relaxation_.size());
+  for (const Relaxation& x : relaxation_) {
+    w.pod(static_cast<std::int32_t>(x.block));
+    for (const Eigen::Vector3d* v : {&x.base_force, &x.base_torque, &x.force, &x.torque}) w.vec(*v);
+  }
 }
 
 void World::save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const {
@@ -405,6 +411,13 @@ void World::load_counters(StateReader& r) {
   r.pod(overlap_violation_);
   const bool rules_current = r.pod<std::uint8_t>() != 0;
   slots_rules_version_ = rules_current ? rules_version_ : rules_version_ - 1;
+  relaxation_.resize(r.size());
+  for (Relaxation& x : relaxation_) {
+    x.block = r.pod<std::int32_t>();
+    if (x.block < 0 || x.block >= static_cast<int>(blocks_.size()))
+      throw StateError("a relaxed block of the saved state is not the scenario's");
+    for (Eigen::Vector3d* v : {&x.base_force, &x.base_torque, &x.force, &x.torque}) *v = r.vec();
+  }
 }
 
 void World::load_slots(StateReader& r) {
