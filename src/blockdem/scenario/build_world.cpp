@@ -86,8 +86,20 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   // Joints that carry the in-situ stress from the start (before the pass below primes the
   // first step's narrow phase, which leaves their pairs to it).
   if (sc.in_situ) {
+    // Boxes grown by a nanometre per metre: blocks that share an axis-aligned face may have
+    // boxes that miss each other by round-off.
+    std::vector<Eigen::Vector3d> lo_grown(lo), hi_grown(hi);
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      const double pad =
+          1e-9 * (1.0 + blocks[i].shape.bounding_radius() + lo[i].cwiseAbs().maxCoeff());
+      lo_grown[i].array() -= pad;
+      hi_grown[i].array() += pad;
+    }
+    std::vector<std::pair<int, int>> near;
+    broad_phase.find_pairs(
+        lo_grown, hi_grown, [](int, int) { return true; }, near, w.thread_count());
     try {
-      w.prestress_joints(*sc.in_situ, pairs);
+      w.prestress_joints(*sc.in_situ, near);
     } catch (const std::invalid_argument& e) {
       throw ScenarioError(sc.file, "in_situ", e.what());
     }

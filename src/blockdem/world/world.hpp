@@ -417,6 +417,9 @@ class World {
   ContactGeometry narrow_phase(PairSlot& slot, std::span<const Halfspace> planes_a, const Block& a,
                                const Block& b, double extent) const;
   void keep_open_bonds();
+  /// Whether a slot's pair stays a candidate after its boxes part: an open bond, or a closed
+  /// one that can open into tension (`breakable`: per law, whether its strength can break).
+  bool keeps_bond_pair(const PairSlot& s, const std::vector<char>& breakable) const;
   void merge_pairs();
   /// The contact a slot starts a step with when it has no state: no history, its bond.
   Contact fresh_contact(const PairSlot& slot) const;

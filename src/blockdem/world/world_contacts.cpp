@@ -195,14 +195,29 @@ void World::find_step_pairs(StepScratch& s) {
     std::vector<Eigen::Vector3d>().swap(s.held_min);
     std::vector<Eigen::Vector3d>().swap(s.held_max);
   }
+  // Prestressed joints keep their pairs: blocks that share an axis-aligned face may have boxes
+  // that miss each other by round-off, and the joint is closed without the blocks overlapping.
+  if (!preloads_.empty()) {
+    std::vector<std::pair<int, int>> kept;
+    for (const ContactPreload& p : preloads_.all()) {
+      if (!s.distributed || keeps_pairs_of(p.a) || keeps_pairs_of(p.b)) kept.emplace_back(p.a, p.b);
+    }
+    std::vector<std::pair<int, int>> all;
+    all.reserve(pairs_.size() + kept.size());
+    std::set_union(pairs_.begin(), pairs_.end(), kept.begin(), kept.end(), std::back_inserter(all));
+    pairs_.swap(all);
+  }
   // The common case of a settled scene, found in one pass over the slots (the pair store is
   // the largest array: each pass over it costs memory traffic that a second core barely
   // shortens): no open bond, and the same pairs as last step, whose slots then stay as they are.
   // Else no more passes than the open bonds' count and the merge's own comparison.
   bool same = false, no_open = false;
   if (!slots_.empty() && pairs_.size() == slots_.size()) {
+    std::vector<char> breakable(laws_.size());
+    for (std::size_t l = 0; l < laws_.size(); ++l)
+      breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
     const auto [open, differ] = count_open_and_moved(slots_, pairs_, threads, [&](std::size_t k) {
-      return slots_[k].active && !contact_of(slots_[k]).touching;
+      return keeps_bond_pair(slots_[k], breakable);
     });
     no_open = open == 0;
     same = no_open && differ == 0 && slots_rules_version_ == rules_version_;
@@ -225,6 +240,13 @@ void World::find_step_pairs(StepScratch& s) {
   if (!s.distributed) std::vector<std::pair<int, int>>().swap(pairs_);
 }
 
+bool World::keeps_bond_pair(const PairSlot& s, const std::vector<char>& breakable) const {
+  if (!s.active) return false;
+  const Contact& c = contact_of(s);
+  return !c.touching || (c.shear.bond == BondState::intact && c.law >= 0 &&
+                         breakable[static_cast<std::size_t>(c.law)] != 0);
+}
+
 void World::keep_open_bonds() {
   // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks. So does a
@@ -234,12 +256,7 @@ void World::keep_open_bonds() {
   std::vector<char> breakable(laws_.size());
   for (std::size_t l = 0; l < laws_.size(); ++l)
     breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
-  const auto keeps = [&](const PairSlot& s) {
-    if (!s.active) return false;
-    const Contact& c = contact_of(s);
-    return !c.touching || (c.shear.bond == BondState::intact && c.law >= 0 &&
-                           breakable[static_cast<std::size_t>(c.law)] != 0);
-  };
+  const auto keeps = [&](const PairSlot& s) { return keeps_bond_pair(s, breakable); };
   const auto is_open = [&](std::size_t k) { return keeps(slots_[k]); };
   if (count_in_parallel(slots_.size(), thread_count(), is_open) == 0) return;
   std::vector<std::pair<int, int>> open;
