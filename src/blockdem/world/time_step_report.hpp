@@ -16,11 +16,11 @@ struct TimeStepReport {
 
   int block = -1;  ///< the block with the smallest own critical step (-1: no free block)
   std::string name;
-  double volume = 0.0;          ///< (m^3)
-  double aspect_ratio = 0.0;    ///< largest over smallest width along its face normals (-)
-  double critical_step = 0.0;   ///< its own critical step sqrt(m/K) (s)
-  double time_step = 0.0;       ///< the automatic step it allows: safety_factor · critical_step (s)
-  double median_step = 0.0;     ///< the median free block's own critical step (s)
+  double volume = 0.0;         ///< (m^3)
+  double aspect_ratio = 0.0;   ///< largest over smallest width along its face normals (-)
+  double critical_step = 0.0;  ///< its own critical step sqrt(m/K) (s)
+  double time_step = 0.0;      ///< the automatic step it allows: safety_factor · critical_step (s)
+  double median_step = 0.0;    ///< the median free block's own critical step (s)
   std::size_t free_blocks = 0;  ///< blocks that move
   /// median_step >= kOutlierRatio · critical_step.
   bool outlier = false;
