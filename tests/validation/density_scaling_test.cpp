@@ -133,8 +133,8 @@ TEST(DensityScaling, WallReachesTheUnscaledForces) {
               static_cast<long long>(rs.steps));
 }
 
-// The default: on in equilibrium stages, off in duration and steps stages; a duration stage
-// after a scaled one runs with the true masses again.
+// The default: on in equilibrium stages, off in duration and steps stages and in a collapse
+// search; a duration stage after a scaled one runs with the true masses again.
 TEST(DensityScaling, DurationStageDoesNotScale) {
   Stage settle = tight_settle(false);
   settle.density_scaling.reset();
@@ -150,6 +150,9 @@ TEST(DensityScaling, DurationStageDoesNotScale) {
   steps.kind = Stage::Kind::steps;
   steps.steps = 10;
   EXPECT_FALSE(steps.scales_density());
+  Stage search = settle;
+  search.find_collapse = true;
+  EXPECT_FALSE(search.scales_density());
 
   World w = column();
   ASSERT_TRUE(run_stage(w, settle).converged);

@@ -73,8 +73,8 @@ std::string outlier_warning(const TimeStepReport& r) {
   return "block '" + r.name + "' (" + fmt("%.3g m3", r.volume) + ", aspect ratio " +
          fmt("%.3g", r.aspect_ratio) + ") allows a time step " +
          fmt("%.3g", r.median_step / r.critical_step) +
-         " times smaller than the median block's: a run without density scaling takes that many "
-         "more steps. Remove or merge such blocks ([rock_mass] min_block_volume, "
+         " times smaller than the median block's, and every step of a stage without density "
+         "scaling is that short. Remove or merge such blocks ([rock_mass] min_block_volume, "
          "max_aspect_ratio), or keep density scaling on in the quasi-static stages (the default; "
          "duration stages run at this step)";
 }
