@@ -5,8 +5,15 @@
 // a duration stage runs unscaled; a strength-reduction factor keeps its bracket.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -198,6 +205,46 @@ TEST(TimeStepReport, NamesTheSliver) {
   // Without the sliver, no block is an outlier.
   w.remove_blocks({6});
   EXPECT_FALSE(time_step_report(w).outlier);
+}
+
+// The same scene through `blockdem run`: its first lines name the sliver and warn (the warning
+// also with --quiet).
+TEST(TimeStepReport, RunNamesTheSliverOnStderr) {
+  std::ostringstream toml;
+  toml << "title = \"cubes and a sliver\"\n[settings]\ndamping = 0.7\n"
+       << "[[materials]]\nname = \"rock\"\ndensity = 2500\n"
+       << "[[joint_laws]]\nname = \"j\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+       << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 40 }\n"
+       << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nsize = [3, 1, 0.1]\n"
+       << "position = [0, 0, -0.05]\nmotion = \"fixed\"\n";
+  for (int i = 0; i < 5; ++i)
+    toml << "[[blocks]]\nname = \"cube_" << i << "\"\nmaterial = \"rock\"\nsize = [0.2, 0.2, 0.2]\n"
+         << "position = [" << -1.2 + 0.4 * i << ", 0, 0.1]\n";
+  toml << "[[blocks]]\nname = \"sliver\"\nmaterial = \"rock\"\nsize = [0.2, 0.2, 0.002]\n"
+       << "position = [0.9, 0, 0.001]\n"
+       << "[[stages]]\nname = \"settle\"\ngravity = [0, 0, -9.81]\n";
+  const auto dir = test::temp_path("time_step_report_cli");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "sliver.toml";
+  std::ofstream(file) << toml.str();
+  for (const bool quiet : {false, true}) {
+    const auto err = dir / "err.txt";
+    const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
+                            (dir / "out").string() + " --no-figures --max-steps 10" +
+                            (quiet ? " --quiet" : "") + " 2>" + err.string();
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    std::ifstream in(err);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("blockdem: time step set by block 'sliver' (#6: 8e-05 m3, aspect ratio "
+                        "100)") != std::string::npos,
+              !quiet)
+        << text;
+    EXPECT_NE(text.find("blockdem: warning: block 'sliver' (8e-05 m3, aspect ratio 100) allows"),
+              std::string::npos)
+        << text;
+  }
 }
 
 // A 0.1 m block and a 4 mm sliver of the same plan side by side on an incline (psi 30, phi 40,
