@@ -353,6 +353,10 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   cb.setup_done = [&](const std::string& s) {
     if (!opt.quiet) progress.message("blockdem: " + s);
   };
+  cb.time_step = [&](const std::string& s, bool warning) {
+    if (warning && mpi.rank() == 0) progress.message("blockdem: warning: " + s);
+    if (!warning && !opt.quiet && mpi.rank() == 0) progress.message("blockdem: " + s);
+  };
   const auto command0 = std::chrono::steady_clock::now();
   RunResult r;
   bool beam = false;

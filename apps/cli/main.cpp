@@ -1,6 +1,9 @@
 // blockdem command-line program: one subcommand per job, registered from the table below.
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -10,7 +13,25 @@
 #include "blockdem/io/output_error.hpp"
 #include "commands.hpp"
 
+namespace {
+
+// How OpenMP's threads wait at the end of a parallel pass. The library's own default spins for
+// a while before it sleeps; on a machine whose other cores are busy, a spinning thread takes the
+// core that the thread still working needs, and two threads run slower than one (bench/README.md,
+// "Threads on a busy machine"). The library reads the policy from the environment when the
+// program loads, before main: so the program starts itself again, once, with the policy set. A
+// policy the user set (OMP_WAIT_POLICY or GOMP_SPINCOUNT) is kept.
+void choose_wait_policy(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // Not started again (no /proc): run on under the library's default.
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  choose_wait_policy(argv);
   CLI::App app{"blockdem: rigid polyhedral blocks with compliant joints, for jointed rock masses"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("blockdem ") + blockdem::cli::version());

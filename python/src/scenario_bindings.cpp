@@ -125,6 +125,9 @@ void bind_scenario(py::module_& m) {
           };
           cb.stage_done = cb.progress;
           cb.setup_done = cb.progress;
+          cb.time_step = [&](const std::string& s, bool warning) {
+            cb.progress(warning ? "warning: " + s : s);
+          };
         }
         RunResult r;
         {

@@ -152,12 +152,13 @@ Eigen::Vector3d Block::rotation_since_start() const {
 
 double Block::kinetic_energy() const {
   const Eigen::Vector3d w_body = orientation.conjugate() * angular_velocity;
-  return 0.5 * mass * velocity.squaredNorm() + 0.5 * w_body.dot(inertia.cwiseProduct(w_body));
+  return 0.5 * inertial_mass() * velocity.squaredNorm() +
+         0.5 * w_body.dot(inertial_moments().cwiseProduct(w_body));
 }
 
 Eigen::Matrix3d Block::world_inertia() const {
   const Eigen::Matrix3d r = rotation();
-  return r * inertia.asDiagonal() * r.transpose();
+  return r * inertial_moments().asDiagonal() * r.transpose();
 }
 
 }  // namespace blockdem

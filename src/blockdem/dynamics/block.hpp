@@ -81,6 +81,10 @@ struct Block {
 
   double mass = 0.0;                                  ///< (kg)
   Eigen::Vector3d inertia = Eigen::Vector3d::Zero();  ///< principal moments (kg m^2)
+  /// Density scaling of a quasi-static stage (docs/stability.md): the equations of motion use
+  /// mass_scale · mass and inertia_scale · inertia; the weight stays mass · g. 1 when off.
+  double mass_scale = 1.0;     ///< (-)
+  double inertia_scale = 1.0;  ///< (-)
 
   /// Degrees of freedom held at zero for a free block, along the world axes x, y, z: translation
   /// (blocked_translation) and rotation (blocked_rotation). E.g. plane motion in x-z: translation
@@ -136,6 +140,10 @@ struct Block {
   void set_group(std::string g);
 
   bool is_dynamic() const { return motion == Motion::free; }
+  /// The mass the equations of motion use: mass_scale · mass (kg).
+  double inertial_mass() const { return mass_scale * mass; }
+  /// The principal moments the equations of motion use: inertia_scale · inertia (kg m^2).
+  Eigen::Vector3d inertial_moments() const { return inertia_scale * inertia; }
   /// Rotation matrix body -> world.
   Eigen::Matrix3d rotation() const { return orientation.toRotationMatrix(); }
   /// Refreshes world_planes and bounding_radius from the pose.
@@ -157,9 +165,10 @@ struct Block {
   /// Rotation since the initial pose as a rotation vector, world frame (rad): axis × angle,
   /// angle in [0, π].
   Eigen::Vector3d rotation_since_start() const;
-  /// Kinetic energy, translational plus rotational (J).
+  /// Kinetic energy, translational plus rotational, of the inertial (density-scaled) mass and
+  /// moments (J).
   double kinetic_energy() const;
-  /// World inertia tensor R diag(I) Rᵀ (kg m^2).
+  /// World inertia tensor R diag(I) Rᵀ of the inertial moments (kg m^2).
   Eigen::Matrix3d world_inertia() const;
 
  private:

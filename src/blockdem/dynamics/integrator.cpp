@@ -29,7 +29,7 @@ namespace {
 
 // Body-frame angular velocity for world angular momentum L at orientation q.
 Eigen::Vector3d body_omega(const Block& b, const Eigen::Quaterniond& q, const Eigen::Vector3d& L) {
-  return (q.conjugate() * L).cwiseQuotient(b.inertia);
+  return (q.conjugate() * L).cwiseQuotient(b.inertial_moments());
 }
 
 }  // namespace
@@ -58,7 +58,7 @@ void integrate_block(Block& b, double dt, double damping) {
       b.velocity[i] = 0.0;
     }
   }
-  b.velocity += dt * f / b.mass;
+  b.velocity += dt * f / b.inertial_mass();
   b.position += dt * b.velocity;
 
   if (b.blocked_rotation.any()) {

@@ -18,6 +18,7 @@
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/run/stage_driver.hpp"
+#include "blockdem/world/time_step_report.hpp"
 
 namespace blockdem {
 namespace {
@@ -89,6 +90,23 @@ void read_restart(const RunControl& control, int stages, Restart& r) {
 void report_setup(const RunCallbacks& cb, Clock::time_point since, const std::string& what) {
   const double s = seconds_since(since);
   if (cb.setup_done && s >= 1.0) cb.setup_done(what + " in " + fmt("%.1f", s) + " s");
+}
+
+/// The block that sets the time step: to the callback and into summary.json (`time_step`).
+void report_time_step(const World& world, const RunCallbacks& cb, nlohmann::json& summary) {
+  const TimeStepReport r = time_step_report(world);
+  if (r.block < 0) return;
+  summary["time_step"] = {{"block", r.name},
+                          {"block_index", r.block},
+                          {"volume_m3", r.volume},
+                          {"aspect_ratio", r.aspect_ratio},
+                          {"critical_step_s", r.critical_step},
+                          {"allowed_step_s", r.time_step},
+                          {"median_critical_step_s", r.median_step},
+                          {"outlier", r.outlier}};
+  if (!cb.time_step) return;
+  cb.time_step(describe(r), false);
+  if (r.outlier) cb.time_step(outlier_warning(r), true);
 }
 
 /// Input errors found only once the world is built (nothing written yet).
@@ -675,6 +693,7 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   std::shared_ptr<RunObserver> scene_observer = scene ? scene->observer(out, world) : nullptr;
   outputs.open_history(world, resume != nullptr);
   res.summary = fresh_summary(sc, world);
+  report_time_step(world, cb, res.summary);
   if (resume) outputs.resume(*resume, control.restart);
   Checkpoints checkpoints(world, out, control, outputs, res);
   DriveControl dc = run_control(sc, world, cb, control, no_checkpoints.empty(), outputs,

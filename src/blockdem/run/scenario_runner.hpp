@@ -53,6 +53,9 @@ struct RunCallbacks {
   /// the scenario's blocks, a checkpoint loaded), with its wall time: a large scene spends tens
   /// of seconds there, before the first status line.
   std::function<void(const std::string&)> setup_done;
+  /// The block that sets the time step, once, before the first step (time_step_report.hpp);
+  /// `warning`: the line is a warning (an outlier block).
+  std::function<void(const std::string&, bool warning)> time_step;
 };
 
 /// What a run does after a step or between stages: stop, and write a timed checkpoint.

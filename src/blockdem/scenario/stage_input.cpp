@@ -167,6 +167,13 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
                           "); raise max_steps for a longer stage");
   }
   if (s.kind == Stage::Kind::duration) s.duration = t.positive("duration", 0.0);
+  if (t.has("density_scaling")) {
+    s.density_scaling = t.boolean("density_scaling", false);
+    if (s.kind == Stage::Kind::duration && *s.density_scaling)
+      t.fail("density_scaling",
+             "a \"duration\" stage runs in time, which density scaling distorts (it is exact "
+             "only at static equilibrium): use an equilibrium stage, or leave it off");
+  }
   read_stability_keys(t, s);
   auto check_block = [&](const std::string& key, const std::string& name) {
     if (!block_names.count(name)) t.fail(key, "no block named \"" + name + "\"");

@@ -264,7 +264,7 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
     t.gravity = 0.5 * u.dot(ig + q[kKeptGravity]);
     t.load = 0.5 * (u.dot(il + ql) + w.dot(tl + qt));
     t.damping = 0.5 * (u.dot(id + q[kKeptDamping]) + w.dot(td + q[kKeptDampingTorque]));
-    t.kinetic = 0.5 * b.mass * u.dot(b.velocity) +
+    t.kinetic = 0.5 * b.inertial_mass() * u.dot(b.velocity) +
                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
     q[kKeptGravity] = ig;
     q[kKeptDamping] = id;

@@ -185,9 +185,9 @@ void World::scatter_loads(const std::vector<char>* counted) {
       if (stiffness_[i] <= 0.0) continue;
       const Block& bl = blocks_[i];
       if (!bl.is_dynamic()) continue;
-      mine.dt_min = std::min(mine.dt_min, std::sqrt(bl.mass / stiffness_[i]));
-      mine.dt_min =
-          std::min(mine.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
+      mine.dt_min = std::min(mine.dt_min, std::sqrt(bl.inertial_mass() / stiffness_[i]));
+      mine.dt_min = std::min(
+          mine.dt_min, std::sqrt(bl.inertial_moments().minCoeff() / rotational_stiffness_[i]));
     }
     totals[t] = std::move(mine);
   };

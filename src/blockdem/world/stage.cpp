@@ -27,6 +27,10 @@ void Stage::validate() const {
   if (check_interval <= 0) fail("check_interval must be positive");
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
+  if (kind == Kind::duration && density_scaling.value_or(false))
+    fail(
+        "density_scaling: a duration stage runs in time, which density scaling distorts (it is "
+        "exact only at static equilibrium)");
   if (find_collapse && !gravity) fail("find_collapse needs a new gravity in this stage");
   if (find_collapse && !(collapse_tolerance > 0.0)) fail("collapse_tolerance must be positive");
   if (kind == Kind::strength_reduction) {
@@ -100,6 +104,8 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
       world.remove_blocks(gone);
     }
   }
+  // After the removals: the median block is that of the blocks that stay.
+  world.set_density_scaling(stage.scales_density());
   world.save_checkpoint();
   watch.emplace(world, stage.mechanism);
 }

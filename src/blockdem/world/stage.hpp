@@ -77,6 +77,19 @@ struct Stage {
   std::int64_t steps = 0;  ///< Kind::steps
   double duration = 0.0;   ///< Kind::duration (s)
 
+  /// Density scaling during the stage (World::set_density_scaling; docs/stability.md): each
+  /// block's inertia raised so that the time step follows the median block, not the smallest.
+  /// Exact at static equilibrium, wrong for motion in time. Empty: on in equilibrium (and
+  /// excavation) and strength-reduction stages, off in steps and duration stages and in a
+  /// collapse search (find_collapse: its trials follow a ramp, whose overshoot inertia shapes);
+  /// a duration stage refuses it.
+  std::optional<bool> density_scaling;
+  /// Whether the stage runs with density scaling (`density_scaling`, else the kind's default).
+  bool scales_density() const {
+    return density_scaling.value_or((kind == Kind::equilibrium && !find_collapse) ||
+                                    kind == Kind::strength_reduction);
+  }
+
   /// Throws std::invalid_argument naming the field if a value is unusable.
   void validate() const;
 };

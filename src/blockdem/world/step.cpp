@@ -127,8 +127,9 @@ void World::scatter_step_loads(StepScratch& s) {
     const auto i = static_cast<std::size_t>(h);
     if (stiffness_[i] <= 0.0 || s.moves[i] == 0) continue;
     const Block& bl = blocks_[i];
-    s.dt_min = std::min(s.dt_min, std::sqrt(bl.mass / stiffness_[i]));
-    s.dt_min = std::min(s.dt_min, std::sqrt(bl.inertia.minCoeff() / rotational_stiffness_[i]));
+    s.dt_min = std::min(s.dt_min, std::sqrt(bl.inertial_mass() / stiffness_[i]));
+    s.dt_min =
+        std::min(s.dt_min, std::sqrt(bl.inertial_moments().minCoeff() / rotational_stiffness_[i]));
   }
 }
 

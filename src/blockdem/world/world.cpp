@@ -173,27 +173,87 @@ void World::update_geometry(int threads) {
   }
 }
 
-double World::a_priori_time_step() const {
-  // Before contacts form: each block against one contact of its largest face, at the joint
-  // laws' stiffness at zero closure (normal) and zero stress (shear).
+double World::law_stiffness_bound() const {
   double k_law = 0.0;
   for (const auto& law : laws_) {
     k_law = std::max(k_law, normal_tangent_stiffness(law.normal, 0.0));
     k_law = std::max(k_law, shear_stiffness_estimate(law.shear, 0.0));
   }
+  return k_law;
+}
+
+std::array<double, 2> World::a_priori_block_steps(std::size_t i, double k_law,
+                                                  bool inertial) const {
+  const Block& b = blocks_[i];
+  // Shapes are rigid: the largest face area is kept per block from add_block.
+  const double area = i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
+  const double k = k_law * area;
+  const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
+  const double mass = inertial ? b.inertial_mass() : b.mass;
+  const double moment = inertial ? b.inertial_moments().minCoeff() : b.inertia.minCoeff();
+  return {std::sqrt(mass / k), std::sqrt(moment / (k * (r2 + area / 12.0)))};
+}
+
+double World::a_priori_time_step() const {
+  // Before contacts form: each block against one contact of its largest face, at the joint
+  // laws' stiffness at zero closure (normal) and zero stress (shear).
+  const double k_law = law_stiffness_bound();
   if (k_law == 0.0) return std::numeric_limits<double>::infinity();
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    const Block& b = blocks_[i];
-    if (!b.is_dynamic()) continue;
-    // Shapes are rigid: the largest face area is kept per block from add_block.
-    const double area = i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
-    const double k = k_law * area;
-    const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
-    dt = std::min(dt, std::sqrt(b.mass / k));
-    dt = std::min(dt, std::sqrt(b.inertia.minCoeff() / (k * (r2 + area / 12.0))));
+    if (!blocks_[i].is_dynamic()) continue;
+    const std::array<double, 2> own = a_priori_block_steps(i, k_law, true);
+    dt = std::min(dt, own[0]);
+    dt = std::min(dt, own[1]);
   }
   return settings_.safety_factor * dt;
+}
+
+std::vector<double> World::own_critical_steps() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> out(blocks_.size(), inf);
+  const double k_law = law_stiffness_bound();
+  if (k_law == 0.0) return out;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (!blocks_[i].is_dynamic()) continue;
+    const std::array<double, 2> own = a_priori_block_steps(i, k_law, false);
+    out[i] = std::min(own[0], own[1]);
+  }
+  return out;
+}
+
+double World::median_critical_step() const {
+  std::vector<double> steps;
+  for (const double dt : own_critical_steps()) {
+    if (std::isfinite(dt)) steps.push_back(dt);
+  }
+  if (steps.empty()) return std::numeric_limits<double>::infinity();
+  // The lower middle of an even count: the smaller target, the fewer blocks scaled.
+  const auto mid = steps.begin() + static_cast<std::ptrdiff_t>((steps.size() - 1) / 2);
+  std::nth_element(steps.begin(), mid, steps.end());
+  return *mid;
+}
+
+void World::set_density_scaling(bool on) {
+  const double k_law = law_stiffness_bound();
+  const double target = on ? median_critical_step() : 0.0;
+  const bool scales = on && k_law > 0.0 && std::isfinite(target);
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    Block& b = blocks_[i];
+    double mass_scale = 1.0, inertia_scale = 1.0;
+    if (scales && b.is_dynamic()) {
+      // Raised so that the block's own steps reach the target; never lowered, so that no block
+      // accelerates faster under its weight than it would unscaled.
+      const std::array<double, 2> own = a_priori_block_steps(i, k_law, false);
+      mass_scale = std::max(1.0, (target / own[0]) * (target / own[0]));
+      inertia_scale = std::max(1.0, (target / own[1]) * (target / own[1]));
+    }
+    // The angular velocity is kept: the angular momentum follows the moments.
+    if (inertia_scale != b.inertia_scale) b.angular_momentum *= inertia_scale / b.inertia_scale;
+    b.mass_scale = mass_scale;
+    b.inertia_scale = inertia_scale;
+  }
+  density_scaled_ = scales;
 }
 
 double World::next_time_step() const {

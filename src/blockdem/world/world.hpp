@@ -240,6 +240,22 @@ class World {
   /// (s): from this step's contact stiffness once contacts exist, else from the joint laws.
   double critical_time_step() const;
 
+  /// Each block's own critical step before contacts form, without the safety factor (s): the
+  /// smaller of sqrt(m/K) and sqrt(I_min/K_r) for one contact over its largest face at the
+  /// stiffest joint law (K = k A, K_r = k A (R² + A/12), R its bounding radius), at its true
+  /// mass and inertia; infinite for a block that does not move or when no law has stiffness.
+  std::vector<double> own_critical_steps() const;
+  /// The median of own_critical_steps() over the free blocks (the lower middle of an even
+  /// count); infinite without a free block (s).
+  double median_critical_step() const;
+  /// Density scaling (docs/stability.md): on, each free block's mass and moments of inertia in
+  /// the equations of motion are raised (Block::mass_scale, inertia_scale; never lowered) so
+  /// that its own critical step reaches median_critical_step(); the weight stays m g. Off, every
+  /// scale is 1. The angular velocities are kept.
+  void set_density_scaling(bool on);
+  /// Whether set_density_scaling(true) scaled the blocks (the last call).
+  bool density_scaled() const { return density_scaled_; }
+
   /// Sums exact (ExactSum): the same bits for any number of threads or processes. Collective
   /// on a distributed world that is not whole (reduce_partials).
   EquilibriumMeasures equilibrium() const;
@@ -465,6 +481,12 @@ class World {
   /// contact pass refused a value (`why`, the check's message).
   [[noreturn]] void fail_step(const std::string& why);
   double a_priori_time_step() const;
+  /// The stiffest joint law's stiffness at zero closure and zero stress (Pa/m).
+  double law_stiffness_bound() const;
+  /// Block i's own critical steps before contacts form, translation and rotation (s), for a
+  /// contact stiffness k_law per unit area; `inertial`: with the density-scaled mass and moments.
+  std::array<double, 2> a_priori_block_steps(std::size_t i, double k_law, bool inertial) const;
+  bool density_scaled_ = false;
 
   WorldSettings settings_;
   std::vector<Block> blocks_;

@@ -214,6 +214,8 @@ void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loa
   w.vec(b.velocity);
   w.vec(b.angular_velocity);
   w.vec(b.angular_momentum);
+  w.pod(b.mass_scale);
+  w.pod(b.inertia_scale);
   write_motion(w, b.motion);
   write_servo(w, b.servo());
   w.vec(loads ? loads[0] : b.force);
@@ -319,6 +321,7 @@ void World::load_state(StateReader& r) {
 void World::load_blocks(StateReader& r) {
   // Blocks removed by earlier stages (an excavation) are removed here too, matched by name.
   const std::size_t n = r.size();
+  density_scaled_ = false;
   std::vector<Block> saved(n);
   std::vector<Eigen::Vector3d> saved_min(n), saved_max(n);
   std::vector<std::vector<int>> saved_laws(n);
@@ -330,6 +333,8 @@ void World::load_blocks(StateReader& r) {
     b.velocity = r.vec();
     b.angular_velocity = r.vec();
     b.angular_momentum = r.vec();
+    r.pod(b.mass_scale);
+    r.pod(b.inertia_scale);
     b.motion = read_motion(r);
     b.set_servo(read_servo(r));
     b.force = r.vec();
@@ -378,6 +383,9 @@ void World::load_blocks(StateReader& r) {
     b.velocity = s.velocity;
     b.angular_velocity = s.angular_velocity;
     b.angular_momentum = s.angular_momentum;
+    b.mass_scale = s.mass_scale;
+    b.inertia_scale = s.inertia_scale;
+    density_scaled_ = density_scaled_ || s.mass_scale != 1.0 || s.inertia_scale != 1.0;
     b.motion = s.motion;
     b.set_servo(s.servo());
     b.force = s.force;

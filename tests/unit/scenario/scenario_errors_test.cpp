@@ -122,6 +122,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "blocks[2]", "overlap"},
         BadCase{"unknown_motion", replace(kGood, "motion = \"fixed\"", "motion = \"frozen\""),
                 "blocks[1].motion", "must be one of"},
+        BadCase{"density_scaling_in_time",
+                replace(kGood, "name = \"settle\"",
+                        "name = \"settle\"\nkind = \"duration\"\nduration = 0.01\n"
+                        "density_scaling = true"),
+                "stages[1].density_scaling", "duration"},
         BadCase{"bad_friction", replace(kGood, "friction_deg = 30", "friction_deg = 95"),
                 "joint_laws[1].shear.law", "friction"},
         BadCase{"negative_cohesion",
