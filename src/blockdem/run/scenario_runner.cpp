@@ -12,6 +12,7 @@
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/io/time_history.hpp"
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
@@ -24,12 +25,6 @@ namespace blockdem {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 double seconds_since(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
@@ -89,7 +84,7 @@ void read_restart(const RunControl& control, int stages, Restart& r) {
 /// Reports a set-up part that took a second or more, with its wall time.
 void report_setup(const RunCallbacks& cb, Clock::time_point since, const std::string& what) {
   const double s = seconds_since(since);
-  if (cb.setup_done && s >= 1.0) cb.setup_done(what + " in " + fmt("%.1f", s) + " s");
+  if (cb.setup_done && s >= 1.0) cb.setup_done(what + " in " + number_text(s, "%.1f") + " s");
 }
 
 /// The block that sets the time step: to the callback and into summary.json (`time_step`).
@@ -308,7 +303,7 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
     cb_.stage_done(stage_label(end.level, stage) +
                    (end.failure ? to_string(*end.failure) : "done") + " after " +
                    std::to_string(result.steps) + " steps (unbalanced " +
-                   fmt("%.2e", result.measures.unbalanced_force_ratio) + ")");
+                   number_text(result.measures.unbalanced_force_ratio, "%.2e") + ")");
   }
 }
 
@@ -332,9 +327,9 @@ void RunOutputs::on_strength_reduction(const World& world, const Stage& stage, i
                      {"message", ""}});
   recorder_->record(world, result, level);
   if (cb_.stage_done)
-    cb_.stage_done(stage_label(level, stage) + "factor of safety " + fmt("%.4g", F) +
-                   " (stable at " + fmt("%.4g", sr.last_stable) + ", failed at " +
-                   fmt("%.4g", sr.first_failed) + ")");
+    cb_.stage_done(stage_label(level, stage) + "factor of safety " + number_text(F, "%.4g") +
+                   " (stable at " + number_text(sr.last_stable, "%.4g") + ", failed at " +
+                   number_text(sr.first_failed, "%.4g") + ")");
 }
 
 void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySearch& cs) {
@@ -350,8 +345,8 @@ void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySear
     res_.summary["collapse"]["interrupted"] = true;
     interrupted_where_ = "in the collapse search of stage '" + stage.name + "' after " +
                          std::to_string(cs.trials.size()) + " trials (bracket so far " +
-                         fmt("%.4g", cs.last_stable) + " to " + fmt("%.4g", cs.first_failed) +
-                         " g)";
+                         number_text(cs.last_stable, "%.4g") + " to " +
+                         number_text(cs.first_failed, "%.4g") + " g)";
   }
 }
 
@@ -476,18 +471,19 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
   return [&world, &cb, level, n, stage_wall0, stage_time0, stage_steps0, done0](
              const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
     const double wall = seconds_since(stage_wall0);
-    std::string line =
-        "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name + ": step " +
-        std::to_string(k) + ", t = " + fmt("%.4g s", world.time()) + ", unbalanced " +
-        fmt("%.2e", m.unbalanced_force_ratio) + ", KE ratio " +
-        fmt("%.2e", m.kinetic_energy_ratio) + ", " +
-        fmt("%.0f steps/s", wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0);
+    std::string line = "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
+                       ": step " + std::to_string(k) +
+                       ", t = " + number_text(world.time(), "%.4g s") + ", unbalanced " +
+                       number_text(m.unbalanced_force_ratio, "%.2e") + ", KE ratio " +
+                       number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
+                       number_text(wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0,
+                                   "%.0f steps/s");
     double done = -1.0;
     if (s.kind == Stage::Kind::steps) done = static_cast<double>(k) / static_cast<double>(s.steps);
     if (s.kind == Stage::Kind::duration) done = (world.time() - stage_time0) / s.duration;
     if (done > done0)
-      line += fmt(", %.0f%%", 100.0 * done) +
-              fmt(", about %.0f s left", wall * (1 - done) / (done - done0));
+      line += number_text(100.0 * done, ", %.0f%%") +
+              number_text(wall * (1 - done) / (done - done0), ", about %.0f s left");
     else
       line += ", at most " + std::to_string(s.max_steps) + " steps";
     cb.progress(line);
@@ -516,9 +512,9 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
   const std::string& name = sc.stages[d.level].name;
   if (d.collapse) {
     res.collapse = d.collapse;
-    res.message = "stage '" + name + "': collapse between " + fmt("%.4g", d.collapse->first) +
-                  " g (stable) and " + fmt("%.4g", d.collapse->second) +
-                  " g (failed), found by bisection";
+    res.message = "stage '" + name + "': collapse between " +
+                  number_text(d.collapse->first, "%.4g") + " g (stable) and " +
+                  number_text(d.collapse->second, "%.4g") + " g (failed), found by bisection";
     res.exit_code = 0;  // asked to search, and found
   } else {
     res.message = "stage '" + name + "': " + d.stage.message;
@@ -611,7 +607,7 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
   };
   dc.trial_done = [&cb](const StabilityTrial& t) {
     if (cb.stage_done)
-      cb.stage_done("  trial " + fmt("%.4g", t.parameter) + ": " + t.outcome + " after " +
+      cb.stage_done("  trial " + number_text(t.parameter, "%.4g") + ": " + t.outcome + " after " +
                     std::to_string(t.steps) + " steps");
   };
   return dc;

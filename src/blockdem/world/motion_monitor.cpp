@@ -8,17 +8,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
-namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-}  // namespace
-
 void MechanismCriteria::validate() const {
   if (!(displacement_limit >= 0.0) || !std::isfinite(displacement_limit))
     throw std::invalid_argument("displacement_limit: must be >= 0 (0: automatic)");
@@ -143,32 +135,35 @@ std::string explain_failure(FailureKind kind, const MotionReport& r, const World
   for (std::size_t i = 0; i < r.moving_blocks.size() && i < 8; ++i)
     blocks += (i ? ", " : "") + world.blocks()[static_cast<std::size_t>(r.moving_blocks[i])].name;
   if (r.moving_blocks.size() > 8) blocks += ", ...";
-  const std::string energy = "kinetic energy " + fmt("%.3g J", r.kinetic_energy) + " against " +
-                             fmt("%.3g J", r.load_work) + " of work by the loads and " +
-                             fmt("%.3g J", r.elastic_energy_start) + " stored in the joints";
+  const std::string energy =
+      "kinetic energy " + number_text(r.kinetic_energy, "%.3g J") + " against " +
+      number_text(r.load_work, "%.3g J") + " of work by the loads and " +
+      number_text(r.elastic_energy_start, "%.3g J") + " stored in the joints";
   switch (kind) {
     case FailureKind::collapsed:
       return "physical collapse: a mechanism formed under a stable time step (step " +
-             fmt("%.2f", r.time_step_ratio) + " of the critical one); blocks moving: " +
+             number_text(r.time_step_ratio, "%.2f") + " of the critical one); blocks moving: " +
              (blocks.empty() ? "none past a tenth of the limit" : blocks) +
-             "; largest displacement " + fmt("%.3g m", r.max_displacement) + " (limit " +
-             fmt("%.3g m", r.displacement_limit) + "), speed " + fmt("%.3g m/s", r.max_speed) +
-             "; " + energy +
+             "; largest displacement " + number_text(r.max_displacement, "%.3g m") + " (limit " +
+             number_text(r.displacement_limit, "%.3g m") + "), speed " +
+             number_text(r.max_speed, "%.3g m/s") + "; " + energy +
              ". The model cannot carry this load: this is a result, not a numerical problem. "
              "Use find_collapse = true to bracket the collapse load, or a strength_reduction "
              "stage for a factor of safety";
     case FailureKind::diverged:
       return std::string("numerical blow-up: ") +
-             (r.time_step_ratio > 1.0 ? "the time step is " + fmt("%.3g", r.time_step_ratio) +
-                                            " times the critical estimate sqrt(m/K)"
-                                      : "energy was created by the integrator") +
+             (r.time_step_ratio > 1.0
+                  ? "the time step is " + number_text(r.time_step_ratio, "%.3g") +
+                        " times the critical estimate sqrt(m/K)"
+                  : "energy was created by the integrator") +
              "; " + energy +
              ". Use the automatic time step (time_step = 0) or a smaller safety_factor; check "
              "the joint stiffness against the block masses";
     case FailureKind::not_converged:
       return "no equilibrium within the step limit, but no mechanism either (largest "
              "displacement " +
-             fmt("%.3g m", r.max_displacement) + ", limit " + fmt("%.3g m", r.displacement_limit) +
+             number_text(r.max_displacement, "%.3g m") + ", limit " +
+             number_text(r.displacement_limit, "%.3g m") +
              "): raise max_steps, add damping, or loosen the tolerances";
   }
   return {};

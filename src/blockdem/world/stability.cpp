@@ -9,16 +9,11 @@
 #include <stdexcept>
 #include <variant>
 
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // A bisection's midpoint that differs from both ends of its bracket; where it does not, the
 // bracket is as narrow as doubles resolve and the search ends.
@@ -92,7 +87,7 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
     // the bracket (docs/stability.md, "Collapse load").
     World w = s.stable_world ? *s.stable_world : saved;
     Stage trial = stage;
-    trial.name = stage.name + " trial " + fmt("%g g", g);
+    trial.name = stage.name + " trial " + number_text(g, "%g g");
     trial.gravity = g * kOneG * direction;
     StabilityTrial t = run_trial(w, trial, g);
     s.trials.push_back(t);
@@ -119,7 +114,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     World w = saved;
     for (int i : laws) w.replace_joint_law(i, divide_strength(saved.joint_laws()[i], factor));
     Stage st = stage;
-    st.name = stage.name + " F = " + fmt("%.4g", factor);
+    st.name = stage.name + " F = " + number_text(factor, "%.4g");
     StabilityTrial t = run_trial(w, st, factor);
     s.trials.push_back(t);
     if (done) done(t);
@@ -141,9 +136,10 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   if (!lo.stable || hi.stable) {
     // What to do about it. Both failed with F <= 1 at the lower bound: the joints at their full
     // strength (or stronger) do not hold the model, and no bound can bracket a factor of safety.
-    const std::string tried = "factor_bounds: [" + fmt("%g", lower) + ", " + fmt("%g", upper) +
-                              "] do not bracket the failure: F = " + fmt("%g", lower) + " was " +
-                              lo.outcome + " and F = " + fmt("%g", upper) + " was " + hi.outcome;
+    const std::string tried =
+        "factor_bounds: [" + number_text(lower, "%g") + ", " + number_text(upper, "%g") +
+        "] do not bracket the failure: F = " + number_text(lower, "%g") + " was " + lo.outcome +
+        " and F = " + number_text(upper, "%g") + " was " + hi.outcome;
     const std::string rule = " (the lower bound must be stable and the upper one fail)";
     if (lo.stable)
       throw std::invalid_argument(tried + "; both stable: raise the upper bound" + rule);
@@ -151,7 +147,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     if (lower > 1.0)
       throw std::invalid_argument(tried + "; both failed: lower the lower bound" + rule);
     throw std::invalid_argument(
-        tried + "; both failed, and F = " + fmt("%g", lower) +
+        tried + "; both failed, and F = " + number_text(lower, "%g") +
         " <= 1 leaves the joints their full strength or more: the model is unstable with its "
         "full strength, so no strength reduction can help and it has no factor of safety (a "
         "mechanism that friction cannot stop, such as toppling, or a model not in equilibrium "

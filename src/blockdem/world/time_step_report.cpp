@@ -6,17 +6,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "blockdem/numerics/number_text.hpp"
+
 namespace blockdem {
-namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-}  // namespace
-
 double width_aspect_ratio(const Polyhedron& shape) {
   double widest = 0.0;
   double thinnest = std::numeric_limits<double>::infinity();
@@ -62,17 +54,19 @@ TimeStepReport time_step_report(const World& world) {
 std::string describe(const TimeStepReport& r) {
   if (r.block < 0) return {};
   return "time step set by block '" + r.name + "' (#" + std::to_string(r.block) + ": " +
-         fmt("%.3g m3", r.volume) + ", aspect ratio " + fmt("%.3g", r.aspect_ratio) +
-         "): it allows " + fmt("%.3g s", r.time_step) + " (critical " +
-         fmt("%.3g s", r.critical_step) + "); the median of " + std::to_string(r.free_blocks) +
-         " free blocks allows " + fmt("%.3g s", r.time_step / r.critical_step * r.median_step);
+         number_text(r.volume, "%.3g m3") + ", aspect ratio " +
+         number_text(r.aspect_ratio, "%.3g") + "): it allows " +
+         number_text(r.time_step, "%.3g s") + " (critical " +
+         number_text(r.critical_step, "%.3g s") + "); the median of " +
+         std::to_string(r.free_blocks) + " free blocks allows " +
+         number_text(r.time_step / r.critical_step * r.median_step, "%.3g s");
 }
 
 std::string outlier_warning(const TimeStepReport& r) {
   if (!r.outlier) return {};
-  return "block '" + r.name + "' (" + fmt("%.3g m3", r.volume) + ", aspect ratio " +
-         fmt("%.3g", r.aspect_ratio) + ") allows a time step " +
-         fmt("%.3g", r.median_step / r.critical_step) +
+  return "block '" + r.name + "' (" + number_text(r.volume, "%.3g m3") + ", aspect ratio " +
+         number_text(r.aspect_ratio, "%.3g") + ") allows a time step " +
+         number_text(r.median_step / r.critical_step, "%.3g") +
          " times smaller than the median block's, and every step of a stage without density "
          "scaling is that short. Remove or merge such blocks ([rock_mass] min_block_volume, "
          "max_aspect_ratio), or keep density scaling on in the quasi-static stages (the default; "
