@@ -19,6 +19,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/face_contact.hpp"
+#include "blockdem/collision/shared_face.hpp"
 #include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/contact/normal_laws.hpp"
 #include "blockdem/contact/shear_laws.hpp"
@@ -432,7 +433,14 @@ class World {
   /// `planes_a`: A's world planes, or a prestressed pair's with its face plane moved out.
   ContactGeometry narrow_phase(PairSlot& slot, std::span<const Halfspace> planes_a, const Block& a,
                                const Block& b, double extent) const;
-  void keep_open_bonds();
+  /// `breakable`: per joint law, whether its strength can break (keeps_bond_pair).
+  void keep_open_bonds(const std::vector<char>& breakable);
+  /// Per joint law, whether its strength can break.
+  std::vector<char> breakable_laws() const;
+  /// The face blocks a and b share at their present poses (collision/shared_face.hpp), with
+  /// the joint law it takes: A's face's, else B's, else `group_law` (-1: none).
+  std::optional<SharedFace> shared_face_of(const Block& a, const Block& b) const;
+  int shared_face_law(int a, int b, const SharedFace& face, int group_law) const;
   /// Whether a slot's pair stays a candidate after its boxes part: an open bond, or a closed
   /// one that can open into tension (`breakable`: per law, whether its strength can break).
   bool keeps_bond_pair(const PairSlot& s, const std::vector<char>& breakable) const;

@@ -11,6 +11,22 @@
 
 namespace blockdem {
 
+std::optional<SharedFace> World::shared_face_of(const Block& a, const Block& b) const {
+  std::vector<Eigen::Vector3d> vertices;
+  vertices.reserve(a.shape.vertices().size());
+  for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
+  const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+  return shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+}
+
+int World::shared_face_law(int a, int b, const SharedFace& face, int group_law) const {
+  const std::vector<int>& laws_a = face_laws(a);
+  const std::vector<int>& laws_b = face_laws(b);
+  int law = laws_a.empty() ? -1 : laws_a[static_cast<std::size_t>(face.plane_a)];
+  if (law < 0 && !laws_b.empty()) law = laws_b[static_cast<std::size_t>(face.plane_b)];
+  return law < 0 ? group_law : law;
+}
+
 bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, const OpenBondStart* start, double dt,
                                bool advance_shear) const {
   if (ct.shear.bond != BondState::intact) return false;
@@ -35,17 +51,9 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, const OpenBondStart*
         std::none_of(face_laws(ct.a).begin(), face_laws(ct.a).end(), breakable) &&
         std::none_of(face_laws(ct.b).begin(), face_laws(ct.b).end(), breakable))
       return false;
-    std::vector<Eigen::Vector3d> vertices;
-    vertices.reserve(a.shape.vertices().size());
-    for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
-    const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-    const auto face = shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+    const auto face = shared_face_of(a, b);
     if (!face) return false;
-    const std::vector<int>& laws_a = face_laws(ct.a);
-    const std::vector<int>& laws_b = face_laws(ct.b);
-    int law = laws_a.empty() ? -1 : laws_a[static_cast<std::size_t>(face->plane_a)];
-    if (law < 0 && !laws_b.empty()) law = laws_b[static_cast<std::size_t>(face->plane_b)];
-    if (law < 0) law = slot.group_law;
+    const int law = shared_face_law(ct.a, ct.b, *face, slot.group_law);
     if (law < 0 || !strength_of(laws_[static_cast<std::size_t>(law)].shear).can_break())
       return false;
     ct.law = law;

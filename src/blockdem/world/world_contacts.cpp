@@ -212,10 +212,8 @@ void World::find_step_pairs(StepScratch& s) {
   // shortens): no open bond, and the same pairs as last step, whose slots then stay as they are.
   // Else no more passes than the open bonds' count and the merge's own comparison.
   bool same = false, no_open = false;
+  const std::vector<char> breakable = breakable_laws();
   if (!slots_.empty() && pairs_.size() == slots_.size()) {
-    std::vector<char> breakable(laws_.size());
-    for (std::size_t l = 0; l < laws_.size(); ++l)
-      breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
     const auto [open, differ] = count_open_and_moved(slots_, pairs_, threads, [&](std::size_t k) {
       return keeps_bond_pair(slots_[k], breakable);
     });
@@ -224,7 +222,7 @@ void World::find_step_pairs(StepScratch& s) {
   }
   if (!same) {
     if (!no_open) {
-      keep_open_bonds();
+      keep_open_bonds(breakable);
       // A distributed step keeps an open bond's pair only where one of its blocks is kept here.
       if (s.distributed) {
         std::erase_if(pairs_, [&](const std::pair<int, int>& p) {
@@ -247,15 +245,19 @@ bool World::keeps_bond_pair(const PairSlot& s, const std::vector<char>& breakabl
                          breakable[static_cast<std::size_t>(c.law)] != 0);
 }
 
-void World::keep_open_bonds() {
+std::vector<char> World::breakable_laws() const {
+  std::vector<char> breakable(laws_.size());
+  for (std::size_t l = 0; l < laws_.size(); ++l)
+    breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
+  return breakable;
+}
+
+void World::keep_open_bonds(const std::vector<char>& breakable) {
   // The broad phase finds pairs whose boxes touch; an open bond (an intact bonded contact whose
   // blocks have moved apart) keeps its pair after the boxes part, until it breaks. So does a
   // closed one that can open into tension: a joint compressed by less than its blocks move in a
   // step (a sudden unloading) parts its boxes before its bond has been tried in tension.
   // Counted first in parallel (a settled scene has none): the list is made only if needed.
-  std::vector<char> breakable(laws_.size());
-  for (std::size_t l = 0; l < laws_.size(); ++l)
-    breakable[l] = strength_of(laws_[l].shear).can_break() ? 1 : 0;
   const auto keeps = [&](const PairSlot& s) { return keeps_bond_pair(s, breakable); };
   const auto is_open = [&](std::size_t k) { return keeps(slots_[k]); };
   if (count_in_parallel(slots_.size(), thread_count(), is_open) == 0) return;

@@ -7,23 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "blockdem/collision/shared_face.hpp"
 #include "blockdem/response/in_situ.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
-
-namespace {
-
-// The law of the face the blocks share: A's face's, else B's, else the group rules'.
-int shared_face_law(const std::vector<int>& laws_a, const std::vector<int>& laws_b,
-                    const SharedFace& face, int group_law) {
-  int law = laws_a.empty() ? -1 : laws_a[static_cast<std::size_t>(face.plane_a)];
-  if (law < 0 && !laws_b.empty()) law = laws_b[static_cast<std::size_t>(face.plane_b)];
-  return law < 0 ? group_law : law;
-}
-
-}  // namespace
 
 std::size_t World::prestress_joints(const StressField& field,
                                     const std::vector<std::pair<int, int>>& pairs) {
@@ -39,15 +26,11 @@ std::size_t World::prestress_joints(const StressField& field,
     if (!steps_pair(i, j)) continue;
     const Block& a = blocks_[static_cast<std::size_t>(i)];
     const Block& b = blocks_[static_cast<std::size_t>(j)];
-    std::vector<Eigen::Vector3d> vertices;
-    vertices.reserve(a.shape.vertices().size());
-    for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
-    const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-    const auto face = shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+    const auto face = shared_face_of(a, b);
     // A face, not two blocks meeting along an edge (a sliver within the tolerance).
     const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
     if (!face || !(face->area > 1e-6 * size * size)) continue;
-    const int law = shared_face_law(face_laws(i), face_laws(j), *face, law_for(i, j));
+    const int law = shared_face_law(i, j, *face, law_for(i, j));
     if (law < 0) continue;
     const NormalLaw& normal = laws_[static_cast<std::size_t>(law)].normal;
     try {

@@ -36,20 +36,12 @@ void World::remove_blocks_gradually(const std::vector<int>& indices) {
     force += f;
     torque += moment;
   }
-  std::vector<Relaxation> list;
+  relaxation_.clear();
   for (const auto& [i, load] : loads) {
     const Block& b = blocks_[static_cast<std::size_t>(i)];
-    list.push_back({i, b.external_force(), b.external_torque(), load.first, load.second});
+    relaxation_.push_back({i, b.external_force(), b.external_torque(), load.first, load.second});
   }
-  remove_blocks(indices);  // renumbers relaxation_, which is empty
-  // The blocks left move down in index past the removed ones.
-  std::vector<int> new_index(removed.size(), -1);
-  int next = 0;
-  for (std::size_t i = 0; i < removed.size(); ++i) {
-    if (removed[i] == 0) new_index[i] = next++;
-  }
-  for (Relaxation& r : list) r.block = new_index[static_cast<std::size_t>(r.block)];
-  relaxation_ = std::move(list);
+  remove_blocks(indices);  // renumbers relaxation_'s blocks
   relax(1.0);
 }
 
