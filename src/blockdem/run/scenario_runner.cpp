@@ -288,6 +288,7 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
                      {"unbalanced_force_ratio", result.measures.unbalanced_force_ratio},
                      {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
                      {"contacts", world.contact_count()},
+                     {"broken_bonds", world.broken_bond_count()},
                      {"message", end.message()}});
   if (!stage.remove.empty()) {
     // An excavation: the blocks that fell or slid into the opening.
