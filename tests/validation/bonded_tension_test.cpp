@@ -2,7 +2,9 @@
 // tension cut-off): a block hung from a fixed block by the face they share. Closed forms: an
 // intact bond in equilibrium stretches by W / (k_n A) and carries F_n = -W; a bond with
 // sigma_t A < W breaks in tension at once and the block falls freely (v = -g t). A contact that
-// forms after the start has never been bonded and carries no tension.
+// forms after the start has never been bonded and carries no tension. A bond is on a face the
+// blocks share at the start: two blocks that meet only along an edge carry none, however strong
+// their law, and the free one falls freely (v = -g t).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,6 +96,59 @@ TEST_P(BondedTensionTest, AContactFormedLaterIsNotBonded) {
   EXPECT_EQ(w.contact_count(), 0u) << "no tension across a joint that was never bonded";
   EXPECT_EQ(w.broken_bond_count(), 0);
   EXPECT_LT(w.blocks()[1].velocity.z(), 0.0);
+}
+
+/// The fixed roof of hanging_block and a free block beside and below it, meeting it only along
+/// the edge x = 0.2, z = 0 (`pressed` m into it towards the roof's corner), bonded by a law whose
+/// cohesion and tensile strength would hold the block on any sliver of face.
+World edge_hung_block(ContactMode mode, double pressed) {
+  WorldSettings s;
+  s.contact_mode = mode;
+  s.gravity = Eigen::Vector3d(0, 0, -kG);
+  s.damping = 0.0;
+  World w(s);
+  JointLaw strong = bonded_law(1e12 * weight() / area());
+  std::get<LinearShear>(strong.shear).strength.cohesion = 1e12 * weight() / area();
+  w.add_joint_law(strong);
+  w.add_joint_rule(JointRule{"", "", 0});
+  w.add_block(test::box_block({0.4, 0.4, 0.1}, {0, 0, 0.05}, kRho, Motion::fixed, "roof"));
+  w.add_block(test::box_block(kSize, {0.3 - pressed, 0, -0.05 + pressed}, kRho));
+  return w;
+}
+
+TEST_P(BondedTensionTest, BlocksMeetingAlongAnEdgeAreNotBonded) {
+  World w = edge_hung_block(GetParam(), 0.0);
+  const int steps = 2000;
+  for (int i = 0; i < steps; ++i) w.step();
+  EXPECT_EQ(w.contact_count(), 0u);
+  EXPECT_EQ(w.broken_bond_count(), 0) << "no bond to break";
+  // Free fall from the start (no force ever acted): v = -g t to round-off.
+  const double t = w.time();
+  EXPECT_NEAR(w.blocks()[1].velocity.z(), -kG * t, 1e-9 * kG * t);
+  EXPECT_EQ(w.blocks()[1].velocity.x(), 0.0);
+}
+
+TEST_P(BondedTensionTest, BlocksPressedTogetherAlongAnEdgeAreNotBonded) {
+  // 1 mm into the roof's edge: a contact from the first step, but no face, so no bond.
+  World w = edge_hung_block(GetParam(), 1e-3);
+  w.step();
+  ASSERT_EQ(w.contact_count(), 1u);
+  EXPECT_EQ(w.contacts().front()->shear.bond, BondState::unbonded);
+  for (int i = 0; i < 4000; ++i) w.step();
+  EXPECT_EQ(w.contact_count(), 0u) << "pushed out and falling";
+  EXPECT_LT(w.blocks()[1].position.z(), -0.05 - 0.01);
+}
+
+TEST_P(BondedTensionTest, BlocksPressedTogetherFaceToFaceAreBonded) {
+  // 0.1 um up into the roof over the whole shared face (far beyond the tolerance of coincident
+  // faces, 5e-10 m here): the bond is on that face; once the block has settled it hangs from it
+  // at the elastic stretch W / (k_n A).
+  World w = hanging_block(4.0 * weight() / area(), GetParam(), -1e-7);
+  for (int i = 0; i < 8000; ++i) w.step();
+  ASSERT_EQ(w.contact_count(), 1u);
+  EXPECT_EQ(w.contacts().front()->shear.bond, BondState::intact);
+  const double stretch = weight() / (kKn * area());
+  EXPECT_NEAR(w.blocks()[1].position.z(), -0.05 - stretch, 1e-3 * stretch);
 }
 
 TEST_P(BondedTensionTest, RollbackKeepsAnOpenBond) {

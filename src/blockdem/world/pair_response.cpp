@@ -207,6 +207,14 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
     g.overlap += prestressed.offset.at(g.point) - preload->shift;
     g.area = cells_area(shared);
   }
+  // A bond is on a face the blocks share at the start (a rock mass's cut faces, blocks placed
+  // face to face, perhaps pressed into each other): two blocks that meet along an edge or at a
+  // corner, or do not meet, are unbonded from the first step.
+  if (advance_shear && step_count_ == 0 && !ct.has_history && ct.shear.bond == BondState::intact &&
+      preload == nullptr && any_breakable_law()) {
+    const double pressed = g.touching && g.overlap > 0.0 ? 2.0 * g.overlap : 0.0;
+    if (!shared_face_of(a, b, pressed)) ct.shear.bond = BondState::unbonded;
+  }
   if (!g.touching || !(g.area > 0.0) || !(g.overlap > 0.0)) return open_bond(nullptr);
   // Last step's normal, before this step's geometry replaces it (the shear force turns from it).
   const Eigen::Vector3d previous = ct.previous_normal();

@@ -438,8 +438,12 @@ class World {
   /// Per joint law, whether its strength can break.
   std::vector<char> breakable_laws() const;
   /// The face blocks a and b share at their present poses (collision/shared_face.hpp), with
-  /// the joint law it takes: A's face's, else B's, else `group_law` (-1: none).
-  std::optional<SharedFace> shared_face_of(const Block& a, const Block& b) const;
+  /// the joint law it takes: A's face's, else B's, else `group_law` (-1: none). `gap` (m): how
+  /// far the faces may be pressed into each other. A polygon of area below 1e-6 of the smaller
+  /// block's bounding radius squared (two blocks meeting along an edge) is no face.
+  std::optional<SharedFace> shared_face_of(const Block& a, const Block& b, double gap = 0.0) const;
+  /// Whether any joint law's strength can break (a bond can matter).
+  bool any_breakable_law() const;
   int shared_face_law(int a, int b, const SharedFace& face, int group_law) const;
   /// Whether a slot's pair stays a candidate after its boxes part: an open bond, or a closed
   /// one that can open into tension (`breakable`: per law, whether its strength can break).

@@ -11,12 +11,30 @@
 
 namespace blockdem {
 
-std::optional<SharedFace> World::shared_face_of(const Block& a, const Block& b) const {
+std::optional<SharedFace> World::shared_face_of(const Block& a, const Block& b, double gap) const {
   std::vector<Eigen::Vector3d> vertices;
   vertices.reserve(a.shape.vertices().size());
   for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
-  const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
-  return shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+  const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius()) + gap;
+  auto face = shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
+  if (!face) return face;
+  // A face, not two blocks meeting along an edge (a sliver within the tolerance) ...
+  const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+  if (!(face->area > 1e-6 * size * size)) return std::nullopt;
+  // ... nor pressed into each other along one: the polygon's width (its area over its widest
+  // span) is many times the depth of pressing, as where two faces press, not two edges.
+  if (gap > 0.0) {
+    double span = 0.0;
+    for (const auto& p : face->polygon)
+      for (const auto& q : face->polygon) span = std::max(span, (p - q).norm());
+    if (!(face->area > 10.0 * gap * span)) return std::nullopt;
+  }
+  return face;
+}
+
+bool World::any_breakable_law() const {
+  return std::any_of(laws_.begin(), laws_.end(),
+                     [](const JointLaw& l) { return strength_of(l.shear).can_break(); });
 }
 
 int World::shared_face_law(int a, int b, const SharedFace& face, int group_law) const {

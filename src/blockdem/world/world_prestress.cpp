@@ -27,9 +27,7 @@ std::size_t World::prestress_joints(const StressField& field,
     const Block& a = blocks_[static_cast<std::size_t>(i)];
     const Block& b = blocks_[static_cast<std::size_t>(j)];
     const auto face = shared_face_of(a, b);
-    // A face, not two blocks meeting along an edge (a sliver within the tolerance).
-    const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-    if (!face || !(face->area > 1e-6 * size * size)) continue;
+    if (!face) continue;
     const int law = shared_face_law(i, j, *face, law_for(i, j));
     if (law < 0) continue;
     const NormalLaw& normal = laws_[static_cast<std::size_t>(law)].normal;
