@@ -77,6 +77,10 @@ TEST_P(BondedTensionTest, WeakBondBreaksInTensionAndTheBlockFalls) {
   const int steps = 4000;
   for (int i = 0; i < steps; ++i) w.step();
   EXPECT_EQ(w.broken_bond_count(), 1) << "one bond, broken once";
+  // In tension, on a face of no joint set (blocks added by hand): row 0, column 0.
+  ASSERT_EQ(w.broken_bonds_by_set().size(), 1u);
+  EXPECT_EQ(w.broken_bonds_by_set()[0][0], 1);
+  EXPECT_EQ(w.broken_bonds_by_set()[0][1], 0);
   EXPECT_EQ(w.contact_count(), 0u);
   // Free fall from the break, a stretch of at most sigma_t / k_n after the start: v = -g t.
   const double t = w.time();

@@ -3,6 +3,7 @@
 // W sin ψ = c A + W cos ψ tan φ (a block on an incline with cohesion).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -75,6 +76,7 @@ struct Outcome {
   bool first_converged = false;
   std::int64_t broken_after_first = 0, broken_after_second = 0;
   double travel = 0.0;  // displacement of the upper block in the second stage (m)
+  std::vector<std::array<std::int64_t, 2>> by_set;  // World::broken_bonds_by_set at the end
 };
 
 Outcome run(const std::string& first, const std::string& second, double cohesion) {
@@ -86,6 +88,7 @@ Outcome run(const std::string& first, const std::string& second, double cohesion
   o.broken_after_first = w.broken_bond_count();
   run_stage(w, sc.stages[1]);
   o.broken_after_second = w.broken_bond_count();
+  o.by_set = w.broken_bonds_by_set();
   const Block& b = w.blocks()[upper];
   o.travel = (b.position - b.initial_position).norm();
   return o;
@@ -105,6 +108,11 @@ TEST(StagedLaws, ElasticConsolidationKeepsTheBondThatTheRealLawThenJudges) {
   // elastic shear displacement, W sin ψ / (k_s A) = 0.16 mm); 10% above it holds.
   EXPECT_GT(weak.broken_after_second, 0);
   EXPECT_GT(weak.travel, 1e-2);
+  // The bond broke on J1's face (set 0: row 1), in shear: the joint stays in compression.
+  ASSERT_EQ(weak.by_set.size(), 2u);
+  EXPECT_EQ(weak.by_set[1][1], weak.broken_after_second);
+  EXPECT_EQ(weak.by_set[1][0], 0);
+  EXPECT_EQ(weak.by_set[0][0] + weak.by_set[0][1], 0);
   const Outcome strong = run("elastic", "bonded", 1.1 * c);
   EXPECT_EQ(strong.broken_after_second, 0);
   // Displacements count from the second stage's start: the block moved only as the shear

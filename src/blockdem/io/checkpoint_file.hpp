@@ -18,7 +18,7 @@ class CheckpointError : public std::runtime_error {
 };
 
 /// The format version this program writes and reads.
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 /// Writes `payload` as a checkpoint file, atomically (temporary name, fsync, rename). A previous
 /// file of that name is first renamed to NAME.prev, so the last two checkpoints are kept.

@@ -24,6 +24,19 @@
 namespace blockdem {
 namespace {
 
+/// Bonds broken since the start per joint set (by name; "other faces": faces of no set) and
+/// cause: {"J1": {"tension": n, "shear": m}, ...}.
+nlohmann::json broken_bonds_by_set(const World& world, const std::vector<std::string>& sets) {
+  nlohmann::json by_set = nlohmann::json::object();
+  const auto& table = world.broken_bonds_by_set();
+  for (std::size_t k = 0; k <= sets.size() || k < table.size(); ++k) {
+    const std::array<std::int64_t, 2> row = k < table.size() ? table[k] : std::array<std::int64_t, 2>{};
+    const std::string name = k == 0 ? "other faces" : k - 1 < sets.size() ? sets[k - 1] : "set " + std::to_string(k - 1);
+    by_set[name] = {{"tension", row[0]}, {"shear", row[1]}};
+  }
+  return by_set;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point since) {
@@ -289,6 +302,7 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
                      {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
                      {"contacts", world.contact_count()},
                      {"broken_bonds", world.broken_bond_count()},
+                     {"broken_bonds_by_set", broken_bonds_by_set(world, sc_.joint_sets)},
                      {"message", end.message()}});
   if (!stage.remove.empty()) {
     // An excavation: the blocks that fell or slid into the opening.
@@ -526,7 +540,8 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
 
 /// summary.json's entries written at the run's end.
 void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const RunResult& res,
-                    const World& world, const RunObserver* scene) {
+                    const World& world, const RunObserver* scene,
+                    const std::vector<std::string>& joint_sets) {
   const auto& distribution = world.settings().distribution;
   const int ranks = distribution ? distribution->size() : 1;
   summary["status"] = to_string(res.status);
@@ -541,6 +556,7 @@ void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const
   summary["ranks"] = ranks;
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
+  summary["broken_bonds_by_set"] = broken_bonds_by_set(world, joint_sets);
   // Every excavation stage's key blocks (from `stages`, which a restart carries on).
   nlohmann::json all_key_blocks = nlohmann::json::array();
   bool any_excavation = false;
@@ -703,7 +719,7 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   settle_result(d, sc, outputs, scene_observer.get(), no_checkpoints, out, res);
   res.steps = world.step_count();
   res.wall_time = seconds_since(wall0);
-  finish_summary(res.summary, outputs.stages(), res, world, scene_observer.get());
+  finish_summary(res.summary, outputs.stages(), res, world, scene_observer.get(), sc.joint_sets);
   // Written last, with the record of every other file the run wrote: a folder without it holds
   // a run still going or one that died.
   outputs.history().flush();  // an interrupted stage's rows too, before the record reads the file

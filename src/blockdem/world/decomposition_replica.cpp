@@ -92,6 +92,7 @@ void Decomposition::save_checkpoint_part(World& world) {
   world.checkpoint_.time = world.time_;
   world.checkpoint_.step_count = world.step_count_;
   world.checkpoint_.broken_bonds = world.broken_bonds_;
+  world.checkpoint_.broken_by_set = world.broken_by_set_;
   // The whole ledger: its budget is every process's; of its per-block records only the own
   // blocks' are exact, the others are set when the parts are gathered (as synchronize sets them).
   world.checkpoint_.energy = world.energy_;

@@ -341,6 +341,20 @@ bool Decomposition::reduce_step_checks(World& world, StepScratch& s) {
   overlap_key_ = minima[1];
   world.active_count_ = static_cast<std::size_t>(sums[0]);
   world.broken_bonds_ = s.broken_before + sums[1];
+  if (sums[1] > 0) {
+    // Which sets the bonds broken anywhere belong to: every process's table, summed (each has
+    // the same rows: the face sets are the same everywhere).
+    const std::size_t rows = world.break_table_rows();
+    std::vector<std::int64_t> mine(2 * rows, 0);
+    for (std::size_t k = 0; k < rows && k < world.step_breaks_.size(); ++k) {
+      mine[2 * k] = world.step_breaks_[k][0];
+      mine[2 * k + 1] = world.step_breaks_[k][1];
+    }
+    const std::vector<std::int64_t> all = dist.sum(mine);
+    std::vector<std::array<std::int64_t, 2>> table(rows);
+    for (std::size_t k = 0; k < rows; ++k) table[k] = {all[2 * k], all[2 * k + 1]};
+    world.add_step_breaks(table);
+  }
   replica_complete_ = false;
   dist_stats_.steps += 1;
   dist_stats_.owned_pairs += static_cast<std::int64_t>(s.mine.size());

@@ -200,11 +200,20 @@ void World::scatter_loads(const std::vector<char>* counted) {
   active_count_ = 0;
   overlap_violation_ = -1;
   double dt_min = std::numeric_limits<double>::infinity();
+  std::int64_t broke = 0;
   for (const RunTotals& r : totals) {
+    broke += r.broken;
     broken_bonds_ += r.broken;
     active_count_ += r.active;
     if (overlap_violation_ < 0) overlap_violation_ = r.violation;
     dt_min = std::min(dt_min, r.dt_min);
+  }
+  // Broken bonds per joint set and cause (rare: only in a step where one broke). A distributed
+  // step sums the processes' tables first (Decomposition::reduce_step_checks).
+  step_breaks_.clear();
+  if (broke > 0) {
+    tally_step_breaks(counted);
+    if (counted == nullptr) add_step_breaks(step_breaks_);
   }
   // One run (one thread, or a small scene): its sums are taken as they are, without the
   // normalisations of +=, a fixed cost per step that small scenes of many steps feel. The sums

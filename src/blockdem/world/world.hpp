@@ -280,6 +280,12 @@ class World {
   /// Bonds (cohesion, tensile strength) broken since the world was built, counted in the step
   /// they break (a bond that breaks and then separates still counts).
   std::int64_t broken_bond_count() const { return broken_bonds_; }
+  /// The same per joint set and cause: entry k + 1 holds joint set k's (World::set_face_sets),
+  /// entry 0 those of faces of no set; [0] broke in tension, [1] in shear. A bond's set is that
+  /// of the face it joins (the most nearly coincident pair of opposite planes of its blocks).
+  const std::vector<std::array<std::int64_t, 2>>& broken_bonds_by_set() const {
+    return broken_by_set_;
+  }
 
   /// Saves / restores the block states and contact histories (the "last good state"). The
   /// snapshot is compact: block states and, per contact, its pair and shear history; a restore
@@ -514,6 +520,17 @@ class World {
   std::size_t pending_run_ = 1;
   std::size_t active_count_ = 0;
   std::int64_t broken_bonds_ = 0;        ///< see broken_bond_count()
+  std::vector<std::array<std::int64_t, 2>> broken_by_set_;  ///< see broken_bonds_by_set()
+  /// This step's broken bonds per set and cause, of this process's pairs (scatter_loads).
+  std::vector<std::array<std::int64_t, 2>> step_breaks_;
+  /// Counts this step's broken bonds (slots with `broke`, of `counted` pairs) into step_breaks_.
+  void tally_step_breaks(const std::vector<char>* counted);
+  /// Adds a table of broken bonds per set and cause (rows as broken_by_set_'s) to it.
+  void add_step_breaks(const std::vector<std::array<std::int64_t, 2>>& breaks);
+  /// The joint set of the face blocks a and b are bonded across (-1: none).
+  int bonded_face_set(int a, int b) const;
+  /// Rows of broken_bonds_by_set: one per joint set any block's face has, plus one.
+  std::size_t break_table_rows() const;
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
   std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
@@ -617,6 +634,7 @@ class World {
     double time = 0.0;
     std::int64_t step_count = 0;
     std::int64_t broken_bonds = 0;
+    std::vector<std::array<std::int64_t, 2>> broken_by_set;
     EnergyLedger energy;
     bool valid = false;
     /// A distributed part (world/decomposition_replica.cpp): `blocks` and `motions` hold this

@@ -4,6 +4,7 @@
 // touching step, or from zero on a face the blocks share at the start (a rock mass's cut faces).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "blockdem/collision/shared_face.hpp"
@@ -145,6 +146,64 @@ bool World::evaluate_open_bond(PairSlot& slot, Contact& ct, const OpenBondStart*
   }
   ct.stiffness = kn + sr.stiffness;
   return true;
+}
+
+int World::bonded_face_set(int a, int b) const {
+  const auto& pa = blocks_[static_cast<std::size_t>(a)].world_planes;
+  const auto& pb = blocks_[static_cast<std::size_t>(b)].world_planes;
+  const double size = blocks_[static_cast<std::size_t>(a)].bounding_radius +
+                      blocks_[static_cast<std::size_t>(b)].bounding_radius;
+  // The pair of opposite planes nearest to coincident: the blocks have moved little since the
+  // bond formed on their shared face (a bond breaks at a closure of sigma_t / k_n or a slip of
+  // c / k_s).
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t ia = 0, ib = 0;
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    for (std::size_t j = 0; j < pb.size(); ++j) {
+      const double facing = pa[i].normal.dot(pb[j].normal);
+      if (facing > -0.5) continue;
+      const double misfit = std::abs(pa[i].offset + pb[j].offset) + (1.0 + facing) * size;
+      if (misfit < best) {
+        best = misfit;
+        ia = i;
+        ib = j;
+      }
+    }
+  }
+  if (!std::isfinite(best)) return -1;
+  const auto set_of = [&](int block, std::size_t plane) {
+    const auto k = static_cast<std::size_t>(block);
+    return k < face_sets_.size() && plane < face_sets_[k].size() ? face_sets_[k][plane] : -1;
+  };
+  const int set = set_of(a, ia);
+  return set >= 0 ? set : set_of(b, ib);
+}
+
+std::size_t World::break_table_rows() const {
+  int most = -1;
+  for (const auto& sets : face_sets_)
+    for (const int s : sets) most = std::max(most, s);
+  return static_cast<std::size_t>(most + 2);
+}
+
+void World::add_step_breaks(const std::vector<std::array<std::int64_t, 2>>& breaks) {
+  if (broken_by_set_.size() < breaks.size()) broken_by_set_.resize(breaks.size(), {0, 0});
+  for (std::size_t k = 0; k < breaks.size(); ++k) {
+    broken_by_set_[k][0] += breaks[k][0];
+    broken_by_set_[k][1] += breaks[k][1];
+  }
+}
+
+void World::tally_step_breaks(const std::vector<char>* counted) {
+  step_breaks_.assign(break_table_rows(), {0, 0});
+  for (std::size_t k = 0; k < slots_.size(); ++k) {
+    const PairSlot& s = slots_[k];
+    if (!s.broke || (counted != nullptr && (*counted)[k] == 0)) continue;
+    const BondState bond = s.active ? contact_of(s).shear.bond : s.bond;
+    const int set = bonded_face_set(s.a, s.b);
+    step_breaks_[static_cast<std::size_t>(set + 1)][bond == BondState::broken_in_tension ? 0 : 1] +=
+        1;
+  }
 }
 
 }  // namespace blockdem

@@ -251,6 +251,11 @@ void World::save_counters(StateWriter& w, std::int64_t overlap_violation) const 
     w.pod(static_cast<std::int32_t>(x.block));
     for (const Eigen::Vector3d* v : {&x.base_force, &x.base_torque, &x.force, &x.torque}) w.vec(*v);
   }
+  w.size(broken_by_set_.size());
+  for (const auto& row : broken_by_set_) {
+    w.pod(row[0]);
+    w.pod(row[1]);
+  }
 }
 
 void World::save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const {
@@ -425,6 +430,11 @@ void World::load_counters(StateReader& r) {
     if (x.block < 0 || x.block >= static_cast<int>(blocks_.size()))
       throw StateError("a relaxed block of the saved state is not the scenario's");
     for (Eigen::Vector3d* v : {&x.base_force, &x.base_torque, &x.force, &x.torque}) *v = r.vec();
+  }
+  broken_by_set_.resize(r.size());
+  for (auto& row : broken_by_set_) {
+    r.pod(row[0]);
+    r.pod(row[1]);
   }
 }
 
