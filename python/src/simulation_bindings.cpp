@@ -3,13 +3,15 @@
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <functional>
 
+#include <algorithm>
+#include <functional>
 #include <optional>
 #include <string>
 
 #include "bindings.hpp"
 #include "blockdem/run/stage_driver.hpp"
+#include "blockdem/scenario/stage_input.hpp"
 #include "simulation.hpp"
 
 namespace py = pybind11;
@@ -244,6 +246,72 @@ void bind_simulation(py::module_& m) {
           py::arg("block"), py::arg("velocity"),
           "Sets a block's velocity (m/s): the motion of a prescribed block, or a kick to a free "
           "one.");
+  cls.def(
+      "set_laws",
+      [](Simulation& s, const py::list& changes, bool reset) {
+        const std::vector<std::string>& sets = s.scenario->joint_sets;
+        const auto& laws = s.world.joint_laws();
+        const auto law_index = [&](const std::string& name) {
+          for (std::size_t k = 0; k < laws.size(); ++k)
+            if (laws[k].name == name) return static_cast<int>(k);
+          return -1;
+        };
+        std::vector<LawChange> out;
+        for (const py::handle& item : changes) {
+          const py::dict e = item.cast<py::dict>();
+          for (const auto& [key, value] : e) {
+            const std::string k = key.cast<std::string>();
+            if (k != "joint_set" && k != "group" && k != "law")
+              throw py::value_error("set_laws: unknown key \"" + k +
+                                    "\" (known: joint_set, group, law)");
+          }
+          if (e.contains("joint_set") == e.contains("group"))
+            throw py::value_error("set_laws: name either a joint_set or a group");
+          LawChange c;
+          if (e.contains("joint_set")) {
+            const std::string name = e["joint_set"].cast<std::string>();
+            const auto it = std::find(sets.begin(), sets.end(), name);
+            if (it == sets.end()) {
+              std::string known;
+              for (const auto& n : sets) known += (known.empty() ? "" : ", ") + n;
+              throw py::key_error("set_laws: no joint set named \"" + name + "\" (known: " +
+                                  known + ")");
+            }
+            c.joint_set = static_cast<int>(it - sets.begin());
+          } else {
+            c.group = e["group"].cast<std::string>();
+            const auto& blocks = s.world.blocks();
+            if (std::none_of(blocks.begin(), blocks.end(),
+                             [&](const Block& b) { return b.group() == c.group; }))
+              throw py::key_error("set_laws: no block is in group \"" + c.group + "\"");
+          }
+          if (!e.contains("law")) throw py::value_error("set_laws: each change needs a law");
+          const std::string law = e["law"].cast<std::string>();
+          c.law = law_index(law);
+          c.elastic = c.law < 0 && law == "elastic";
+          if (c.law < 0 && !c.elastic)
+            throw py::key_error("set_laws: no joint law named \"" + law + "\"");
+          out.push_back(std::move(c));
+        }
+        // The elastic twins a scenario without an elastic stage lacks, made now.
+        if (std::any_of(out.begin(), out.end(), [](const LawChange& c) { return c.elastic; })) {
+          const std::size_t n = laws.size();
+          for (std::size_t k = 0; k < n; ++k) {
+            const std::string& name = s.world.joint_laws()[k].name;
+            if (name.ends_with(kElasticSuffix)) continue;
+            if (law_index(name + std::string(kElasticSuffix)) < 0)
+              s.world.add_joint_law(elastic_twin(s.world.joint_laws()[k]));
+          }
+        }
+        s.world.change_laws(out);
+        if (reset) s.world.reset_displacements();
+      },
+      py::arg("changes"), py::arg("reset_displacements") = false,
+      "Gives joint laws anew, as a stage's set_laws does: changes is a list of dicts "
+      "{'joint_set': NAME or 'group': NAME, 'law': NAME or 'elastic'}. Contacts keep their bond "
+      "state, closure and shear history; a broken bond stays broken. 'elastic' gives each face "
+      "its law's elastic twin 'NAME (elastic)' (made on first use when the scenario has none). "
+      "reset_displacements: displacements count from now on.");
   bind_state(cls);
 }
 

@@ -227,3 +227,62 @@ def test_collapse_search_of_a_cohesive_block():
     lo, hi = r["collapse"]["last_stable"], r["collapse"]["first_failed"]
     assert lo < hi and hi - lo <= 0.1
     assert 0.5 * (lo + hi) == pytest.approx(g_star, rel=0.05)
+
+
+def bonded_incline(cohesion):
+    """A 4 x 2 x 3 m rock mass cut by one joint J1 dipping 30 degrees east through its centre,
+    the part below it fixed; J1 has friction 20 degrees and `cohesion`. The upper part (12 m3,
+    W = 2500 g 12) rests on 2 x 4 / cos 30 m2 of J1 and needs the cohesion
+    c* = W (sin 30 - cos 30 tan 20) / A = 5,888 Pa (a block on an incline with cohesion)."""
+    scene = bd.Scene()
+    scene.settings(rounding_distance=0.005)
+    scene.joint_law("rough", normal={"law": "linear", "stiffness": 1e9},
+                    shear={"law": "linear", "stiffness": 1e8, "friction_deg": 40})
+    scene.joint_law("bonded", normal={"law": "linear", "stiffness": 1e9},
+                    shear={"law": "linear", "stiffness": 1e8, "friction_deg": 20,
+                           "cohesion": cohesion})
+    scene.rock_mass(region={"min": [0, 0, 0], "max": [4, 2, 3]}, density=2500, law="rough")
+    scene.joint_set(name="J1", dip_deg=30, dip_direction_deg=90, spacing=100,
+                    origin=[2, 1, 1.5], law="bonded")
+    scene.boundary(faces=["z_min"])
+    scene.stage("consolidate", gravity=[0, 0, -G], ramp_steps=2000, damping=0.7,
+                max_steps=20000)
+    return scene.simulation()
+
+
+def needed_cohesion():
+    weight = 2500.0 * G * 12.0
+    area = 2.0 * 4.0 / np.cos(np.radians(30.0))
+    return weight * (np.sin(np.radians(30.0)) - np.cos(np.radians(30.0)) * np.tan(np.radians(20.0))) / area
+
+
+@pytest.mark.parametrize("factor", [0.9, 1.1])
+def test_set_laws_elastic_then_real(factor):
+    # Consolidated with J1 elastic (its twin made on first use: the scenario has no elastic
+    # stage), the bond survives gravity whatever its cohesion; given its real law, it breaks
+    # and the block slides when c = 0.9 c*, and holds without moving when c = 1.1 c*.
+    c_star = needed_cohesion()
+    assert c_star == pytest.approx(5888.0, abs=1.0)
+    sim = bonded_incline(factor * c_star)
+    sim.set_laws([{"joint_set": "J1", "law": "elastic"}])
+    assert sim.run_stage()["converged"]
+    assert sim.broken_bonds == 0
+    sim.set_laws([{"joint_set": "J1", "law": "bonded"}], reset_displacements=True)
+    sim.step(20000)
+    moved = np.abs(sim.displacements).max()
+    if factor < 1.0:
+        assert sim.broken_bonds > 0 and moved > 1e-2
+    else:
+        assert sim.broken_bonds == 0 and moved < 1e-6
+
+
+def test_set_laws_refuses_unknown_names():
+    sim = bonded_incline(1e4)
+    with pytest.raises(KeyError, match="J1"):
+        sim.set_laws([{"joint_set": "J9", "law": "bonded"}])
+    with pytest.raises(KeyError, match="nonsense"):
+        sim.set_laws([{"joint_set": "J1", "law": "nonsense"}])
+    with pytest.raises(ValueError, match="unknown key"):
+        sim.set_laws([{"joint_set": "J1", "law": "bonded", "speed": 1}])
+    with pytest.raises(ValueError, match="either"):
+        sim.set_laws([{"joint_set": "J1", "group": "rock", "law": "bonded"}])

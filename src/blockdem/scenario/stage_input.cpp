@@ -208,9 +208,19 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   return s;
 }
 
-/// When a stage makes laws elastic: every joint law gets its twin "NAME (elastic)", the same
-/// stiffnesses with a strength no load reaches (cohesion and tensile strength of 1e30 Pa), so
-/// that no joint slips, opens a bond or breaks while it holds.
+JointLaw elastic_twin(const JointLaw& law) {
+  JointLaw twin = law;
+  twin.name += std::string(kElasticSuffix);
+  std::visit(
+      [](auto& l) {
+        l.strength.cohesion = 1e30;
+        l.strength.tensile_strength = 1e30;
+      },
+      twin.shear);
+  return twin;
+}
+
+/// When a stage makes laws elastic: every joint law gets its twin (elastic_twin).
 void add_elastic_twins(Scenario& sc) {
   bool elastic = false;
   for (const Stage& st : sc.stages) {
@@ -218,17 +228,7 @@ void add_elastic_twins(Scenario& sc) {
   }
   if (!elastic) return;
   const std::size_t n = sc.joint_laws.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    JointLaw twin = sc.joint_laws[i];
-    twin.name += std::string(kElasticSuffix);
-    std::visit(
-        [](auto& l) {
-          l.strength.cohesion = 1e30;
-          l.strength.tensile_strength = 1e30;
-        },
-        twin.shear);
-    sc.joint_laws.push_back(std::move(twin));
-  }
+  for (std::size_t i = 0; i < n; ++i) sc.joint_laws.push_back(elastic_twin(sc.joint_laws[i]));
 }
 
 }  // namespace blockdem

@@ -28,7 +28,11 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
                  const std::map<std::string, std::vector<std::string>>& excavations,
                  const StageNames& known);
 
-/// When a stage makes laws elastic: every joint law gets its twin "NAME (elastic)".
+/// The elastic twin of a law, "NAME (elastic)": the same stiffnesses, with a strength no load
+/// reaches (cohesion and tensile strength of 1e30 Pa), so that no joint slips, opens a bond or
+/// breaks while it holds.
+JointLaw elastic_twin(const JointLaw& law);
+/// When a stage makes laws elastic: every joint law gets its twin (elastic_twin).
 void add_elastic_twins(Scenario& sc);
 
 }  // namespace blockdem
