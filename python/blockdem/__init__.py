@@ -1,9 +1,9 @@
 """blockdem from Python: build scenes with the names of the TOML scenario files, run them stage by
 stage or step by step with callbacks, read the state as NumPy arrays, and run the studies.
 docs/python.md is the reference."""
-import os
-import pathlib
-import shutil
+import os as _os
+import pathlib as _pathlib
+import shutil as _shutil
 
 from ._core import (DivergenceError, Scenario, ScenarioError, Simulation, analytic_voussoir,
                     calibrate_continuously_yielding, calibrate_normal, calibrate_shear,
@@ -30,7 +30,7 @@ def run(scenario, out, progress=None):
         scenario = scenario.build()
     elif not isinstance(scenario, Scenario):
         scenario = load(scenario)
-    out = pathlib.Path(out)
+    out = _pathlib.Path(out)
     existed = out.exists()
     try:
         return run_scenario(scenario, str(out), progress)
@@ -38,12 +38,12 @@ def run(scenario, out, progress=None):
         # Some input errors show only while running (strength-reduction bounds that do not
         # bracket the failure): as `blockdem run`, leave nothing written.
         if not existed:
-            shutil.rmtree(out, ignore_errors=True)
+            _shutil.rmtree(out, ignore_errors=True)
         else:
             for name in _core.run_output_names():
                 target = out / name
                 if target.is_dir():
-                    shutil.rmtree(target, ignore_errors=True)
+                    _shutil.rmtree(target, ignore_errors=True)
                 elif target.exists():
                     target.unlink()
         raise
@@ -52,10 +52,10 @@ def run(scenario, out, progress=None):
 def data_dir():
     """The folder of blockdem's data (scenarios/, tools/): BLOCKDEM_DATA_DIR when set, else
     share/blockdem of the build folder or of the installation prefix holding this package."""
-    env = os.environ.get("BLOCKDEM_DATA_DIR")
+    env = _os.environ.get("BLOCKDEM_DATA_DIR")
     if env:
-        return pathlib.Path(env)
-    here = pathlib.Path(__file__).resolve().parent
+        return _pathlib.Path(env)
+    here = _pathlib.Path(__file__).resolve().parent
     # BUILD/python/blockdem, or PREFIX/lib/python3/dist-packages/blockdem.
     for root in (here.parents[1], here.parents[3]):
         if (root / "share" / "blockdem" / "scenarios").is_dir():
@@ -67,6 +67,6 @@ def reproduce_boon2015(out, cases=(), modes="both", jobs=0, scenarios=None, prog
     """The reproduction of Boon, Houlsby & Utili (2015), as `blockdem reproduce boon2015
     --no-figures`: each case into out/<id>, out/report.md; one dict per case. `cases` as
     ["T2-1", "T2-1-fi"] (empty: all), modes "both", "boon2012" or "face_integrated"."""
-    folder = pathlib.Path(scenarios) if scenarios else data_dir() / "scenarios" / "boon2015"
+    folder = _pathlib.Path(scenarios) if scenarios else data_dir() / "scenarios" / "boon2015"
     return _core.reproduce_boon2015(str(out), scenarios=str(folder), cases=list(cases),
                                     modes=modes, jobs=jobs, progress=progress)

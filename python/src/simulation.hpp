@@ -2,9 +2,12 @@
 #pragma once
 
 #include <pybind11/pybind11.h>
-#include <cstdint>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "blockdem/scenario/scenario.hpp"
@@ -20,6 +23,31 @@ struct Simulation {
   std::shared_ptr<const Scenario> scenario;
   World world;
   int next_stage = 0;  ///< the stage run_stage() runs when given none
+  /// The thread stepping the world (run_stage, step), if any. The steps hold Python's lock, so
+  /// another thread reaches the simulation only while a callback runs, between two steps.
+  std::optional<std::thread::id> runner;
+};
+
+/// Marks a simulation as stepped by this thread for the guard's life; throws RuntimeError when
+/// another thread is stepping it (the same thread may step again from a callback).
+class Running {
+ public:
+  explicit Running(Simulation& s) : s_(s), outer_(!s.runner) {
+    if (s.runner && *s.runner != std::this_thread::get_id())
+      throw std::runtime_error(
+          "this Simulation is being run by another thread: step one simulation from one thread "
+          "(run independent simulations in processes)");
+    s.runner = std::this_thread::get_id();
+  }
+  ~Running() {
+    if (outer_) s_.runner.reset();
+  }
+  Running(const Running&) = delete;
+  Running& operator=(const Running&) = delete;
+
+ private:
+  Simulation& s_;
+  bool outer_;
 };
 
 /// The index of a block given by name or index; throws IndexError / KeyError.

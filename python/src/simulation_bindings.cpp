@@ -109,7 +109,9 @@ py::dict run_one_stage(Simulation& s, int i, const StepHook& hook) {
   control.search_after_any_failure = true;
   StageRecord record;
   {
-    py::gil_scoped_release free;
+    // Python's lock stays held (a callback takes it anyway): no other thread can read or change
+    // the world in the middle of a step.
+    const Running running(s);
     drive_stages(s.world, s.scenario->stages, i + 1, DriveStart{i, nullptr, {}, {}}, control,
                  {&record});
   }
@@ -138,6 +140,7 @@ void bind_simulation(py::module_& m) {
   py::class_<Simulation> cls(m, "Simulation",
                              "A world built from a Scenario (the same build as `blockdem run`).");
   cls.def(py::init([](std::shared_ptr<Scenario> sc) {
+            if (!sc) throw py::type_error("Simulation(scenario): a blockdem.Scenario, not None");
             return std::make_unique<Simulation>(std::make_shared<Scenario>(*sc));
           }),
           py::arg("scenario"),
@@ -175,7 +178,7 @@ void bind_simulation(py::module_& m) {
             if (n < 0) throw py::value_error("n: must be >= 0");
             const StepHook hook = make_hook(self, callback, every);
             std::int64_t k = 0;
-            py::gil_scoped_release free;
+            const Running running(s);
             while (k < n) {
               s.world.step();
               ++k;

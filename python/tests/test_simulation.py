@@ -286,3 +286,41 @@ def test_set_laws_refuses_unknown_names():
         sim.set_laws([{"joint_set": "J1", "law": "bonded", "speed": 1}])
     with pytest.raises(ValueError, match="either"):
         sim.set_laws([{"joint_set": "J1", "group": "rock", "law": "bonded"}])
+
+
+def test_simulation_of_none_is_a_type_error():
+    with pytest.raises(TypeError, match="Scenario"):
+        bd.Simulation(None)
+
+
+def test_namespace_holds_only_blockdem_names():
+    public = {n for n in dir(bd) if not n.startswith("_")}
+    assert not public & {"os", "pathlib", "shutil"}
+    assert set(bd.__all__) <= public
+
+
+def test_two_threads_stepping_one_simulation():
+    # One simulation stepped from two threads at once: the second is refused while the first
+    # steps (or waits for Python's lock and steps after it); no crash, and every step taken is
+    # counted once. Free fall, so the state after N steps is known: z = z0 - g dt^2 N (N + 1) / 2.
+    import threading
+    dt = 1e-4
+    sim = free_block(gravity=(0.0, 0.0, -G), dt=dt)
+    taken, refused = [], []
+
+    def work():
+        try:
+            taken.append(sim.step(2000, callback=lambda s, k: None, every=50))
+        except RuntimeError as e:
+            refused.append(str(e))
+
+    threads = [threading.Thread(target=work) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    n = sum(taken)
+    assert len(taken) + len(refused) == 2 and n >= 2000
+    assert all("another thread" in r for r in refused)
+    assert sim.step_count == n
+    assert sim.positions[0, 2] == pytest.approx(10.0 - G * dt**2 * n * (n + 1) / 2, abs=1e-12)
