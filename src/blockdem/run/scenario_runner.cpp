@@ -237,6 +237,13 @@ class RunOutputs final : public RunObserver {
                     point.outputs.size());
       history_->load_state(r);
       recorder_->load_state(r);
+      // An excavation stage's blocks at its start, for its key blocks at its end.
+      resumed_in_stage_ = point.in_stage;
+      start_positions_.clear();
+      for (std::size_t k = r.size(); k-- > 0;) {
+        std::string name = r.str();
+        start_positions_[std::move(name)] = r.vec();
+      }
       if (!r.done()) throw StateError("saved output state is corrupt (bytes left over)");
     } catch (const StateError& e) {
       throw CheckpointError(restart, e.what());
@@ -247,6 +254,14 @@ class RunOutputs final : public RunObserver {
     res_.factor_of_safety = point.factor_of_safety;
   }
   RunRecorder& recorder() { return *recorder_; }
+  /// The excavation stage's blocks at its start (resume reads them back).
+  void save_stage_start(StateWriter& w) const {
+    w.size(start_positions_.size());
+    for (const auto& [name, x] : start_positions_) {
+      w.str(name);
+      w.vec(x);
+    }
+  }
   TimeHistoryWriter& history() { return *history_; }
   nlohmann::json& summary() { return res_.summary; }
   nlohmann::json& stages() { return stages_; }
@@ -262,6 +277,8 @@ class RunOutputs final : public RunObserver {
   /// An excavation's key blocks read the world.
   bool reads_world_at_stage_end(const Stage& stage) const override { return !stage.remove.empty(); }
   void on_stage_start(const World& world, const Stage& stage, int) override {
+    // A stage resumed from a checkpoint started before it: its start positions came with it.
+    if (std::exchange(resumed_in_stage_, false)) return;
     start_positions_ =
         stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
   }
@@ -286,6 +303,7 @@ class RunOutputs final : public RunObserver {
   std::unique_ptr<RunRecorder> recorder_;
   std::unique_ptr<TimeHistoryWriter> history_;
   std::map<std::string, Eigen::Vector3d> start_positions_;  ///< an excavation's blocks at start
+  bool resumed_in_stage_ = false;  ///< resume() continues a stage: its start is not now
   std::string interrupted_where_;
 };
 
@@ -447,6 +465,7 @@ void Checkpoints::write(int level, const StageResume* at, const MotionMonitor* m
     StateWriter w;
     outputs_.history().save_state(w);
     outputs_.recorder().save_state(w);
+    outputs_.save_stage_start(w);
     p.outputs.assign(w.bytes().begin(), w.bytes().end());
   }
   outputs_.history().flush();  // the rows so far are in the file saved below

@@ -188,5 +188,77 @@ TEST_F(Restart, UnusableCheckpointsAreRefusedAndNothingIsTouched) {
   }
 }
 
+// A stop inside an excavation stage: the key blocks at its end are measured from the stage's
+// start, which the checkpoint carries (not from where the run was resumed). Reference: the
+// uninterrupted run (bytes, summary.json's key_blocks included).
+TEST(RestartExcavation, KeyBlocksOfAResumedExcavationStageAreMeasuredFromItsStart) {
+  const fs::path file = fresh_dir("restart_excavation.toml");
+  {
+    std::ofstream f(file);
+    f << R"(title = "a block left without support"
+[settings]
+damping = 0.0
+[[joint_laws]]
+name = "joint"
+normal = { law = "linear", stiffness = 1e9 }
+shear = { law = "linear", stiffness = 1e8, friction_deg = 30 }
+[rock_mass]
+region = { min = [0, 0, 0], max = [2, 1, 2] }
+density = 2500
+law = "joint"
+[[joint_sets]]
+name = "bedding"
+dip_deg = 0
+dip_direction_deg = 0
+spacing = 100
+origin = [1, 0.5, 1]
+[[joint_sets]]
+name = "cross"
+dip_deg = 90
+dip_direction_deg = 90
+spacing = 100
+origin = [1, 0.5, 1]
+[[excavations]]
+name = "cut"
+shape = "planes"
+planes = [[-1, 0, 0, -1], [0, 0, 1, 1]]
+[[boundaries]]
+faces = ["z_min"]
+condition = "fixed"
+[[stages]]
+name = "settle"
+kind = "steps"
+steps = 300
+gravity = [0, 0, -9.81]
+[[stages]]
+name = "cut"
+kind = "duration"
+duration = 0.2
+excavation = "cut"
+)";
+  }
+  const fs::path reference = fresh_dir("restart_excavation_reference");
+  const CommandOutput full = run_cli("run '" + file.string() + "' --out '" + reference.string() +
+                                     "' --quiet --no-figures --threads 1");
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  const auto summary = nlohmann::json::parse(std::ifstream(reference / "summary.json"));
+  ASSERT_EQ(summary["key_blocks"].size(), 1u) << summary.dump();
+  // The block above the cut falls freely for the stage (no friction without normal force):
+  // g t^2 / 2 = 0.196 m, to the time step's order.
+  EXPECT_NEAR(summary["key_blocks"][0]["displacement_m"].get<double>(), 0.5 * 9.81 * 0.04, 0.005);
+  const fs::path out = fresh_dir("restart_excavation_resumed");
+  const std::int64_t stop = summary["stages"][0]["steps"].get<std::int64_t>() +
+                            summary["stages"][1]["steps"].get<std::int64_t>() / 2;
+  ::setenv("BLOCKDEM_TEST_KILL_RANK", ("0:" + std::to_string(stop) + ":TERM").c_str(), 1);
+  const CommandOutput stopped = run_cli("run '" + file.string() + "' --out '" + out.string() +
+                                        "' --quiet --no-figures --threads 1");
+  ::unsetenv("BLOCKDEM_TEST_KILL_RANK");
+  ASSERT_EQ(stopped.exit_code, 143) << stopped.err;
+  const CommandOutput r = run_cli("run '" + file.string() + "' --out '" + out.string() +
+                                  "' --quiet --no-figures --threads 1 --resume");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  expect_same_outputs(reference, out);
+}
+
 }  // namespace
 }  // namespace blockdem::test
