@@ -64,6 +64,7 @@ TEST_P(StagedSlope, FactorOfSafetyMatchesHoekBrayWithCohesion) {
   const auto& stages = r.summary["stages"];
   ASSERT_EQ(stages.size(), 4u);
   EXPECT_EQ(stages[2]["broken_bonds"].get<std::int64_t>(), 0);
+  EXPECT_TRUE(stages[2]["in_equilibrium"].get<bool>());
   const auto& fos = r.summary["factor_of_safety"];
   const double f = *r.factor_of_safety;
   std::printf("staged slope (%s): F = %.4f (stable at %.4f, failed at %.4f), Hoek & Bray %.4f\n",

@@ -313,6 +313,11 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
   res_.steps_per_stage.push_back(result.steps);
   stages_.push_back({{"name", stage.name},
                      {"converged", result.converged},
+                     // Whether the rock is at rest by the stage's tolerances, whatever its kind
+                     // (a steps or duration stage converges when its steps or time are done).
+                     {"in_equilibrium",
+                      result.measures.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
+                          result.measures.kinetic_energy_ratio <= stage.kinetic_tolerance},
                      {"status", end.failure ? to_string(*end.failure) : "completed"},
                      {"steps", result.steps},
                      {"time_s", result.time},

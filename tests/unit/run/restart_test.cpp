@@ -246,6 +246,9 @@ excavation = "cut"
   // The block above the cut falls freely for the stage (no friction without normal force):
   // g t^2 / 2 = 0.196 m, to the time step's order.
   EXPECT_NEAR(summary["key_blocks"][0]["displacement_m"].get<double>(), 0.5 * 9.81 * 0.04, 0.005);
+  // The duration stage is done (converged) with a block falling: not in equilibrium.
+  EXPECT_TRUE(summary["stages"][1]["converged"].get<bool>());
+  EXPECT_FALSE(summary["stages"][1]["in_equilibrium"].get<bool>());
   const fs::path out = fresh_dir("restart_excavation_resumed");
   const std::int64_t stop = summary["stages"][0]["steps"].get<std::int64_t>() +
                             summary["stages"][1]["steps"].get<std::int64_t>() / 2;
