@@ -19,6 +19,7 @@
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/output_error.hpp"
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/run_files.hpp"
@@ -334,11 +335,16 @@ int report_end(const RunOptions& opt, const RunResult& r, const MpiSession& mpi,
               << "blockdem: outputs up to the last good state are in " << opt.out
               << " (summary.json status \"" << to_string(r.status) << "\")\n";
   } else if (!opt.quiet) {
-    char buf[128];
     // The whole command's time: reading the scenario (a large one's rock mass cut) and the run.
-    std::snprintf(buf, sizeof buf, "blockdem: done in %.2f s, %lld steps; outputs in ",
-                  seconds_since(command0), static_cast<long long>(r.steps));
-    std::cerr << buf << opt.out << "\n";
+    // A stability search's trials step copies of the model: their steps are counted apart (its
+    // stage's row in history.csv counts them).
+    std::int64_t staged = 0;
+    for (const std::int64_t n : r.steps_per_stage) staged += n;
+    std::string line = "blockdem: done in " + number_text(seconds_since(command0), "%.2f") +
+                       " s, " + std::to_string(r.steps) + " steps";
+    if (staged > r.steps)
+      line += " (and " + std::to_string(staged - r.steps) + " in the stability search's trials)";
+    std::cerr << line << "; outputs in " << opt.out << "\n";
   }
   return r.exit_code;
 }
