@@ -77,5 +77,21 @@ TEST(PlanarSlidingWithCohesion, FactorOfSafetyMatchesHoekBray) {
               *r.factor_of_safety, expected);
 }
 
+// A block on an incline steeper than its friction angle in an equilibrium stage: it slides and
+// keeps accelerating (a = g (sin psi - cos psi tan phi) (1 - damping) > 0), a mechanism beyond
+// doubt. The stage ends as collapsed soon after the block passes the displacement limit, not at
+// max_steps.
+TEST(CertainMechanism, EndsTheStageOnceTheLimitIsPassed) {
+  const char* equilibrium =
+      "[[stages]]\nname = \"hold\"\nkind = \"equilibrium\"\nmax_steps = 500000\n";
+  const RunResult r =
+      test::run_text(test::incline_scenario(40.0, 30.0, 0.1, 0.02, equilibrium), "certain_slide");
+  EXPECT_EQ(r.status, RunStatus::collapsed) << r.message;
+  const auto& stage = r.summary["stages"].back();
+  EXPECT_LT(stage["steps"].get<std::int64_t>(), 100000) << r.message;
+  EXPECT_NE(r.message.find("kept accelerating"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("physical collapse"), std::string::npos) << r.message;
+}
+
 }  // namespace
 }  // namespace blockdem

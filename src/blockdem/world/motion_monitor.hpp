@@ -72,6 +72,10 @@ enum class FailureKind { collapsed, diverged, not_converged };
 /// the loads cannot have supplied. A physical collapse: a mechanism (or a divergence check
 /// tripped by blocks moving) under a stable step, with the energy accounted for by the loads.
 FailureKind classify_failure(const MotionMonitor& monitor, bool blew_up);
+/// True when the monitor shows a physical collapse beyond doubt: a block past the displacement
+/// limit, the largest speed grown at `criteria.growth_checks` successive checks, a stable time
+/// step and no kinetic energy the loads cannot have supplied.
+bool collapse_is_certain(const MotionMonitor& monitor, const MechanismCriteria& criteria);
 const char* to_string(FailureKind kind);
 /// A plain-words explanation with advice that fits the kind.
 std::string explain_failure(FailureKind kind, const MotionReport& report, const World& world);

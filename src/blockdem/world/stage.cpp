@@ -191,6 +191,17 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       r.message = "a mechanism formed after " + std::to_string(k) + " steps";
       break;
     }
+    // A mechanism beyond doubt ends an equilibrium stage at once (waiting for max_steps would
+    // only carry the blocks farther): blocks past the displacement limit whose largest speed has
+    // grown at every one of the last growth_checks checks, under a stable time step and with
+    // the kinetic energy accounted for by the loads. The stage fails as it would at max_steps.
+    if (stage.kind == Stage::Kind::equilibrium && check && !ramping &&
+        collapse_is_certain(*watch, stage.mechanism)) {
+      r.mechanism = true;
+      r.message = "a mechanism formed after " + std::to_string(k) +
+                  " steps: blocks past the displacement limit kept accelerating";
+      break;
+    }
     if (k >= stage.max_steps) {
       world.synchronize();
       const EquilibriumMeasures m = world.equilibrium();
