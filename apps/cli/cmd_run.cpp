@@ -8,9 +8,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -348,6 +350,15 @@ int report_end(const RunOptions& opt, const RunResult& r, const MpiSession& mpi,
   }
   return r.exit_code;
 }
+/// Whether the output folder holds a run that completed (its summary.json says so).
+bool run_completed(const std::string& out) {
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  if (!in) return false;
+  const auto summary = nlohmann::json::parse(in, nullptr, false);
+  return !summary.is_discarded() && summary.is_object() && summary.contains("status") &&
+         summary["status"] == "completed";
+}
+
 
 int run_one(RunOptions opt, const MpiSession& mpi) {
   Progress progress(!opt.quiet);
@@ -371,6 +382,16 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   // the failure): then what the run wrote is removed, so that nothing is left.
   const bool existed = std::filesystem::exists(opt.out);
   const bool restarting = !opt.restart.empty() || opt.resume;
+  if (opt.resume && run_completed(opt.shared_out.empty() ? opt.out : opt.shared_out)) {
+    // Nothing to resume: running the last checkpoint's stages again would rewrite a finished
+    // run (and an interrupt would then mark it interrupted).
+    if (mpi.rank() == 0)
+      std::cerr << "blockdem: the run in " << opt.out
+                << " completed (summary.json status \"completed\"): nothing to resume; to branch "
+                   "from its last checkpoint, run into another folder with --restart "
+                << (std::filesystem::path(opt.out) / kCheckpointName).string() << "\n";
+    return 0;
+  }
   // Until every rank has read the scenario, a failure must be agreed on by all (collective).
   bool agreed = false;
   auto agree = [&](bool ok, std::string& why) {

@@ -261,6 +261,15 @@ excavation = "cut"
                                   "' --quiet --no-figures --threads 1 --resume");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   expect_same_outputs(reference, out);
+  // --resume again, on the completed run: nothing to resume and nothing touched (every file keeps
+  // its bytes), exit 0 with a message naming --restart for a branch.
+  const auto before = folder_digest(out);
+  const CommandOutput again = run_cli("run '" + file.string() + "' --out '" + out.string() +
+                                      "' --quiet --no-figures --threads 1 --resume");
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("nothing to resume"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("--restart"), std::string::npos) << again.err;
+  EXPECT_EQ(folder_digest(out), before);
 }
 
 }  // namespace
