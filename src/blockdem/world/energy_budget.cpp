@@ -99,7 +99,7 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
   // threads, which cannot size it): made here once some block's are not +0.0 (Δt > 0).
   if (loads_.empty()) {
     for (const Block& b : blocks) {
-      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
+      if (b.is_dynamic() && !(zero_bits(b.applied_force()) && zero_bits(b.applied_torque()))) {
         keep_loads();
         break;
       }
@@ -122,7 +122,7 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks, std::spa
   if (loads_.empty()) {
     for (const int k : only) {
       const Block& b = blocks[static_cast<std::size_t>(k)];
-      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
+      if (b.is_dynamic() && !(zero_bits(b.applied_force()) && zero_bits(b.applied_torque()))) {
         keep_loads();
         break;
       }
@@ -250,8 +250,8 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
   if (b.is_dynamic()) {
     // This step's impulses; the damping force is what local_damping took off the load.
     const Eigen::Vector3d ig = dt * b.mass * gravity;
-    const Eigen::Vector3d il = dt * b.external_force();
-    const Eigen::Vector3d tl = dt * b.external_torque();
+    const Eigen::Vector3d il = dt * b.applied_force();
+    const Eigen::Vector3d tl = dt * b.applied_torque();
     const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
     const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
     // before_integration gave the record a free block's impulses; with loads_ empty, the load

@@ -29,7 +29,9 @@ struct EnergyBudget {
   /// closure; an estimate for the others (their difference then shows in the residual).
   double elastic = 0.0;
   double gravity_work = 0.0;  ///< work of gravity on the free blocks (J)
-  double load_work = 0.0;     ///< work of the applied forces and torques on free blocks (J)
+  /// Work of the applied forces and torques on free blocks: the constant loads, the ground
+  /// water's pressure and a pseudo-static earthquake's body force (Block::applied_force) (J).
+  double load_work = 0.0;
   /// Work done on the model by prescribed and servo blocks through their contacts (J).
   double boundary_work = 0.0;
   double friction_dissipation = 0.0;  ///< Σ -F_s·du_p over joint slip (J), positive

@@ -1,0 +1,263 @@
+// Water in the joints and a pseudo-static earthquake against the closed form of plane failure
+// with a tension crack (Hoek & Bray, Rock Slope Engineering, 3rd ed., 1981, ch. 7; Wyllie & Mah,
+// 4th ed., 2004, ch. 6). A slope of height H and face angle ψ_f stands on a plane dipping ψ_p; a
+// vertical tension crack of depth z behind the crest holds water to a depth z_w, and the water
+// seeps along the sliding plane to the toe, its pressure falling linearly from γ_w z_w at the
+// crack's foot to zero there. Per metre of slope (block width b = 1 m):
+//   W = ½ γ_r H² [(1 − (z/H)²) cot ψ_p − cot ψ_f]   the block's weight,
+//   A = (H − z) / sin ψ_p                            the sliding plane's area,
+//   U = ½ γ_w z_w A                                  the water force on the sliding plane,
+//   V = ½ γ_w z_w²                                   the water force in the crack (horizontal),
+// and with a horizontal seismic force α W out of the slope, resolving normal and parallel to the
+// plane (a rigid block, Mohr-Coulomb on the plane, no resistance in the crack):
+//   F = [c A + (W (cos ψ_p − α sin ψ_p) − U − V sin ψ_p) tan φ] / [W (sin ψ_p + α cos ψ_p) + V cos
+//   ψ_p].
+// The model makes the same water pressure from a plane water table through the toe and the
+// water level in the crack (p = γ_w (z_w(x) − z) is then linear along the sliding plane and
+// hydrostatic in the crack). Tolerance: 2% on F (the bisection's bracket is 0.01); the critical
+// seismic coefficient k_c (F = 1) within 0.01 of the closed form (bracket 0.005).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/scenario.hpp"
+#include "blockdem/world/stage.hpp"
+#include "stability_support.hpp"
+
+namespace blockdem::test::water_seismic {
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kRock = 2600.0, kWater = 1000.0;
+constexpr double kHeight = 30.0, kFaceDeg = 60.0, kPlaneDeg = 30.0, kCrack = 10.0;
+
+struct Slope {
+  double friction_deg = 35.0;
+  double cohesion = 50e3;    ///< (Pa)
+  double water_depth = 0.0;  ///< z_w in the crack (m)
+  double seismic = 0.0;      ///< α = k_h
+};
+
+// Hoek & Bray's forces per metre of slope: W, A, U, V (N/m, m²/m), and sin, cos ψ_p, tan φ.
+struct Forces {
+  double w, area, u, v, sp, cp, tf;
+};
+
+Forces forces(const Slope& s) {
+  const double pp = deg_to_rad(kPlaneDeg), pf = deg_to_rad(kFaceDeg);
+  const double zr = kCrack / kHeight;
+  Forces f{};
+  f.w =
+      0.5 * kRock * kG * kHeight * kHeight * ((1.0 - zr * zr) / std::tan(pp) - 1.0 / std::tan(pf));
+  f.area = (kHeight - kCrack) / std::sin(pp);
+  f.u = 0.5 * kWater * kG * s.water_depth * f.area;
+  f.v = 0.5 * kWater * kG * s.water_depth * s.water_depth;
+  f.sp = std::sin(pp);
+  f.cp = std::cos(pp);
+  f.tf = std::tan(deg_to_rad(s.friction_deg));
+  return f;
+}
+
+// Hoek & Bray's factor of safety.
+double closed_form(const Slope& s) {
+  const Forces f = forces(s);
+  const double a = s.seismic;
+  return (s.cohesion * f.area + (f.w * (f.cp - a * f.sp) - f.u - f.v * f.sp) * f.tf) /
+         (f.w * (f.sp + a * f.cp) + f.v * f.cp);
+}
+
+// The k_h at which F = 1: N(α) = D(α) is linear in α,
+//   α = [c A + (W cos ψ_p − U − V sin ψ_p) tan φ − W sin ψ_p − V cos ψ_p]
+//       / [W (cos ψ_p + sin ψ_p tan φ)].
+double critical_coefficient(const Slope& s) {
+  const Forces f = forces(s);
+  return (s.cohesion * f.area + (f.w * f.cp - f.u - f.v * f.sp) * f.tf - f.w * f.sp - f.v * f.cp) /
+         (f.w * (f.cp + f.sp * f.tf));
+}
+
+// The slope as a scenario: the sliding block (toe at the origin, the slope face dipping west,
+// x east), a fixed base whose top is the sliding plane, the water table and `stages`.
+std::string slope_scenario(const Slope& s, const std::string& mode, const std::string& stages) {
+  const double tp = std::tan(deg_to_rad(kPlaneDeg)), tf = std::tan(deg_to_rad(kFaceDeg));
+  const double xc = kHeight / tf;             // the crest
+  const double xk = (kHeight - kCrack) / tp;  // the crack
+  const double zb = kHeight - kCrack;         // the crack's foot
+  std::ostringstream t;
+  t.precision(15);
+  const auto prism = [&t](const std::vector<std::array<double, 2>>& xz) {
+    t << "vertices = [";
+    for (const double y : {0.0, 1.0}) {
+      for (const auto& p : xz) t << "[" << p[0] << ", " << y << ", " << p[1] << "], ";
+    }
+    t << "]\n";
+  };
+  t << "[settings]\ndamping = 0.7\ncontact_mode = \"" << mode << "\"\n";
+  t << "[[materials]]\nname = \"rock\"\ndensity = " << kRock << "\n";
+  t << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 2e9 }\n"
+    << "shear = { law = \"linear\", stiffness = 2e8, friction_deg = " << s.friction_deg
+    << ", cohesion = " << s.cohesion << " }\n";
+  t << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nshape = \"vertices\"\nmotion = "
+       "\"fixed\"\n";
+  prism({{-10.0, -10.0 * tp}, {xk + 10.0, (xk + 10.0) * tp}, {xk + 10.0, -20.0}, {-10.0, -20.0}});
+  t << "[[blocks]]\nname = \"slide\"\nmaterial = \"rock\"\nshape = \"vertices\"\n";
+  prism({{0.0, 0.0}, {xk, zb}, {xk, kHeight}, {xc, kHeight}});
+  t << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, " << -kG << "]\n";
+  // Then the water: the table through the toe and the water level in the crack (a plane
+  // containing y). Applied in one stage with gravity, the loads' transient broke part of the
+  // joint's cohesive bond that the static loads leave intact (the fully filled crack then gave
+  // F = 1.05 instead of 1.20).
+  if (s.water_depth > 0.0) {
+    const double slope = (zb + s.water_depth) / xk;
+    t << "[[stages]]\nname = \"flood\"\nwater_table = { point = [0.0, 0.0, 0.0], normal = ["
+      << -slope << ", 0.0, 1.0] }\n"
+      << "water_density = " << kWater << "\n";
+  }
+  t << stages;
+  return t.str();
+}
+
+std::string reduction_stage(double seismic) {
+  std::ostringstream t;
+  t << "[[stages]]\nname = \"srm\"\nkind = \"strength_reduction\"\nfactor_bounds = [0.5, 3.0]\n"
+    << "tolerance = 0.01\nmax_steps = 60000\n";
+  if (seismic > 0.0)
+    t << "seismic_kh = " << seismic << "\nseismic_direction_deg = 270\nramp_steps = 2000\n";
+  return t.str();
+}
+
+struct Case {
+  const char* mode;
+  double water_depth;
+  double seismic;
+};
+
+class PlaneFailureWithWater : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PlaneFailureWithWater, FactorOfSafetyMatchesHoekBray) {
+  const Case c = GetParam();
+  Slope s;
+  s.water_depth = c.water_depth;
+  s.seismic = c.seismic;
+  const std::string name = std::string("water_hb_") + c.mode + "_" +
+                           std::to_string(static_cast<int>(10 * c.water_depth)) + "_" +
+                           std::to_string(static_cast<int>(100 * c.seismic));
+  const RunResult r = run_text(slope_scenario(s, c.mode, reduction_stage(c.seismic)), name);
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+  ASSERT_TRUE(r.factor_of_safety.has_value());
+  const double expected = closed_form(s);
+  EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
+  std::printf("%s z_w %.1f m k_h %.2f: F = %.4f (Hoek & Bray %.4f, %+.2f%%)\n", c.mode,
+              c.water_depth, c.seismic, *r.factor_of_safety, expected,
+              100.0 * (*r.factor_of_safety / expected - 1.0));
+}
+
+INSTANTIATE_TEST_SUITE_P(HoekBray, PlaneFailureWithWater,
+                         ::testing::Values(Case{"face_integrated", 0.0, 0.0},
+                                           Case{"face_integrated", 5.0, 0.0},
+                                           Case{"face_integrated", 10.0, 0.0},
+                                           Case{"face_integrated", 0.0, 0.1},
+                                           Case{"face_integrated", 10.0, 0.1},
+                                           Case{"boon2012", 10.0, 0.0}, Case{"boon2012", 5.0, 0.1}),
+                         [](const ::testing::TestParamInfo<Case>& p) {
+                           return std::string(p.param.mode) + "_zw" +
+                                  std::to_string(static_cast<int>(p.param.water_depth)) + "_kh" +
+                                  std::to_string(static_cast<int>(100 * p.param.seismic));
+                         });
+
+// The critical seismic coefficient k_c (F = 1 at full strength), found by find_collapse on k_h,
+// against the closed form solved for α: half-filled crack.
+TEST(PlaneFailureWithWater, CriticalSeismicCoefficientMatchesHoekBray) {
+  Slope s;
+  s.water_depth = 5.0;
+  const double expected = critical_coefficient(s);
+  const std::string stages =
+      "[[stages]]\nname = \"quake\"\nseismic_kh = 0.5\nseismic_direction_deg = 270\nramp_steps = "
+      "2000\n"
+      "find_collapse = true\ncollapse_tolerance = 0.005\nmax_steps = 60000\n";
+  const RunResult r = run_text(slope_scenario(s, "face_integrated", stages), "water_hb_kc");
+  ASSERT_EQ(r.status, RunStatus::collapsed) << r.message;
+  ASSERT_TRUE(r.collapse.has_value());
+  const double kc = 0.5 * (r.collapse->first + r.collapse->second);
+  EXPECT_NEAR(kc, expected, 0.01);
+  EXPECT_EQ(r.summary["collapse"]["unit"], "seismic_kh");
+  std::printf("k_c = %.4f (bracket %.4f to %.4f; Hoek & Bray %.4f)\n", kc, r.collapse->first,
+              r.collapse->second, expected);
+}
+
+// Archimedes and effective stress: a block 1 × 1 × 0.5 m (2600 kg/m³) resting on a fixed base in
+// water whose level table stands 2 m above it (every face below it) feels the water's force
+// ρ_w g V upward, and the joint carries the submerged weight (ρ_r − ρ_w) g V, the effective
+// stress σ' = σ − p times the area, with σ the total stress (the rock's weight plus the water
+// column above). Half submerged (table 0.25 m above the base), the water force is ρ_w g V/2. In
+// both contact modes; tolerances 1e-9 on the water force (exact integration) and 1e-4 on the
+// joint force (the equilibrium's unbalanced-force tolerance 1e-6), and the energy budget
+// balances with the water's work in load_work (residual below 1e-3 of its largest term).
+std::string submerged_block(const std::string& mode, double table_z) {
+  std::ostringstream t;
+  t << "[settings]\ndamping = 0.7\ncontact_mode = \"" << mode << "\"\n"
+    << "water_table = { point = [0.0, 0.0, " << table_z << "], normal = [0.0, 0.0, 1.0] }\n"
+    << "water_density = 1000.0\n"
+    << "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
+    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 30 }\n"
+    << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nsize = [3.0, 3.0, 1.0]\n"
+    << "position = [0.0, 0.0, -0.5]\nmotion = \"fixed\"\n"
+    << "[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [1.0, 1.0, 0.5]\n"
+    << "position = [0.0, 0.0, 0.25]\n"
+    << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\nunbalanced_tolerance = 1e-6\n";
+  return t.str();
+}
+
+class SubmergedBlock : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SubmergedBlock, WaterForceIsArchimedesAndTheJointCarriesTheEffectiveWeight) {
+  const double volume = 0.5, g = kG;
+  for (const double table_z : {2.0, 0.25}) {
+    SCOPED_TRACE(table_z);
+    const Scenario sc = parse_scenario(submerged_block(GetParam(), table_z), "submerged.toml");
+    World w = build_world(sc);
+    const StageResult r = run_stage(w, sc.stages[0]);
+    ASSERT_TRUE(r.converged) << r.message;
+    // V_sub (m³, over the 1 m² base) at the level of the forces: the block has sunk into its
+    // joint by the closure, about 1e-6 m.
+    const int i = w.find_block("block");
+    const Block& b = w.blocks()[static_cast<std::size_t>(i)];
+    const double bottom = w.level_state(i).position.z() - 0.25;
+    const double submerged = table_z >= 0.5 ? volume : table_z - bottom;
+    const double buoyancy = kWater * g * submerged;
+    EXPECT_NEAR(b.water_force().z(), buoyancy, 1e-9 * buoyancy);
+    EXPECT_NEAR(b.water_force().head<2>().norm(), 0.0, 1e-9 * buoyancy);
+    EXPECT_NEAR(w.total_water_force().z(), buoyancy, 1e-9 * buoyancy);
+    // The joint: the effective weight; its mean normal stress is σ' = σ − p.
+    const auto contacts = w.contacts();
+    ASSERT_EQ(contacts.size(), 1u);
+    const double effective = kRock * g * volume - buoyancy;
+    EXPECT_NEAR(contacts[0]->normal_force, effective, 1e-4 * effective);
+    if (table_z >= 0.5) {
+      // Over the joint's 1 m²: σ the rock and the water above it, p the water at z = 0.
+      const double total = kRock * g * volume + kWater * g * (table_z - volume);
+      const double p = kWater * g * table_z;
+      EXPECT_NEAR(contacts[0]->normal_force, total - p, 1e-4 * effective);
+    }
+    const EnergyBudget& e = w.energy_budget();
+    EXPECT_LT(e.load_work, 0.0);  // the upward water force as the block settled onto its joint
+    EXPECT_LT(std::abs(e.residual()), 1e-3 * e.scale());
+    std::printf(
+        "%s table %.2f m: water force %.6f N (rho_w g V_sub %.6f N), joint %.4f N "
+        "(effective weight %.4f N), energy residual %.2e of %.3e J\n",
+        GetParam(), table_z, b.water_force().z(), buoyancy, contacts[0]->normal_force, effective,
+        e.residual(), e.scale());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
+                         ::testing::Values("face_integrated", "boon2012"));
+
+}  // namespace
+}  // namespace blockdem::test::water_seismic
