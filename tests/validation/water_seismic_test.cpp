@@ -259,5 +259,68 @@ TEST_P(SubmergedBlock, WaterForceIsArchimedesAndTheJointCarriesTheEffectiveWeigh
 INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
                          ::testing::Values("face_integrated", "boon2012"));
 
+// A box on a plane dipping θ = 25° (friction φ = 35°, no cohesion) under a horizontal seismic
+// coefficient k out of the slope: resolving the weight W and k W normal and parallel to the plane,
+//   F = (cos θ − k sin θ) tan φ / (sin θ + k cos θ),
+// and F = 1 at k_c = tan(φ − θ) (the pseudo-static sliding block; Wyllie & Mah 2004, ch. 6).
+// Tolerance 1% on F (bracket 0.005) and 0.005 on k_c (bracket 0.002); both contact modes.
+std::string incline_block(const std::string& mode, const std::string& stages) {
+  const double theta = deg_to_rad(25.0), tp = std::tan(theta);
+  const double h = 0.2;
+  std::ostringstream t;
+  t.precision(15);
+  t << "[settings]\ndamping = 0.7\ncontact_mode = \"" << mode << "\"\n"
+    << "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
+    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 35 }\n"
+    << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nshape = \"vertices\"\n"
+    << "motion = \"fixed\"\nvertices = [";
+  for (const double y : {-0.5, 0.5}) {
+    t << "[-2, " << y << ", " << -2 * tp << "], [2, " << y << ", " << 2 * tp << "], [2, " << y
+      << ", -3], [-2, " << y << ", -3], ";
+  }
+  // The box turned by -θ about y (its x axis along the plane, up-dip east), resting on it.
+  t << "]\n[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [0.4, 0.2, " << h
+    << "]\nrotation_axis = [0.0, 1.0, 0.0]\nrotation_deg = -25.0\nposition = ["
+    << -0.5 * h * std::sin(theta) << ", 0.0, " << 0.5 * h * std::cos(theta) << "]\n"
+    << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, " << -kG << "]\n"
+    << stages;
+  return t.str();
+}
+
+class SeismicIncline : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SeismicIncline, FactorOfSafetyAndCriticalCoefficientMatchTheClosedForm) {
+  const double theta = deg_to_rad(25.0), tf = std::tan(deg_to_rad(35.0)), k = 0.1;
+  const double expected =
+      (std::cos(theta) - k * std::sin(theta)) * tf / (std::sin(theta) + k * std::cos(theta));
+  const RunResult r =
+      run_text(incline_block(GetParam(),
+                             "[[stages]]\nname = \"srm\"\nkind = \"strength_reduction\"\n"
+                             "factor_bounds = [0.5, 3.0]\ntolerance = 0.005\nmax_steps = 60000\n"
+                             "seismic_kh = 0.1\nseismic_direction_deg = 270\nramp_steps = 2000\n"),
+               std::string("seismic_incline_") + GetParam());
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+  ASSERT_TRUE(r.factor_of_safety.has_value());
+  EXPECT_NEAR(*r.factor_of_safety, expected, 0.01 * expected);
+  const RunResult c = run_text(
+      incline_block(GetParam(),
+                    "[[stages]]\nname = \"quake\"\nseismic_kh = 0.4\nseismic_direction_deg = "
+                    "270\nramp_steps = 2000\nfind_collapse = true\ncollapse_tolerance = 0.002\n"
+                    "max_steps = 60000\n"),
+      std::string("seismic_incline_kc_") + GetParam());
+  ASSERT_EQ(c.status, RunStatus::collapsed) << c.message;
+  ASSERT_TRUE(c.collapse.has_value());
+  const double kc = 0.5 * (c.collapse->first + c.collapse->second);
+  const double kc_expected = std::tan(deg_to_rad(35.0 - 25.0));
+  EXPECT_NEAR(kc, kc_expected, 0.005);
+  std::printf("%s: F = %.4f (closed form %.4f, %+.2f%%), k_c = %.4f (tan(phi - theta) = %.4f)\n",
+              GetParam(), *r.factor_of_safety, expected,
+              100.0 * (*r.factor_of_safety / expected - 1.0), kc, kc_expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModes, SeismicIncline,
+                         ::testing::Values("face_integrated", "boon2012"));
+
 }  // namespace
 }  // namespace blockdem::test::water_seismic
