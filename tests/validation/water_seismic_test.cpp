@@ -322,5 +322,44 @@ TEST_P(SeismicIncline, FactorOfSafetyAndCriticalCoefficientMatchTheClosedForm) {
 INSTANTIATE_TEST_SUITE_P(BothModes, SeismicIncline,
                          ::testing::Values("face_integrated", "boon2012"));
 
+// A stack of three blocks 1 × 1 × 0.5 m wholly below a level water table given as a surface
+// through points: the assembly stays at rest (the buoyancy and the joints' pressures balance the
+// weight with the joints' effective forces), each joint carrying the submerged weight of the
+// blocks above it, (ρ_r − ρ_w) g V per block (tolerance 1e-4; displacements below 1e-5 m).
+TEST(SubmergedAssembly, StaysAtRestWithEachJointCarryingTheSubmergedWeightAbove) {
+  std::ostringstream t;
+  t << "[settings]\ndamping = 0.7\n"
+    << "water_table = { points = [[-5, -5, 4], [5, -5, 4], [5, 5, 4], [-5, 5, 4], [0, 1, 4]] }\n"
+    << "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
+    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 30 }\n"
+    << "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nsize = [3.0, 3.0, 1.0]\n"
+    << "position = [0.0, 0.0, -0.5]\nmotion = \"fixed\"\n";
+  for (int k = 0; k < 3; ++k) {
+    t << "[[blocks]]\nname = \"b" << k << "\"\nmaterial = \"rock\"\nsize = [1.0, 1.0, 0.5]\n"
+      << "position = [0.0, 0.0, " << 0.25 + 0.5 * k << "]\n";
+  }
+  t << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, " << -kG
+    << "]\nunbalanced_tolerance = 1e-6\n";
+  const Scenario sc = parse_scenario(t.str(), "stack.toml");
+  World w = build_world(sc);
+  const StageResult r = run_stage(w, sc.stages[0]);
+  ASSERT_TRUE(r.converged) << r.message;
+  const double submerged_weight = (kRock - kWater) * kG * 0.5;  // per block (N)
+  const auto contacts = w.contacts();
+  ASSERT_EQ(contacts.size(), 3u);
+  for (const Contact* c : contacts) {
+    // Joint (a, b) with b the upper block: it carries the blocks from b up.
+    const int above = 3 - (c->b - 1);
+    EXPECT_NEAR(c->normal_force, above * submerged_weight, 1e-4 * submerged_weight)
+        << c->a << "-" << c->b;
+  }
+  for (std::size_t i = 1; i < w.blocks().size(); ++i) {
+    const Block& b = w.blocks()[i];
+    EXPECT_LT((b.position - b.initial_position).norm(), 1e-5) << b.name;
+    EXPECT_NEAR(b.water_force().z(), kWater * kG * 0.5, 1e-9 * kWater * kG * 0.5) << b.name;
+  }
+}
+
 }  // namespace
 }  // namespace blockdem::test::water_seismic
