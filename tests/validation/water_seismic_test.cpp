@@ -247,6 +247,7 @@ TEST_P(SubmergedBlock, WaterForceIsArchimedesAndTheJointCarriesTheEffectiveWeigh
     }
     const EnergyBudget& e = w.energy_budget();
     EXPECT_LT(e.load_work, 0.0);  // the upward water force as the block settled onto its joint
+    EXPECT_NEAR(e.water_work, e.load_work, 1e-9 * std::abs(e.load_work));  // the only load
     EXPECT_LT(std::abs(e.residual()), 1e-3 * e.scale());
     std::printf(
         "%s table %.2f m: water force %.6f N (rho_w g V_sub %.6f N), joint %.4f N "

@@ -582,6 +582,8 @@ void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const
                          {"elastic", energy.elastic},
                          {"gravity_work", energy.gravity_work},
                          {"load_work", energy.load_work},
+                         {"water_work", energy.water_work},
+                         {"seismic_work", energy.seismic_work},
                          {"boundary_work", energy.boundary_work},
                          {"friction_dissipation", energy.friction_dissipation},
                          {"damping_dissipation", energy.damping_dissipation},

@@ -46,6 +46,15 @@ TEST(SeismicLoad, EveryFreeBlockCarriesMassTimesKG) {
   // Free flight: a = g + k g.
   const Eigen::Vector3d a = (b.velocity - v1) / 1e-3;
   EXPECT_NEAR((a - Eigen::Vector3d(1.4715, 0.0, -9.81 - 0.4905)).norm(), 0.0, 1e-9);
+  // Its work: all of load_work (the only applied load), and F · Δx of the flight (the budget
+  // counts from the first step's level, the start, to the last one's).
+  const Eigen::Vector3d start = w.level_state(1).position;
+  for (int k = 0; k < 200; ++k) w.step();
+  const EnergyBudget& e = w.energy_budget();
+  const double moved = b.seismic_force().dot(w.level_state(1).position - start);
+  EXPECT_NEAR(e.seismic_work, e.load_work, 1e-12 * std::abs(e.load_work));
+  EXPECT_NEAR(e.seismic_work, moved, 1e-2 * std::abs(moved));
+  EXPECT_EQ(e.water_work, 0.0);
 }
 
 }  // namespace
