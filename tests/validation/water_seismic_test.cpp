@@ -362,5 +362,53 @@ TEST(SubmergedAssembly, StaysAtRestWithEachJointCarryingTheSubmergedWeightAbove)
   }
 }
 
+// A reservoir against an exposed face, and uplift under a block (the sliding of a gravity dam's
+// block on its foundation; e.g. Wyllie & Mah 2004, ch. 6, for the water forces): a block b = 10 m
+// long and H = 10 m high (2600 kg/m³, 1 m wide) holds water h = 8 m deep against its upstream
+// face, drained at its downstream toe. The water table is a surface through points: level at h
+// upstream of the block, falling linearly across it to the foundation at its downstream face,
+// so the upstream face carries P = ½ γ_w h², the base the uplift U = ½ γ_w h b, and the
+// downstream face nothing. With friction φ = 10° and no cohesion, F = (W − U) tan φ / P, the
+// strength-reduction factor within 2% (bracket 0.01), in both contact modes. The table stays
+// where it is given: a block that slides away from the reservoir carries less of it, so a trial
+// counts as failed once the block has slid 0.05 m (displacement_limit).
+class Reservoir : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Reservoir, FactorOfSafetyOfABlockPushedByAReservoirWithUplift) {
+  const double b = 10.0, h = 8.0, height = 10.0;
+  std::ostringstream t;
+  t.precision(15);
+  t << "[settings]\ndamping = 0.7\ncontact_mode = \"" << GetParam() << "\"\n"
+    << "[[materials]]\nname = \"rock\"\ndensity = " << kRock << "\n"
+    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 2e9 }\n"
+    << "shear = { law = \"linear\", stiffness = 2e8, friction_deg = 10 }\n"
+    << "[[blocks]]\nname = \"foundation\"\nmaterial = \"rock\"\nsize = [40.0, 3.0, 4.0]\n"
+    << "position = [" << 0.5 * b << ", 0.0, -2.0]\nmotion = \"fixed\"\n"
+    << "[[blocks]]\nname = \"dam\"\nmaterial = \"rock\"\nsize = [" << b << ", 1.0, " << height
+    << "]\nposition = [" << 0.5 * b << ", 0.0, " << 0.5 * height << "]\n"
+    << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, " << -kG << "]\n"
+    << "[[stages]]\nname = \"fill\"\nwater_table = { points = [[0, -5, " << h << "], [0, 5, " << h
+    << "], [" << b << ", -5, 0], [" << b << ", 5, 0]] }\n"
+    << "[[stages]]\nname = \"srm\"\nkind = \"strength_reduction\"\nfactor_bounds = [0.5, 3.0]\n"
+    << "tolerance = 0.01\nmax_steps = 60000\ndisplacement_limit = 0.05\n";
+  const RunResult r = run_text(t.str(), std::string("reservoir_") + GetParam());
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+  ASSERT_TRUE(r.factor_of_safety.has_value());
+  const double w = kRock * kG * b * height, u = 0.5 * kWater * kG * h * b;
+  const double p = 0.5 * kWater * kG * h * h;
+  const double expected = (w - u) * std::tan(deg_to_rad(10.0)) / p;
+  EXPECT_NEAR(*r.factor_of_safety, expected, 0.02 * expected);
+  // The water's force on the block: P downstream (+x) and U up.
+  const auto& water = r.summary["water_force_vector_N"];
+  EXPECT_NEAR(water[0].get<double>(), p, 1e-3 * p);
+  EXPECT_NEAR(water[2].get<double>(), u, 1e-3 * u);
+  std::printf(
+      "%s: F = %.4f (closed form %.4f, %+.2f%%), water force (%.1f, %.1f) N (P %.1f, U %.1f)\n",
+      GetParam(), *r.factor_of_safety, expected, 100.0 * (*r.factor_of_safety / expected - 1.0),
+      water[0].get<double>(), water[2].get<double>(), p, u);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModes, Reservoir, ::testing::Values("face_integrated", "boon2012"));
+
 }  // namespace
 }  // namespace blockdem::test::water_seismic
