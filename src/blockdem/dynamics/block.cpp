@@ -117,6 +117,16 @@ void Block::set_external_force(const Eigen::Vector3d& f) {
   if (extras_.p || !zero_bits(f)) own_extras().external_force = f;
 }
 
+void Block::set_field_loads(const Eigen::Vector3d& water_force, const Eigen::Vector3d& water_torque,
+                            const Eigen::Vector3d& seismic_force) {
+  if (!extras_.p && zero_bits(water_force) && zero_bits(water_torque) && zero_bits(seismic_force))
+    return;
+  BlockExtras& e = own_extras();
+  e.water_force = water_force;
+  e.water_torque = water_torque;
+  e.seismic_force = seismic_force;
+}
+
 void Block::set_external_torque(const Eigen::Vector3d& t) {
   if (extras_.p || !zero_bits(t)) own_extras().external_torque = t;
 }

@@ -43,6 +43,11 @@ struct BlockExtras {
   // Constant applied loads (world frame), added every step to free blocks.
   Eigen::Vector3d external_force = Eigen::Vector3d::Zero();   ///< (N), acts at the centroid
   Eigen::Vector3d external_torque = Eigen::Vector3d::Zero();  ///< (N m)
+  // The loads of the ground water and of a pseudo-static earthquake at the block's pose of the
+  // step (world frame), set by the world at every step's start.
+  Eigen::Vector3d water_force = Eigen::Vector3d::Zero();    ///< (N), acts at the centroid
+  Eigen::Vector3d water_torque = Eigen::Vector3d::Zero();   ///< about the centroid (N m)
+  Eigen::Vector3d seismic_force = Eigen::Vector3d::Zero();  ///< (N), acts at the centroid
 };
 
 // The fields are ordered by use. The step's per-pair passes (narrow phase, contact forces, the
@@ -135,6 +140,28 @@ struct Block {
   /// Set the applied loads; a block without extras stays so when the value's bits are all zero.
   void set_external_force(const Eigen::Vector3d& f);
   void set_external_torque(const Eigen::Vector3d& t);
+  /// The ground water's force and torque on the block (world frame; N, N m about the centroid).
+  const Eigen::Vector3d& water_force() const { return extras().water_force; }
+  const Eigen::Vector3d& water_torque() const { return extras().water_torque; }
+  /// The pseudo-static seismic body force on the block (world frame, N).
+  const Eigen::Vector3d& seismic_force() const { return extras().seismic_force; }
+  /// Sets the water's and the earthquake's loads; a block without extras stays so when every
+  /// value's bits are zero.
+  void set_field_loads(const Eigen::Vector3d& water_force, const Eigen::Vector3d& water_torque,
+                       const Eigen::Vector3d& seismic_force);
+  /// Every applied load besides gravity and the contacts: the constant force, the water's and
+  /// the earthquake's (world frame, N; N m about the centroid).
+  /// Without water or earthquake, the constant loads' own bits.
+  Eigen::Vector3d applied_force() const {
+    const BlockExtras& e = extras();
+    if (e.water_force.isZero(0.0) && e.seismic_force.isZero(0.0)) return e.external_force;
+    return e.external_force + e.water_force + e.seismic_force;
+  }
+  Eigen::Vector3d applied_torque() const {
+    const BlockExtras& e = extras();
+    if (e.water_torque.isZero(0.0)) return e.external_torque;
+    return e.external_torque + e.water_torque;
+  }
   /// The contact rules' group ("" for none).
   const std::string& group() const { return group_ ? *group_ : kNoGroup; }
   void set_group(std::string g);

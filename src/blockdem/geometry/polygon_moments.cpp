@@ -89,4 +89,37 @@ PolygonMoments polygon_area_centroid(std::span<const Eigen::Vector3d> vertices) 
   return about_centroid(vertices, false);
 }
 
+Eigen::Matrix3d polygon_second_moment(std::span<const Eigen::Vector3d> vertices,
+                                      const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Eigen::Vector3d p = vertices[i] - c;
+    const Eigen::Vector3d q = vertices[(i + 1) % vertices.size()] - c;
+    const double area = 0.5 * p.cross(q).dot(n);  // signed by the order about n
+    const Eigen::Vector3d s = p + q;
+    second += (area / 12.0) * (p * p.transpose() + q * q.transpose() + s * s.transpose());
+  }
+  // Vertices clockwise about n: every signed triangle negative.
+  if (second.trace() < 0.0) second = -second;
+  return second;
+}
+
+std::vector<Eigen::Vector3d> clip_polygon(std::span<const Eigen::Vector3d> vertices,
+                                          const Halfspace& h) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(vertices.size() + 1);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Eigen::Vector3d& p = vertices[i];
+    const Eigen::Vector3d& q = vertices[(i + 1) % vertices.size()];
+    const double dp = h.signed_distance(p);
+    const double dq = h.signed_distance(q);
+    if (dp <= 0.0) out.push_back(p);
+    // The edge crosses the plane: its point on the plane, interpolated from the inside end.
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0))
+      out.push_back(p + (dp / (dp - dq)) * (q - p));
+  }
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
 }  // namespace blockdem

@@ -1,9 +1,14 @@
 // Exact area moments of a planar convex polygon about a point of its plane: area, centroid, polar
-// moment J = ∫ r² dA and radial moment ∫ r dA (the twisting resistance of a contact face).
+// moment J = ∫ r² dA and radial moment ∫ r dA (the twisting resistance of a contact face), the
+// second moment tensor (a linear field's resultant over the polygon), and the clip of a polygon by
+// a half-space.
 #pragma once
 
 #include <Eigen/Core>
 #include <span>
+#include <vector>
+
+#include "blockdem/geometry/halfspace.hpp"
 
 namespace blockdem {
 
@@ -30,5 +35,19 @@ PolygonMoments polygon_moments_about_centroid(std::span<const Eigen::Vector3d> v
 /// The area and centroid of polygon_moments_about_centroid (the same values, bit for bit),
 /// without the polar and radial moments (left zero): no transcendental function per edge.
 PolygonMoments polygon_area_centroid(std::span<const Eigen::Vector3d> vertices);
+
+/// The second moment S = ∫ (x - c)(x - c)ᵀ dA of a planar convex polygon (vertices in order about
+/// its unit normal n or against it, m) about a point c of its plane (m^4), exact, by a fan of
+/// triangles (c, v_i, v_i+1): a triangle with vertices 0, p, q about c has
+/// (A/12)(p pᵀ + q qᵀ + (p + q)(p + q)ᵀ). With c the centroid, a field linear over the polygon,
+/// f(x) = f(c) + ∇f · (x - c), has ∫ f dA = A f(c) and ∫ (x - c) f dA = S ∇f.
+Eigen::Matrix3d polygon_second_moment(std::span<const Eigen::Vector3d> vertices,
+                                      const Eigen::Vector3d& c, const Eigen::Vector3d& n);
+
+/// The part of a convex polygon (vertices in order, m) inside the half-space h (h.normal · x <=
+/// h.offset), in the same order (Sutherland & Hodgman 1974, one clip plane); empty when no part
+/// of it is inside, the polygon itself when all of it is.
+std::vector<Eigen::Vector3d> clip_polygon(std::span<const Eigen::Vector3d> vertices,
+                                          const Halfspace& h);
 
 }  // namespace blockdem

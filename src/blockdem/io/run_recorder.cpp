@@ -33,7 +33,7 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                  "gravity_x_m_s2", "gravity_y_m_s2", "gravity_z_m_s2", "g_level",
                                  "unbalanced_force_ratio", "kinetic_energy_J",
                                  "kinetic_energy_ratio", "contacts", "mean_contact_force_N",
-                                 "max_overlap_mm"},
+                                 "max_overlap_mm", "water_force_N"},
         append);
     blocks_ = std::make_unique<CsvWriter>(dir_ / "blocks.csv",
                                           std::vector<std::string>{"level",
@@ -55,7 +55,10 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
                                                                    "vz_m_s",
                                                                    "contact_fx_N",
                                                                    "contact_fy_N",
-                                                                   "contact_fz_N"},
+                                                                   "contact_fz_N",
+                                                                   "water_fx_N",
+                                                                   "water_fy_N",
+                                                                   "water_fz_N"},
                                           append);
   }
   contacts_ = std::make_unique<CsvWriter>(dir_ / "contacts.csv",
@@ -92,7 +95,7 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, bool vtk, bool tables
 namespace {
 
 // The columns of blocks.csv and contacts.csv (the headers in RunRecorder's constructor).
-constexpr std::size_t kBlockColumns = 20;
+constexpr std::size_t kBlockColumns = 23;
 constexpr std::size_t kContactColumns = 27;
 
 // One row of blocks.csv: block b at the world's level state, with the contact force on it (N).
@@ -124,7 +127,10 @@ void block_row(CsvWriter& csv, const World& world, const Block& b, int level,
       .cell(st.velocity.z())
       .cell(contact_force.x())
       .cell(contact_force.y())
-      .cell(contact_force.z());
+      .cell(contact_force.z())
+      .cell(b.water_force().x())
+      .cell(b.water_force().y())
+      .cell(b.water_force().z());
   csv.end_row();
 }
 
@@ -182,6 +188,7 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
   world.reduce_partials({}, max_overlap, contact_count);
   const Eigen::Vector3d& g = world.settings().gravity;
   const bool whole = world.replica_complete();
+  const Eigen::Vector3d water = world.total_water_force();  // collective
   if (history_) {
     history_->cell(level)
         .cell(stage.name)
@@ -198,7 +205,8 @@ void RunRecorder::record(const World& world, const StageResult& stage, int level
         .cell(stage.measures.kinetic_energy_ratio)
         .cell(static_cast<long long>(contact_count[0]))
         .cell(stage.measures.mean_contact_force)
-        .cell(1e3 * max_overlap[0]);
+        .cell(1e3 * max_overlap[0])
+        .cell(water.norm());
     history_->end_row();
     history_->flush();
 

@@ -37,7 +37,9 @@ TimeHistoryWriter::TimeHistoryWriter(const std::filesystem::path& path, const Wo
                                       "max_speed_m_s",
                                       "contacts",
                                       "sliding_contacts",
-                                      "broken_bonds"};
+                                      "broken_bonds",
+                                      "water_work_J",
+                                      "seismic_work_J"};
   for (const auto& name : options_.blocks) {
     const int i = world.find_block(name);
     if (i < 0) throw std::invalid_argument("history_blocks: no block named '" + name + "'");
@@ -174,7 +176,9 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
       .cell(max_speed[0])
       .cell(static_cast<long long>(counts[0]))
       .cell(static_cast<long long>(counts[1]))
-      .cell(static_cast<long long>(world.broken_bond_count()));
+      .cell(static_cast<long long>(world.broken_bond_count()))
+      .cell(e.water_work)
+      .cell(e.seismic_work);
   for (const auto& row : columns) {
     for (const double x : row) csv_->cell(x);
   }

@@ -48,17 +48,8 @@ FaceTraction face_traction(const StressField& field, std::span<const Eigen::Vect
   FaceTraction t;
   t.area = pm.area;
   t.centroid = pm.centroid;
-  // The second moment ∫ (x - x̄)(x - x̄)ᵀ dA by a fan of triangles (x̄, v_i, v_i+1): a triangle
-  // with vertices 0, p, q about x̄ has (A/12)(p pᵀ + q qᵀ + (p + q)(p + q)ᵀ).
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Eigen::Vector3d p = vertices[i] - pm.centroid;
-    const Eigen::Vector3d q = vertices[(i + 1) % vertices.size()] - pm.centroid;
-    const double area = 0.5 * p.cross(q).dot(n);  // signed by the order about n
-    const Eigen::Vector3d s = p + q;
-    second += (area / 12.0) * (p * p.transpose() + q * q.transpose() + s * s.transpose());
-  }
-  if (pm.area > 0.0 && second.trace() < 0.0) second = -second;  // vertices clockwise about n
+  // The second moment ∫ (x - x̄)(x - x̄)ᵀ dA.
+  const Eigen::Matrix3d second = polygon_second_moment(vertices, pm.centroid, n);
   // σ(x) n = σ(x̄) n + (z - z̄) G n: the mean traction at the centroid, and the moment of the
   // gradient part, ∫ (x - x̄)(z - z̄) dA × G n = (S e_z) × G n.
   const Eigen::Matrix3d mean = field.at(pm.centroid);

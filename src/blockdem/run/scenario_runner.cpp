@@ -157,6 +157,23 @@ void load_restart(Restart& restart, const Scenario& sc, World& world, const RunC
       start.monitor.emplace(r);
       if (search) load_bytes(*start.before, restart.before, passed(restart.before));
     }
+    // The ground water and earthquake the stages run so far set, which the saved states do not
+    // hold: the world's and the state before a searching stage's up to the stage before. A
+    // strength reduction's act in its trials only.
+    const auto apply_up_to = [&sc](WorldSettings& settings, int end) {
+      for (int k = 0; k < end; ++k) {
+        const Stage& st = sc.stages[static_cast<std::size_t>(k)];
+        if (st.kind != Stage::Kind::strength_reduction) apply_stage_loads(settings, st);
+      }
+    };
+    apply_up_to(world.settings(), point.level);
+    if (point.in_stage) {
+      // This stage's water; its seismic load run_stage takes from the ramp (world/stage.hpp).
+      Stage water_only = at;
+      water_only.seismic.reset();
+      apply_stage_loads(world.settings(), water_only);
+    }
+    if (start.before) apply_up_to(start.before->settings(), point.level);
     // The worlds hold their states now (a large world's state): the bytes go.
     restart.world = restart.before = {};
     std::string().swap(point.world);
@@ -371,20 +388,20 @@ void RunOutputs::on_strength_reduction(const World& world, const Stage& stage, i
 }
 
 void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySearch& cs) {
-  res_.summary["collapse"] = {{"last_stable", cs.last_stable},
-                              {"first_failed", cs.first_failed},
-                              {"unit", "g"},
-                              {"stage", stage.name},
-                              {"tolerance", stage.collapse_tolerance},
-                              {"trials", trials_json(cs)}};
-  write_trials_csv(out_ / "collapse_search.csv", "g_level", cs);
+  // A search of the seismic coefficient k_h (a stage without gravity), else of gravity.
+  const bool seismic = !stage.gravity;
+  res_.summary["collapse"] = {
+      {"last_stable", cs.last_stable},         {"first_failed", cs.first_failed},
+      {"unit", seismic ? "seismic_kh" : "g"},  {"stage", stage.name},
+      {"tolerance", stage.collapse_tolerance}, {"trials", trials_json(cs)}};
+  write_trials_csv(out_ / "collapse_search.csv", seismic ? "seismic_kh" : "g_level", cs);
   write_mechanism(out_, "collapse_mechanism", cs, sc_.output.vtk);
   if (cs.interrupted) {
     res_.summary["collapse"]["interrupted"] = true;
     interrupted_where_ = "in the collapse search of stage '" + stage.name + "' after " +
                          std::to_string(cs.trials.size()) + " trials (bracket so far " +
                          number_text(cs.last_stable, "%.4g") + " to " +
-                         number_text(cs.first_failed, "%.4g") + " g)";
+                         number_text(cs.first_failed, "%.4g") + (seismic ? ")" : " g)");
   }
 }
 
@@ -551,9 +568,11 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
   const std::string& name = sc.stages[d.level].name;
   if (d.collapse) {
     res.collapse = d.collapse;
-    res.message = "stage '" + name + "': collapse between " +
-                  number_text(d.collapse->first, "%.4g") + " g (stable) and " +
-                  number_text(d.collapse->second, "%.4g") + " g (failed), found by bisection";
+    const bool seismic = !sc.stages[d.level].gravity;
+    const std::string unit = seismic ? "" : " g";
+    res.message = "stage '" + name + "': collapse between " + (seismic ? "k_h = " : "") +
+                  number_text(d.collapse->first, "%.4g") + unit + " (stable) and " +
+                  number_text(d.collapse->second, "%.4g") + unit + " (failed), found by bisection";
     res.exit_code = 0;  // asked to search, and found
   } else {
     res.message = "stage '" + name + "': " + d.stage.message;
@@ -595,11 +614,17 @@ void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const
   if (any_excavation) summary["key_blocks"] = all_key_blocks;
   if (ranks > 1)  // per process, in rank order (a collective call: every process gets here)
     summary["distribution"] = gather_distribution_json(*distribution, world.distribution_stats());
+  // The ground water's force on the free blocks (collective: every process gets here).
+  const Eigen::Vector3d water = world.total_water_force();
+  summary["water_force_N"] = water.norm();
+  summary["water_force_vector_N"] = {water.x(), water.y(), water.z()};
   const EnergyBudget& energy = world.energy_budget();  // at the last level (docs/outputs.md)
   summary["energy_J"] = {{"kinetic", energy.kinetic},
                          {"elastic", energy.elastic},
                          {"gravity_work", energy.gravity_work},
                          {"load_work", energy.load_work},
+                         {"water_work", energy.water_work},
+                         {"seismic_work", energy.seismic_work},
                          {"boundary_work", energy.boundary_work},
                          {"friction_dissipation", energy.friction_dissipation},
                          {"damping_dissipation", energy.damping_dissipation},

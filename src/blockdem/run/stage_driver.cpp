@@ -88,8 +88,10 @@ std::pair<double, double> search_collapse(const World& before, const Stage& stag
                                           const DriveControl& control,
                                           const std::vector<RunObserver*>& observers,
                                           bool& stopped) {
-  const double g_stable = before.settings().gravity.norm() / kOneG;
-  const double g_failed = stage.gravity->norm() / kOneG;
+  // A seismic search runs from k_h = 0 to the stage's (gravity stays as it was).
+  const bool seismic = !stage.gravity;
+  const double g_stable = seismic ? 0.0 : before.settings().gravity.norm() / kOneG;
+  const double g_failed = seismic ? stage.seismic->horizontal : stage.gravity->norm() / kOneG;
   const StabilitySearch cs =
       find_collapse_load(before, stage, g_stable, g_failed, stage.collapse_tolerance,
                          control.trial_done, search_stop(control, level, false));

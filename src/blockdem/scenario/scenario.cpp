@@ -24,6 +24,7 @@
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 #include "blockdem/scenario/stage_input.hpp"
+#include "blockdem/scenario/water_input.hpp"
 #include "blockdem/world/contact_mode.hpp"
 #include "blockdem/world/stability.hpp"
 
@@ -56,6 +57,8 @@ void read_settings(const CheckedTable& t, WorldSettings& s, bool& allow_initial_
   s.max_speed = t.positive("max_speed", s.max_speed);
   s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
   allow_initial_overlap = t.choice("initial_overlap", "refuse", {"refuse", "allow"}) == "allow";
+  // Ground water from the start (a stage may set another table or make the model dry).
+  s.water = read_water(t, false).water;
   t.finish();
 }
 
@@ -523,6 +526,11 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     if (centre.cwiseAbs().maxCoeff() > 1e4) {
       sc.settings.origin = centre.array().round().matrix();
       if (sc.in_situ) sc.in_situ = sc.in_situ->shifted_by(sc.settings.origin);
+      if (sc.settings.water)
+        sc.settings.water->table = sc.settings.water->table.shifted_by(sc.settings.origin);
+      for (Stage& st : sc.stages) {
+        if (st.water) st.water->table = st.water->table.shifted_by(sc.settings.origin);
+      }
       for (auto& b : sc.blocks) {
         b.position -= sc.settings.origin;
         b.initial_position -= sc.settings.origin;

@@ -9,6 +9,7 @@
 
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/water_input.hpp"
 #include "blockdem/world/stability.hpp"
 
 namespace blockdem {
@@ -25,8 +26,14 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
   if (s.find_collapse) {
     if (s.kind != Stage::Kind::equilibrium)
       t.fail("find_collapse", "only an equilibrium stage can search for a collapse load");
-    if (!s.gravity)
-      t.fail("find_collapse", "the collapse search raises gravity: this stage needs a gravity");
+    if (!s.gravity && !(s.seismic && s.seismic->horizontal > 0.0))
+      t.fail("find_collapse",
+             "the collapse search raises gravity or the seismic coefficient: this stage needs a "
+             "gravity or a seismic_kh > 0");
+    if (s.gravity && s.seismic)
+      t.fail("find_collapse",
+             "the collapse search raises either gravity or the seismic coefficient: this stage "
+             "gives both (set the gravity in an earlier stage)");
   }
   if (t.has("collapse_tolerance")) {
     if (!s.find_collapse) t.fail("collapse_tolerance", "only with find_collapse = true");
@@ -35,9 +42,9 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
     s.collapse_tolerance = tol;
   }
   if (s.find_collapse) {
-    // The bracket ends below the stage's gravity: a width doubles cannot resolve there would
-    // repeat the same trial.
-    const double g = s.gravity->norm() / kOneG;
+    // The bracket ends below the stage's gravity (or k_h): a width doubles cannot resolve there
+    // would repeat the same trial.
+    const double g = s.gravity ? s.gravity->norm() / kOneG : s.seismic->horizontal;
     if (s.collapse_tolerance < kNarrowestRelativeBracket * g)
       t.fail("collapse_tolerance",
              "must be at least " + number_text(kNarrowestRelativeBracket * g) +
@@ -143,13 +150,18 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
     s.damping = t.number("damping");
     if (!(*s.damping >= 0.0 && *s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
   }
+  // Ground water and a pseudo-static earthquake from this stage on.
+  const WaterInput water = read_water(t, true);
+  s.water = water.water;
+  s.dry = water.dry;
+  s.seismic = read_seismic(t);
   s.unbalanced_tolerance = t.positive("unbalanced_tolerance", s.unbalanced_tolerance);
   s.kinetic_tolerance = t.positive("kinetic_tolerance", s.kinetic_tolerance);
   s.ramp_steps = t.integer("ramp_steps", s.ramp_steps);
   if (s.ramp_steps < 0 || s.ramp_steps > 1000000000000)
     t.fail("ramp_steps", "must be between 0 and 1e12");
-  if (s.ramp_steps > 0 && !s.gravity)
-    t.fail("ramp_steps", "a ramp needs a new gravity in this stage");
+  if (s.ramp_steps > 0 && !s.gravity && !s.seismic)
+    t.fail("ramp_steps", "a ramp needs a new gravity or seismic coefficients in this stage");
   s.max_steps = t.integer("max_steps", s.max_steps);
   if (s.max_steps <= 0 || s.max_steps > 1000000000000)
     t.fail("max_steps", "must be between 1 and 1e12");

@@ -587,6 +587,7 @@ void Decomposition::energy_to_root(World& world, RootStream& out, const RestingT
       for (std::size_t c = 0; c < 3; ++c) out.w.pod(level[6 * i + at + c]);
   }
   out.w.pod(static_cast<std::uint8_t>(world.energy_.started()));
+  for (double v : world.energy_.field_terms()) out.w.pod(v);
   out.flush();
 }
 

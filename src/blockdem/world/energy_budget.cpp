@@ -33,6 +33,10 @@ void EnergyStepSums::add_block(const BlockEnergyTerms& t) {
     load.add(t.load);
     damping.add(t.damping);
     kinetic.add(t.kinetic);
+    water.add(t.water);
+    water_next.add(t.water_next);
+    seismic.add(t.seismic);
+    seismic_next.add(t.seismic_next);
   } else {
     boundary.add(t.boundary);
   }
@@ -52,13 +56,18 @@ EnergyStepSums& EnergyStepSums::operator+=(const EnergyStepSums& other) {
   boundary += other.boundary;
   elastic += other.elastic;
   slip_work += other.slip_work;
+  water += other.water;
+  water_next += other.water_next;
+  seismic += other.seismic;
+  seismic_next += other.seismic_next;
   return *this;
 }
 
 std::vector<std::int64_t> EnergyStepSums::limbs() const {
   std::vector<std::int64_t> out;
   out.reserve(kLimbs);
-  for (const ExactSum* s : {&gravity, &load, &damping, &kinetic, &boundary, &elastic, &slip_work}) {
+  for (const ExactSum* s : {&gravity, &load, &damping, &kinetic, &boundary, &elastic, &slip_work,
+                            &water, &water_next, &seismic, &seismic_next}) {
     const auto l = s->limbs();
     out.insert(out.end(), l.begin(), l.end());
   }
@@ -68,8 +77,9 @@ std::vector<std::int64_t> EnergyStepSums::limbs() const {
 EnergyStepSums EnergyStepSums::from_limbs(std::span<const std::int64_t> limbs) {
   EnergyStepSums sums;
   std::size_t at = 0;
-  for (ExactSum* s : {&sums.gravity, &sums.load, &sums.damping, &sums.kinetic, &sums.boundary,
-                      &sums.elastic, &sums.slip_work}) {
+  for (ExactSum* s :
+       {&sums.gravity, &sums.load, &sums.damping, &sums.kinetic, &sums.boundary, &sums.elastic,
+        &sums.slip_work, &sums.water, &sums.water_next, &sums.seismic, &sums.seismic_next}) {
     *s = ExactSum::from_limbs(limbs.subspan(at, ExactSum::kLimbs));
     at += ExactSum::kLimbs;
   }
@@ -99,7 +109,7 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks) {
   // threads, which cannot size it): made here once some block's are not +0.0 (Δt > 0).
   if (loads_.empty()) {
     for (const Block& b : blocks) {
-      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
+      if (b.is_dynamic() && !(zero_bits(b.applied_force()) && zero_bits(b.applied_torque()))) {
         keep_loads();
         break;
       }
@@ -122,7 +132,7 @@ void EnergyLedger::before_integration(const std::vector<Block>& blocks, std::spa
   if (loads_.empty()) {
     for (const int k : only) {
       const Block& b = blocks[static_cast<std::size_t>(k)];
-      if (b.is_dynamic() && !(zero_bits(b.external_force()) && zero_bits(b.external_torque()))) {
+      if (b.is_dynamic() && !(zero_bits(b.applied_force()) && zero_bits(b.applied_torque()))) {
         keep_loads();
         break;
       }
@@ -250,8 +260,8 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
   if (b.is_dynamic()) {
     // This step's impulses; the damping force is what local_damping took off the load.
     const Eigen::Vector3d ig = dt * b.mass * gravity;
-    const Eigen::Vector3d il = dt * b.external_force();
-    const Eigen::Vector3d tl = dt * b.external_torque();
+    const Eigen::Vector3d il = dt * b.applied_force();
+    const Eigen::Vector3d tl = dt * b.applied_torque();
     const Eigen::Vector3d id = dt * (b.force - local_damping(b.force, u, damping));
     const Eigen::Vector3d td = dt * (b.torque - local_damping(b.torque, w, damping));
     // before_integration gave the record a free block's impulses; with loads_ empty, the load
@@ -266,6 +276,14 @@ BlockEnergyTerms EnergyLedger::block_terms(std::size_t i, const Block& b,
     t.damping = 0.5 * (u.dot(id + q[kKeptDamping]) + w.dot(td + q[kKeptDampingTorque]));
     t.kinetic = 0.5 * b.inertial_mass() * u.dot(b.velocity) +
                 0.25 * (w.dot(b.angular_momentum) + b.angular_velocity.dot(p.angular_momentum));
+    // The water's and the earthquake's parts of the load's work: this step's half with
+    // v_{n-1/2}, and the half with v_{n+1/2} that the next step adds (add_step).
+    const Eigen::Vector3d iw = dt * b.water_force(), tw = dt * b.water_torque();
+    const Eigen::Vector3d is = dt * b.seismic_force();
+    t.water = 0.5 * (u.dot(iw) + w.dot(tw));
+    t.water_next = 0.5 * (b.velocity.dot(iw) + b.angular_velocity.dot(tw));
+    t.seismic = 0.5 * u.dot(is);
+    t.seismic_next = 0.5 * b.velocity.dot(is);
     q[kKeptGravity] = ig;
     q[kKeptDamping] = id;
     q[kKeptDampingTorque] = td;
@@ -292,9 +310,13 @@ void EnergyLedger::add_step(const EnergyStepSums& sums) {
   if (started_) {
     e.gravity_work += sums.gravity.value();
     e.load_work += sums.load.value();
+    e.water_work += sums.water.value() + water_pending_;
+    e.seismic_work += sums.seismic.value() + seismic_pending_;
     e.damping_dissipation += sums.damping.value();
     e.boundary_work -= sums.boundary.value();
   }
+  water_pending_ = sums.water_next.value();
+  seismic_pending_ = sums.seismic_next.value();
   e.kinetic = sums.kinetic.value();
   e.elastic = sums.elastic.value();
   if (started_) {
@@ -355,6 +377,7 @@ void EnergyLedger::save_state(StateWriter& w) const {
     for (const Eigen::Vector3d& v : *list) w.vec(v);
   }
   w.pod(static_cast<std::uint8_t>(started_));
+  for (double v : {e.water_work, e.seismic_work, water_pending_, seismic_pending_}) w.pod(v);
 }
 
 void EnergyLedger::load_state(StateReader& r) {
@@ -378,6 +401,7 @@ void EnergyLedger::load_state(StateReader& r) {
     for (Eigen::Vector3d& v : *list) v = r.vec();
   }
   started_ = r.pod<std::uint8_t>() != 0;
+  for (double* v : {&e.water_work, &e.seismic_work, &water_pending_, &seismic_pending_}) r.pod(*v);
 }
 
 }  // namespace blockdem

@@ -29,7 +29,14 @@ struct EnergyBudget {
   /// closure; an estimate for the others (their difference then shows in the residual).
   double elastic = 0.0;
   double gravity_work = 0.0;  ///< work of gravity on the free blocks (J)
-  double load_work = 0.0;     ///< work of the applied forces and torques on free blocks (J)
+  /// Work of the applied forces and torques on free blocks: the constant loads, the ground
+  /// water's pressure and a pseudo-static earthquake's body force (Block::applied_force) (J).
+  double load_work = 0.0;
+  /// The parts of load_work done by the ground water's pressure and by a pseudo-static
+  /// earthquake's body force (J), by the same trapezoidal rule: exact while the blocks keep
+  /// their kind of motion.
+  double water_work = 0.0;
+  double seismic_work = 0.0;
   /// Work done on the model by prescribed and servo blocks through their contacts (J).
   double boundary_work = 0.0;
   double friction_dissipation = 0.0;  ///< Σ -F_s·du_p over joint slip (J), positive
@@ -52,23 +59,27 @@ struct BlockEnergyTerms {
   double damping = 0.0;   ///< to damping_dissipation (free blocks)
   double kinetic = 0.0;   ///< to kinetic (free blocks)
   double boundary = 0.0;  ///< subtracted from boundary_work (other blocks)
-  double dynamic = 0.0;   ///< 1: a free block (-)
+  /// To water_work and seismic_work: ½ v_{n-1/2} · (Δt F) of this step's water and seismic
+  /// impulses, and (`_next`) ½ v_{n+1/2} · (Δt F), the half the next step adds (free blocks).
+  double water = 0.0, water_next = 0.0, seismic = 0.0, seismic_next = 0.0;
+  double dynamic = 0.0;  ///< 1: a free block (-)
 };
 
 /// A step's sums for the budget over blocks and contacts (J). Each is exact (ExactSum), so the
 /// sums do not depend on the order of the terms: a world spread over processes adds each
 /// process's part and reduces the parts (limbs()) to the bits of one process.
 struct EnergyStepSums {
-  ExactSum gravity, load, damping, kinetic;  ///< over free blocks
-  ExactSum boundary;                         ///< over the other blocks
-  ExactSum elastic, slip_work;               ///< over active contacts
+  ExactSum gravity, load, damping, kinetic;           ///< over free blocks
+  ExactSum boundary;                                  ///< over the other blocks
+  ExactSum elastic, slip_work;                        ///< over active contacts
+  ExactSum water, water_next, seismic, seismic_next;  ///< over free blocks
   void add_block(const BlockEnergyTerms& terms);
   /// A contact's springs (normal, shear and, with `twist_stiffness` k_s J > 0, the twist spring)
   /// and the work its slip dissipated in the step (J).
   void add_contact(const Contact& contact, double twist_stiffness, double slip_work);
   /// Adds another part's sums (exact: the same bits for any split of the terms).
   EnergyStepSums& operator+=(const EnergyStepSums& other);
-  static constexpr std::size_t kLimbs = 7 * ExactSum::kLimbs;
+  static constexpr std::size_t kLimbs = 11 * ExactSum::kLimbs;
   /// Every sum's limbs (ExactSum::limbs), for an integer-sum reduction over processes.
   std::vector<std::int64_t> limbs() const;
   static EnergyStepSums from_limbs(std::span<const std::int64_t> limbs);
@@ -116,6 +127,11 @@ class EnergyLedger {
   /// Whether a step has been accounted (save_state's last byte), and the number of per-block
   /// records (its count), for a writer of save_state's bytes in parts.
   bool started() const { return started_; }
+  /// The last values save_state writes after the flag: the water and seismic works and the
+  /// halves of them the next step adds (J).
+  std::array<double, 4> field_terms() const {
+    return {budget_.water_work, budget_.seismic_work, water_pending_, seismic_pending_};
+  }
   std::size_t records() const { return previous_.size(); }
 
   const EnergyBudget& budget() const { return budget_; }
@@ -182,6 +198,9 @@ class EnergyLedger {
   std::map<std::size_t, Impulses> dormant_;
   std::vector<Eigen::Vector3d> level_velocity_, level_angular_velocity_;
   bool started_ = false;
+  /// The halves of the last step's water and seismic works that this step adds (J): the sums
+  /// of ½ v_{n+1/2} · (Δt F) over the blocks, so that no block keeps its impulses for them.
+  double water_pending_ = 0.0, seismic_pending_ = 0.0;
 };
 
 }  // namespace blockdem

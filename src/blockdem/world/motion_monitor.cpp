@@ -48,9 +48,10 @@ void MotionMonitor::observe(const World& world, bool ramping) {
     maxima[0] = std::max(maxima[0], d.norm());
     maxima[1] = std::max(maxima[1], b.velocity.norm());
     sums[0].add(b.kinetic_energy());
-    // Gravity and external forces are constant over a stage (outside a ramp), so their work is
-    // the load times the displacement; during a ramp the current gravity overstates it.
-    sums[1].add((b.mass * g + b.external_force()).dot(d));
+    // Gravity and the applied loads are constant over a stage (outside a ramp; the water's
+    // pressure nearly so as a block moves), so their work is the load times the displacement;
+    // during a ramp the current gravity overstates it.
+    sums[1].add((b.mass * g + b.applied_force()).dot(d));
     if (d.norm() > 0.1 * r.displacement_limit) moving.push_back(b.index);
   }
   world.reduce_partials(sums, maxima, {});

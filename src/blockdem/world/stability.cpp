@@ -70,9 +70,13 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
                                    double g_failed, double tolerance, const TrialFn& done,
                                    const StopFn& stop) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("collapse_tolerance: must be positive");
-  if (!stage.gravity || stage.gravity->norm() == 0.0)
-    throw std::invalid_argument("find_collapse: the stage must set a gravity");
-  const Eigen::Vector3d direction = stage.gravity->normalized();
+  // The stage raises gravity, or else its seismic coefficient k_h (k_v in proportion).
+  const bool seismic = !stage.gravity && stage.seismic && stage.seismic->horizontal > 0.0;
+  if (!seismic && (!stage.gravity || stage.gravity->norm() == 0.0))
+    throw std::invalid_argument(
+        "find_collapse: the stage must set a gravity or a positive seismic_kh");
+  const Eigen::Vector3d direction =
+      seismic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(stage.gravity->normalized());
   StabilitySearch s;
   s.last_stable = g_stable;
   s.first_failed = g_failed;
@@ -87,8 +91,14 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
     // the bracket (docs/stability.md, "Collapse load").
     World w = s.stable_world ? *s.stable_world : saved;
     Stage trial = stage;
-    trial.name = stage.name + " trial " + number_text(g, "%g g");
-    trial.gravity = g * kOneG * direction;
+    if (seismic) {
+      trial.name = stage.name + " trial k_h = " + number_text(g, "%g");
+      trial.seismic->vertical = stage.seismic->vertical * (g / stage.seismic->horizontal);
+      trial.seismic->horizontal = g;
+    } else {
+      trial.name = stage.name + " trial " + number_text(g, "%g g");
+      trial.gravity = g * kOneG * direction;
+    }
     StabilityTrial t = run_trial(w, trial, g);
     s.trials.push_back(t);
     if (done) done(t);

@@ -54,7 +54,10 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter);
 /// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
 /// until g_failed - g_stable <= tolerance (g); each trial starts from the last stable trial's
 /// equilibrium (from `saved` until one holds) and ramps gravity along the stage's direction over
-/// the stage's ramp_steps, so the load only rises, by at most the bracket's width.
+/// the stage's ramp_steps, so the load only rises, by at most the bracket's width. A stage that
+/// sets seismic coefficients and no gravity has its seismic coefficient k_h searched instead
+/// (g_stable and g_failed are values of k_h, k_v scaled in proportion): the critical seismic
+/// coefficient k_c, each trial's earthquake applied at once at its start.
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
                                    double g_failed, double tolerance, const TrialFn& done = {},
                                    const StopFn& stop = {});

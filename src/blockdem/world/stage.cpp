@@ -31,7 +31,18 @@ void Stage::validate() const {
     fail(
         "density_scaling: a duration stage runs in time, which density scaling distorts (it is "
         "exact only at static equilibrium)");
-  if (find_collapse && !gravity) fail("find_collapse needs a new gravity in this stage");
+  if (find_collapse && !gravity && !seismic)
+    fail("find_collapse needs a new gravity or seismic coefficients in this stage");
+  if (seismic) {
+    try {
+      seismic->validate();
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+  if (water && !(water->density > 0.0 && std::isfinite(water->density)))
+    fail("water_density must be positive and finite");
+  if (water && dry) fail("a stage either sets a water table or makes the model dry");
   if (find_collapse && !(collapse_tolerance > 0.0)) fail("collapse_tolerance must be positive");
   if (kind == Kind::strength_reduction) {
     if (!(strength.lower > 0.0 && strength.upper > strength.lower))
@@ -48,6 +59,12 @@ void Stage::validate() const {
       fail("servo target_force must be >= 0");
     if (s.axis && std::abs(s.axis->norm() - 1.0) > 1e-9) fail("servo axis must be a unit vector");
   }
+}
+
+void apply_stage_loads(WorldSettings& settings, const Stage& stage) {
+  if (stage.water) settings.water = stage.water;
+  if (stage.dry) settings.water.reset();
+  if (stage.seismic) settings.seismic = *stage.seismic;
 }
 
 bool servos_settled(const World& world) {
@@ -70,6 +87,7 @@ namespace {
 /// removals, the divergence checkpoint and a fresh motion monitor.
 void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>& watch) {
   if (stage.gravity && stage.ramp_steps == 0) world.settings().gravity = *stage.gravity;
+  apply_stage_loads(world.settings(), stage);
   if (stage.damping) world.settings().damping = *stage.damping;
   for (const auto& cmd : stage.servos) {
     const int i = world.find_block(cmd.block);
@@ -128,6 +146,11 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   if (resume && !(monitor && monitor->has_value()))
     throw std::logic_error("run_stage: resuming a stage needs its motion monitor");
   const Eigen::Vector3d gravity_before = resume ? resume->gravity_before : world.settings().gravity;
+  // The seismic load before the stage (a restart applies the stages' loads up to the one before
+  // this, and this stage's at the end of its ramp).
+  const SeismicLoad seismic_before = world.settings().seismic;
+  if (resume && stage.seismic && resume->steps_done >= stage.ramp_steps)
+    world.settings().seismic = *stage.seismic;
   std::optional<MotionMonitor> own_monitor;
   std::optional<MotionMonitor>& watch = monitor ? *monitor : own_monitor;
   if (!resume) start_stage(world, stage, watch);
@@ -137,10 +160,15 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   auto last_report = std::chrono::steady_clock::now();
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
     const bool relaxing = world.relaxing();
-    const bool ramping = (stage.gravity && k <= stage.ramp_steps) || relaxing;
+    const bool ramping = ((stage.gravity || stage.seismic) && k <= stage.ramp_steps) || relaxing;
     if (stage.gravity && k <= stage.ramp_steps) {
       const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
       world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
+    }
+    // The seismic load moves from the one before the stage to the stage's over the ramp.
+    if (stage.seismic && k <= stage.ramp_steps) {
+      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
+      world.settings().seismic = seismic_before.toward(*stage.seismic, f);
     }
     // A gradual excavation: the removed blocks' loads down to zero at step relax_steps.
     if (relaxing) {

@@ -29,10 +29,16 @@ struct Stage {
 
   std::optional<Eigen::Vector3d> gravity;  ///< new gravity from this stage on (m/s^2)
   /// Gravity moves linearly from its previous value to `gravity` over this many steps at the
-  /// start of the stage (0: at once). A ramp keeps a loading step quasi-static: a sudden jump
-  /// sends a transient through the joints that can make them slip.
+  /// start of the stage (0: at once), and the seismic load from its previous value to `seismic`. A
+  /// ramp keeps a loading step quasi-static: a sudden jump sends a transient through the joints
+  /// that can make them slip (and break a cohesive bond the static load would not).
   std::int64_t ramp_steps = 0;
-  std::optional<double> damping;     ///< new local damping from this stage on (-)
+  std::optional<double> damping;  ///< new local damping from this stage on (-)
+  /// New ground water from this stage on (a water table and its density); `dry` removes it.
+  std::optional<GroundWater> water;
+  bool dry = false;
+  /// New pseudo-static seismic coefficients from this stage on.
+  std::optional<SeismicLoad> seismic;
   std::vector<ServoCommand> servos;  ///< servo targets set at the stage start
   std::vector<std::string> hold;     ///< servo blocks stopped (held in place) at the start
   bool hold_servos_after = false;    ///< stop every servo block when the stage ends
@@ -148,6 +154,11 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
                       std::optional<MotionMonitor>* monitor = nullptr,
                       const AfterStepFn& after_step = {}, const StageResume* resume = nullptr,
                       const StepFn& on_step = {}, const StageSync* sync = nullptr);
+
+/// The loads a stage sets for itself and the stages after it besides gravity: ground water and
+/// seismic coefficients (a restart, whose saved world holds the gravity but not these, applies
+/// those of the stages it has run).
+void apply_stage_loads(WorldSettings& settings, const Stage& stage);
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

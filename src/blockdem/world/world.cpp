@@ -12,6 +12,7 @@
 
 #include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/numerics/number_text.hpp"
+#include "blockdem/numerics/units.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -51,9 +52,38 @@ void WorldSettings::validate() const {
   if (!(max_speed > 0.0)) fail("max_speed must be positive");
   if (!(max_overlap_fraction > 0.0)) fail("max_overlap_fraction must be positive");
   if (threads < 0) fail("threads must be >= 0 (0: every core)");
+  seismic.validate();
+  if (water && !(water->density > 0.0 && std::isfinite(water->density)))
+    fail("water_density must be positive and finite, got " + number_text(water->density));
   if (threads > thread_limit())
     fail("threads must be at most " + std::to_string(thread_limit()) +
          " (64 per core of this machine, at most 1024), got " + std::to_string(threads));
+}
+
+Eigen::Vector3d SeismicLoad::acceleration(double gravity) const {
+  if (horizontal == 0.0 && vertical == 0.0) return Eigen::Vector3d::Zero();
+  const double a = deg_to_rad(direction_deg);
+  return gravity * Eigen::Vector3d(horizontal * std::sin(a), horizontal * std::cos(a), vertical);
+}
+
+SeismicLoad SeismicLoad::toward(const SeismicLoad& to, double f) const {
+  if (f >= 1.0) return to;
+  const double a = deg_to_rad(direction_deg), b = deg_to_rad(to.direction_deg);
+  // The horizontal coefficient as a vector (east, north), interpolated.
+  const double east = (1.0 - f) * horizontal * std::sin(a) + f * to.horizontal * std::sin(b);
+  const double north = (1.0 - f) * horizontal * std::cos(a) + f * to.horizontal * std::cos(b);
+  SeismicLoad s;
+  s.horizontal = std::hypot(east, north);
+  s.direction_deg = s.horizontal > 0.0 ? rad_to_deg(std::atan2(east, north)) : to.direction_deg;
+  s.vertical = (1.0 - f) * vertical + f * to.vertical;
+  return s;
+}
+
+void SeismicLoad::validate() const {
+  if (!std::isfinite(horizontal)) throw std::invalid_argument("seismic_kh must be finite");
+  if (!std::isfinite(direction_deg))
+    throw std::invalid_argument("seismic_direction_deg must be finite");
+  if (!std::isfinite(vertical)) throw std::invalid_argument("seismic_kv must be finite");
 }
 
 int thread_limit() {
@@ -154,9 +184,18 @@ std::vector<const Contact*> World::contacts() const {
 void World::refresh_block(std::size_t i) {
   Block& b = blocks_[i];
   b.update_world_geometry(box_min_[i], box_max_[i]);
-  b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.external_force())
+  // The water's pressure over the faces below the table and the earthquake's body force, at
+  // this pose (free blocks only: the others' loads are never read).
+  if (b.is_dynamic()) {
+    const double g = settings_.gravity.norm();
+    WaterLoad water;
+    if (settings_.water)
+      water = block_water_load(*settings_.water, g, b.shape, b.rotation(), b.position);
+    b.set_field_loads(water.force, water.torque, b.mass * settings_.seismic.acceleration(g));
+  }
+  b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.applied_force())
                            : Eigen::Vector3d::Zero();
-  b.torque = b.is_dynamic() ? b.external_torque() : Eigen::Vector3d::Zero();
+  b.torque = b.is_dynamic() ? b.applied_torque() : Eigen::Vector3d::Zero();
   b.contact_force.setZero();
 }
 

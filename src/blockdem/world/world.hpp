@@ -25,6 +25,7 @@
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/numerics/exact_sum.hpp"
+#include "blockdem/response/water_pressure.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/contact_preload.hpp"
 #include "blockdem/world/decomposition.hpp"
@@ -79,8 +80,30 @@ inline constexpr std::string_view kElasticSuffix = " (elastic)";
 /// beyond the cores only wait for each other, and each holds its own scratch buffers.
 int thread_limit();
 
+/// A pseudo-static earthquake: a constant body force k g m on every free block, g the magnitude
+/// of gravity (the seismic coefficient of slope design; Wyllie & Mah, Rock Slope Engineering,
+/// 4th ed., 2004, ch. 6, plane failure under a seismic coefficient).
+struct SeismicLoad {
+  double horizontal = 0.0;     ///< k_h (-)
+  double direction_deg = 0.0;  ///< azimuth of k_h, clockwise from north (y) seen from above (deg)
+  double vertical = 0.0;       ///< k_v, positive up (-)
+
+  /// The acceleration of the body force, g (k_h (sin a, cos a, 0) + k_v e_z) (m/s^2).
+  Eigen::Vector3d acceleration(double gravity) const;
+  /// Throws std::invalid_argument naming the value that is not finite.
+  void validate() const;
+  /// The load a fraction f in [0, 1] of the way from this one to `to`, linear in the
+  /// acceleration: `to` itself at f = 1 (a ramp's steps).
+  SeismicLoad toward(const SeismicLoad& to, double f) const;
+};
+
 struct WorldSettings {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< (m/s^2)
+  /// Ground water: every free block's faces below the water table carry its hydrostatic
+  /// pressure (joints and exposed faces alike); empty: dry.
+  std::optional<GroundWater> water;
+  /// The pseudo-static earthquake's coefficients (zero: none).
+  SeismicLoad seismic;
   double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
   double time_step = 0.0;      ///< fixed time step (s); 0 = automatic
   double safety_factor = 0.3;  ///< automatic step = factor · sqrt(m / K) (-)
@@ -276,6 +299,11 @@ class World {
   double level_time() const { return time_ - last_dt_; }
   /// The energy budget at level n since the world was built (world/energy_budget.hpp).
   const EnergyBudget& energy_budget() const { return energy_.budget(); }
+
+  /// The ground water's force on the free blocks at level n, summed (N): with a level water
+  /// table and every block below it, ρ_w g times their volume, upward. Collective like
+  /// reduce_partials on a distributed world that is not whole.
+  Eigen::Vector3d total_water_force() const;
 
   /// Bonds (cohesion, tensile strength) broken since the world was built, counted in the step
   /// they break (a bond that breaks and then separates still counts).

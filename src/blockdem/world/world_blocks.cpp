@@ -1,11 +1,25 @@
-// World block bookkeeping beyond the step: per-face joint laws and block removal (excavation).
+// World block bookkeeping beyond the step: the water's total force, per-face joint laws and block
+// removal (excavation).
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
+
+Eigen::Vector3d World::total_water_force() const {
+  // Exact sums over the free blocks this process counts, reduced over the processes.
+  std::array<ExactSum, 3> sums;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const Block& b = blocks_[i];
+    if (!b.is_dynamic() || !counts_block(i)) continue;
+    for (int k = 0; k < 3; ++k) sums[static_cast<std::size_t>(k)].add(b.water_force()[k]);
+  }
+  reduce_partials(sums, {}, {});
+  return {sums[0].value(), sums[1].value(), sums[2].value()};
+}
 
 void World::set_face_laws(int block, std::vector<int> law_per_plane) {
   if (block < 0 || block >= static_cast<int>(blocks_.size()))

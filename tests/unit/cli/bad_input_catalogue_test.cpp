@@ -244,7 +244,42 @@ INSTANTIATE_TEST_SUITE_P(
                            return s;
                          }() +
                          "]",
-                     "hold", "limit"}),
+                     "hold", "limit"},
+        // Ground water and earthquakes (docs/water-and-earthquakes.md).
+        ScenarioCase{"water_density_zero", "max_steps = 2000",
+                     "max_steps = 2000\nwater_table = { point = [0, 0, 1], normal = [0, 0, 1] }\n"
+                     "water_density = 0",
+                     "water_density", "positive"},
+        ScenarioCase{"water_density_nan", "damping = 0.7",
+                     "damping = 0.7\nwater_table = { point = [0, 0, 1], normal = [0, 0, 1] }\n"
+                     "water_density = nan",
+                     "settings.water_density", "finite"},
+        ScenarioCase{"water_density_alone", "max_steps = 2000",
+                     "max_steps = 2000\nwater_density = 1000", "water_density", "water_table"},
+        ScenarioCase{"water_table_two_points", "max_steps = 2000",
+                     "max_steps = 2000\nwater_table = { points = [[0, 0, 1], [1, 0, 1]] }",
+                     "water_table.points", "at least 3 points"},
+        ScenarioCase{"water_table_point_inf", "damping = 0.7",
+                     "damping = 0.7\nwater_table = { point = [0, 0, inf], normal = [0, 0, 1] }",
+                     "settings.water_table", "finite"},
+        ScenarioCase{"water_table_vertical", "max_steps = 2000",
+                     "max_steps = 2000\nwater_table = { point = [0, 0, 1], normal = [1, 0, 0] }",
+                     "water_table", "vertical"},
+        ScenarioCase{"water_table_unknown_key", "max_steps = 2000",
+                     "max_steps = 2000\nwater_table = { point = [0, 0, 1], normal = [0, 0, 1], "
+                     "level = 3 }",
+                     "water_table.level", "unknown"},
+        ScenarioCase{"water_table_none_in_settings", "damping = 0.7",
+                     "damping = 0.7\nwater_table = \"none\"", "settings.water_table", "point"},
+        ScenarioCase{"seismic_kh_inf", "max_steps = 2000", "max_steps = 2000\nseismic_kh = inf",
+                     "seismic_kh", "finite"},
+        ScenarioCase{"seismic_kv_nan", "max_steps = 2000", "max_steps = 2000\nseismic_kv = nan",
+                     "seismic_kv", "finite"},
+        ScenarioCase{"seismic_unknown_key", "max_steps = 2000",
+                     "max_steps = 2000\nseismic_kx = 0.1", "seismic_kx", "unknown"},
+        ScenarioCase{"seismic_collapse_with_gravity", "max_steps = 2000",
+                     "max_steps = 2000\nseismic_kh = 0.1\nfind_collapse = true", "find_collapse",
+                     "either gravity"}),
     [](const ::testing::TestParamInfo<ScenarioCase>& p) { return std::string(p.param.name); });
 
 // The voussoir builder's own checks.
