@@ -22,6 +22,7 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/bolt_input.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 #include "blockdem/scenario/stage_input.hpp"
 #include "blockdem/world/contact_mode.hpp"
@@ -496,6 +497,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     }
     if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
   }
+  read_bolts(t, sc);
   add_elastic_twins(sc);
   warn_point_contact_searches(sc);
   if (sc.in_situ && sc.settings.contact_mode == ContactMode::boon2012)
@@ -523,6 +525,9 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     if (centre.cwiseAbs().maxCoeff() > 1e4) {
       sc.settings.origin = centre.array().round().matrix();
       if (sc.in_situ) sc.in_situ = sc.in_situ->shifted_by(sc.settings.origin);
+      for (Stage& stage : sc.stages) {
+        for (BoltSpec& bolt : stage.bolts) bolt.start -= sc.settings.origin;
+      }
       for (auto& b : sc.blocks) {
         b.position -= sc.settings.origin;
         b.initial_position -= sc.settings.origin;

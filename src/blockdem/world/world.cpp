@@ -431,6 +431,7 @@ void World::save_checkpoint() {
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
+  checkpoint_.bolts = bolts_;
   checkpoint_.energy = energy_;
   checkpoint_.valid = true;
 }
@@ -552,6 +553,7 @@ void World::restore_checkpoint() {
   time_ = checkpoint_.time;
   step_count_ = checkpoint_.step_count;
   broken_bonds_ = checkpoint_.broken_bonds;
+  bolts_ = checkpoint_.bolts;
   energy_ = checkpoint_.energy;
   // The checkpoint is whole on every process: so is the world now.
   decomposition_.reset_whole();
