@@ -31,23 +31,33 @@ namespace {
 constexpr double kDensity = 2500.0;
 constexpr double kG = 9.81;
 
+// A fixed block and a free one, of 2500 kg/m^3, boxes of the sizes given (m) centred on the
+// z axis at heights z (m); the joint law linear, k_n = 1e10 Pa/m, k_s = 1e9 Pa/m, 30 degrees.
+std::string two_blocks(const std::string& fixed_size, double fixed_z, const std::string& free_size,
+                       double free_z) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "[settings]\ndamping = 0.7\ncontact_mode = \"face_integrated\"\n"
+    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 30 }\n";
+  for (int k = 0; k < 2; ++k) {
+    s << "[[blocks]]\nname = \"" << (k == 0 ? "fixed" : "free")
+      << "\"\ndensity = 2500\nsize = " << (k == 0 ? fixed_size : free_size)
+      << "\nposition = [0, 0, " << (k == 0 ? fixed_z : free_z) << "]\n"
+      << (k == 0 ? "motion = \"fixed\"\n" : "");
+  }
+  return s.str();
+}
+
 // A 0.5 m cube under a fixed roof (z >= 0), bolted up through its middle: collar on its bottom
 // face, 1 m of bolt (0.5 m in the cube, 0.5 m in the roof). `bolt` adds keys to the bolt.
 std::string hanging(const std::string& bolt, std::int64_t steps) {
-  std::ostringstream s;
-  s << "[settings]\ndamping = 0.7\ncontact_mode = \"face_integrated\"\n"
-    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
-    << "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 30 }\n"
-    << "[[blocks]]\nname = \"roof\"\ndensity = 2500\nsize = [2, 2, 1]\nposition = [0, 0, 0.5]\n"
-    << "motion = \"fixed\"\n"
-    << "[[blocks]]\nname = \"hanging\"\ndensity = 2500\nsize = [0.5, 0.5, 0.5]\n"
-    << "position = [0, 0, -0.25]\n"
-    << "[[stages]]\nname = \"hang\"\nkind = \"steps\"\nsteps = " << steps
-    << "\ngravity = [0, 0, -9.81]\n"
-    << "[[bolts]]\nname = \"B1\"\nstart = [0, 0, -0.5]\ndirection = [0, 0, 1]\nlength = 1.0\n"
-    << "axial_stiffness = 1e7\ninstall_stage = \"hang\"\n"
-    << bolt;
-  return s.str();
+  return two_blocks("[2, 2, 1]", 0.5, "[0.5, 0.5, 0.5]", -0.25) +
+         "[[stages]]\nname = \"hang\"\nkind = \"steps\"\nsteps = " + std::to_string(steps) +
+         "\ngravity = [0, 0, -9.81]\n"
+         "[[bolts]]\nname = \"B1\"\nstart = [0, 0, -0.5]\ndirection = [0, 0, 1]\nlength = 1.0\n"
+         "axial_stiffness = 1e7\ninstall_stage = \"hang\"\n" +
+         bolt;
 }
 
 constexpr double kWeight = kDensity * 0.125 * kG;  // the hanging cube's (N)
@@ -168,30 +178,8 @@ struct PullOut {
 constexpr double kEA = 1e8, kBond = 1e8, kEmbedded = 2.0, kPlate = 0.002;
 
 PullOut pull(double force, double bond_strength) {
-  const std::string text = R"(
-[settings]
-damping = 0.7
-contact_mode = "face_integrated"
-[[joint_laws]]
-name = "joint"
-normal = { law = "linear", stiffness = 1e10 }
-shear = { law = "linear", stiffness = 1e9, friction_deg = 30 }
-[[blocks]]
-name = "rock"
-density = 2500
-size = [1, 1, 2]
-position = [0, 0, -1]
-motion = "fixed"
-[[blocks]]
-name = "plate"
-density = 2500
-size = [0.2, 0.2, 0.002]
-position = [0, 0, 0.001]
-[[stages]]
-name = "none"
-kind = "steps"
-steps = 1
-)";
+  const std::string text = two_blocks("[1, 1, 2]", -1.0, "[0.2, 0.2, 0.002]", 0.001) +
+                           "[[stages]]\nname = \"none\"\nkind = \"steps\"\nsteps = 1\n";
   const Scenario sc = parse_scenario(text, "pull_out.toml");
   PullOut p{build_world(sc)};
   World& w = p.world;

@@ -6,10 +6,13 @@
 // excavation stage, it is held (no key block) and every bolt stays intact.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "stability_support.hpp"
 #include "support/sanitized_run.hpp"
@@ -52,7 +55,8 @@ TEST(BoltedWedge, ThreeBoltsHoldTheKeyBlockThatFallsWithout) {
     EXPECT_NEAR(wedge->at("volume_m3").get<double>(), 6.25, 1e-3);  // the joints as given: 6.2505
   }
   // Bolted: held, every bolt intact.
-  const Scenario sc = example();
+  Scenario sc = example();
+  sc.output.history_bolts = {"B2"};
   const auto out = test::run_folder("bolted_wedge_three");
   std::filesystem::remove_all(out);
   const RunResult r = run_scenario(sc, out);
@@ -77,7 +81,75 @@ TEST(BoltedWedge, ThreeBoltsHoldTheKeyBlockThatFallsWithout) {
   }
   EXPECT_EQ(rows, 6);
   EXPECT_GT(largest, 0.0);
+  // time_history.csv's last row (the stage end) has B2's largest tendon force, as bolts.csv.
+  std::ifstream history(out / "time_history.csv");
+  std::string header, last;
+  std::getline(history, header);
+  while (std::getline(history, line)) last = line;
+  const auto column = [](const std::string& row, std::size_t k) {
+    std::size_t at = 0;
+    for (std::size_t j = 0; j < k; ++j) at = row.find(',', at) + 1;
+    return row.substr(at, row.find(',', at) - at);
+  };
+  std::size_t k = 0;
+  while (column(header, k) != "B2_axial_force_N" && k < 100) ++k;
+  ASSERT_LT(k, 100u) << header;
+  EXPECT_EQ(column(header, k + 1), "B2_shear_force_N");
+  EXPECT_NEAR(std::stod(column(last, k)), largest, 1e-9 * largest);
   std::printf("bolted roof wedge: largest tendon force %.4g N\n", largest);
+}
+
+// The bolts' loads are summed serially in bolt order: one thread and three give the same bytes.
+TEST(BoltedWedge, BoltsCsvIsTheSameBytesForOneAndThreeThreads) {
+  if (test::sanitized_run()) GTEST_SKIP() << "minutes under the sanitizers";
+  std::string text[2];
+  for (int k = 0; k < 2; ++k) {
+    Scenario sc = example();
+    sc.settings.threads = k == 0 ? 1 : 3;
+    const auto out = test::run_folder("bolted_wedge_threads_" + std::to_string(k));
+    std::filesystem::remove_all(out);
+    ASSERT_EQ(run_scenario(sc, out).status, RunStatus::completed);
+    std::ifstream in(out / "bolts.csv");
+    text[k].assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  EXPECT_FALSE(text[0].empty());
+  EXPECT_EQ(text[0], text[1]);
+}
+
+// The same wedge bolted by a pattern on the opening: on the roof (the wedge's base, the triangle
+// (2.5, 0), (5, ±1.5) of z = 0) a 1 m lattice at half-metre offsets keeps (4.5, ±0.5) only
+// ((3.5, ±0.5) lie within a tenth of the spacing of the triangle's edges), each bolt vertical
+// into the wedge; they hold it.
+TEST(BoltedWedge, PatternOnTheOpeningPutsBoltsNormalToItsFacesAndHoldsTheWedge) {
+  if (test::sanitized_run()) GTEST_SKIP() << "minutes under the sanitizers";
+  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
+                                     "examples" / "roof_wedge_bolted.toml";
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = text.substr(0, text.find("[[bolts]]"));
+  text +=
+      "[[bolt_patterns]]\nname = \"roof\"\nexcavation = \"opening\"\nspacing = [1.0, 1.0]\n"
+      "length = 3.0\naxial_stiffness = 3.33e7\nyield_force = 2e5\nbond_stiffness = 1.12e8\n"
+      "bond_strength = 1.75e5\nshear_stiffness = 1e8\nshear_capacity = 1e5\n"
+      "install_stage = \"excavate and bolt\"\n";
+  const Scenario sc = parse_scenario(text, "pattern.toml");
+  std::vector<Eigen::Vector3d> roof;
+  for (const BoltSpec& b : sc.stages[1].bolts) {
+    // Every bolt normal to a face of the opening, from it into the rock.
+    EXPECT_NEAR(b.direction.norm(), 1.0, 1e-12);
+    if (b.direction.z() > 1.0 - 1e-12) roof.push_back(b.start);
+  }
+  ASSERT_EQ(roof.size(), 2u);
+  std::sort(roof.begin(), roof.end(), [](const auto& p, const auto& q) { return p.y() < q.y(); });
+  EXPECT_LT((roof[0] - Eigen::Vector3d(4.5, -0.5, 0.0)).norm(), 1e-9);
+  EXPECT_LT((roof[1] - Eigen::Vector3d(4.5, 0.5, 0.0)).norm(), 1e-9);
+  const auto out = test::run_folder("bolted_wedge_pattern");
+  std::filesystem::remove_all(out);
+  const RunResult r = run_scenario(sc, out);
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+  EXPECT_TRUE(r.summary.at("stages").at(1).at("key_blocks").empty());
+  std::printf("pattern on the opening: %zu bolts, %zu in the roof\n", sc.stages[1].bolts.size(),
+              roof.size());
 }
 
 }  // namespace

@@ -222,7 +222,8 @@ class RunOutputs final : public RunObserver {
     history_ = std::make_unique<TimeHistoryWriter>(
         out_ / "time_history.csv", world,
         TimeHistoryOptions{sc_.output.history_interval, sc_.output.history_interval_s,
-                           sc_.output.history_max_rows, sc_.output.history_blocks},
+                           sc_.output.history_max_rows, sc_.output.history_blocks,
+                           sc_.output.history_bolts},
         resumed);
   }
   /// A restart: the writers continue their files, and the summary, stages and counters go on

@@ -128,10 +128,14 @@ Posed posed(const Block& b) {
 
 /// One [[bolt_patterns]] entry's bolts: on every face where a block of the excavation touches a
 /// block that stays, collars on a lattice, each bolt normal to the face into the rock. Bolts
-/// whose line crosses no joint are left out (counted in a warning).
+/// whose line crosses no joint or leaves the model are left out (counted in a warning).
 void read_pattern(const CheckedTable& t, std::size_t k, Scenario& sc) {
   BoltSpec element;
   const std::string name = t.string("name", "pattern " + std::to_string(k + 1));
+  const std::vector<double> spacing = t.numbers("spacing");
+  if (spacing.size() != 2 || !(spacing[0] > 0.0) || !(spacing[1] > 0.0) ||
+      !std::isfinite(spacing[0]) || !std::isfinite(spacing[1]))
+    t.fail("spacing", "must be two positive spacings [along, around] (m)");
   const std::string excavation = t.string("excavation");
   const auto ex = sc.excavations.find(excavation);
   if (ex == sc.excavations.end()) {
@@ -141,10 +145,6 @@ void read_pattern(const CheckedTable& t, std::size_t k, Scenario& sc) {
            "no excavation named \"" + excavation + "\"" +
                (known.empty() ? " (the scenario has none)" : " (known: " + known + ")"));
   }
-  const std::vector<double> spacing = t.numbers("spacing");
-  if (spacing.size() != 2 || !(spacing[0] > 0.0) || !(spacing[1] > 0.0) ||
-      !std::isfinite(spacing[0]) || !std::isfinite(spacing[1]))
-    t.fail("spacing", "must be two positive spacings [along, around] (m)");
   read_element(t, element);
   const std::size_t at = install_stage(t, sc);
   t.finish();
@@ -165,26 +165,27 @@ void read_pattern(const CheckedTable& t, std::size_t k, Scenario& sc) {
       if (!face) continue;
       for (const Eigen::Vector3d& collar : face_collars(*face, spacing[0], spacing[1])) {
         BoltSpec b = element;
-        b.name = name + "-" + std::to_string(bolts.size() + idle + 1);
+        b.name = name + "-" + std::to_string(bolts.size() + 1);
         b.start = collar;
         b.direction = face->normal;  // from the excavation into the rock
-        const std::string problem = bolt_span_problem(b, bolt_spans(b, left), left);
-        if (problem.rfind("the bolt crosses no joint", 0) == 0) {
+        // A bolt that crosses no joint holds nothing; one that leaves the model (the floor of
+        // a tunnel near the region's bottom) cannot be put in: both are left out.
+        if (!bolt_span_problem(b, bolt_spans(b, left), left).empty()) {
           ++idle;
           continue;
         }
-        if (!problem.empty()) t.fail("length", "bolt " + b.name + ": " + problem);
         bolts.push_back(std::move(b));
       }
     }
   }
   if (bolts.empty())
-    t.fail("spacing", "no bolt of the pattern crosses a joint (" + std::to_string(idle) +
-                          " collars on the excavation's surface)");
+    t.fail("spacing", "no bolt of the pattern crosses a joint inside the model (" +
+                          std::to_string(idle) + " collars on the excavation's surface)");
   if (idle > 0)
     sc.warnings.push_back("bolt_patterns[" + std::to_string(k + 1) + "]: " + std::to_string(idle) +
                           " of " + std::to_string(idle + bolts.size()) +
-                          " bolts cross no joint within their length and are left out");
+                          " bolts cross no joint within their length or leave the model, and "
+                          "are left out");
   for (BoltSpec& b : bolts) sc.stages[at].bolts.push_back(std::move(b));
 }
 

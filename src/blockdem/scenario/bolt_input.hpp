@@ -16,7 +16,8 @@ namespace blockdem {
 /// `install_stage`, an `excavation` (a name of Scenario::excavations) and `spacing = [along,
 /// around]` (m): on each face where a block of the excavation touches a block that stays, bolts
 /// normal to the face into the rock on a lattice of that spacing, named "NAME-1", "NAME-2", ...
-/// (`name`, default "pattern K"). Bolts that cross no joint are left out, with a warning.
+/// (`name`, default "pattern K"). Bolts that cross no joint or leave the model are left out,
+/// with a warning.
 void read_bolts(const CheckedTable& root, Scenario& sc);
 
 }  // namespace blockdem

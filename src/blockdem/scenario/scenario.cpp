@@ -282,6 +282,7 @@ void read_output(const CheckedTable& o, OutputSpec& output) {
   output.history_max_rows = o.integer("history_max_rows", output.history_max_rows);
   if (output.history_max_rows < 2) o.fail("history_max_rows", "must be at least 2");
   if (o.has("history_blocks")) output.history_blocks = o.strings("history_blocks");
+  if (o.has("history_bolts")) output.history_bolts = o.strings("history_bolts");
   o.finish();
 }
 
@@ -507,6 +508,13 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
         "the blocks start with unbalanced moments; contact_mode = \"face_integrated\" carries "
         "the field exactly (docs/ground-stress.md)");
   if (t.has("output")) read_output(t.table("output"), sc.output);
+  for (const auto& name : sc.output.history_bolts) {
+    const bool known = std::any_of(sc.stages.begin(), sc.stages.end(), [&](const Stage& st) {
+      return std::any_of(st.bolts.begin(), st.bolts.end(),
+                         [&](const BoltSpec& b) { return b.name == name; });
+    });
+    if (!known) t.fail("output.history_bolts", "no bolt named '" + name + "'");
+  }
   // Unknown keys first: a misspelt [[stages]] is named as such.
   t.finish();
   // A built scene without stages can be generated (blockdem generate), not run.

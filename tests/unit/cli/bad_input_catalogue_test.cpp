@@ -91,6 +91,10 @@ const std::string kTop = "name = \"top\"\nmaterial = \"rock\"\nsize = [0.2, 0.2,
 const std::string kBolt =
     "[[bolts]]\nname = \"B1\"\ndirection = [0, 0, -1]\naxial_stiffness = 1e7\n"
     "install_stage = \"settle\"\n";
+// A bolt pattern on an excavation the scenario does not have; each case adds its spacing.
+const std::string kPattern =
+    "[[bolt_patterns]]\nexcavation = \"tunnel\"\nlength = 0.3\naxial_stiffness = 1e7\n"
+    "install_stage = \"settle\"\n";
 
 INSTANTIATE_TEST_SUITE_P(
     Catalogue, BadScenario,
@@ -262,6 +266,10 @@ INSTANTIATE_TEST_SUITE_P(
                      kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nbond_stiffness = 1e8\n"
                              "pretension = 1e3",
                      "bolts[1].pretension", "point-anchored"},
+        ScenarioCase{"bolt_pattern_spacing_zero", "", kPattern + "spacing = [0, 1.5]",
+                     "bolt_patterns[1].spacing", "positive"},
+        ScenarioCase{"bolt_pattern_unknown_excavation", "", kPattern + "spacing = [1.5, 1.5]",
+                     "bolt_patterns[1].excavation", "no excavation named \"tunnel\""},
         ScenarioCase{"huge_array", "gravity = [0, 0, -9.81]",
                      "gravity = [0, 0, -9.81]\nhold = [" +
                          [] {
