@@ -20,6 +20,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/world/stage.hpp"
@@ -62,10 +63,21 @@ std::string hanging(const std::string& bolt, std::int64_t steps) {
 
 constexpr double kWeight = kDensity * 0.125 * kG;  // the hanging cube's (N)
 
-TEST(BoltSupport, PointAnchoredBoltCarriesTheWeightAndStretchesWOverK) {
-  const Scenario sc = parse_scenario(hanging("", 20000), "hanging.toml");
-  World w = build_world(sc);
-  run_stage(w, sc.stages[0]);
+// Both contact modes: the bolt's loads do not depend on how contacts are found.
+class BoltContactModes : public ::testing::TestWithParam<ContactMode> {
+ protected:
+  World world_of(const std::string& text) {
+    Scenario sc = parse_scenario(text, "hanging.toml");
+    sc.settings.contact_mode = GetParam();
+    stages_ = sc.stages;
+    return build_world(sc);
+  }
+  std::vector<Stage> stages_;
+};
+
+TEST_P(BoltContactModes, PointAnchoredBoltCarriesTheWeightAndStretchesWOverK) {
+  World w = world_of(hanging("", 20000));
+  run_stage(w, stages_[0]);
   ASSERT_EQ(w.bolts().size(), 1u);
   const Bolt& b = w.bolts()[0];
   EXPECT_EQ(b.state, Bolt::State::intact);
@@ -75,11 +87,10 @@ TEST(BoltSupport, PointAnchoredBoltCarriesTheWeightAndStretchesWOverK) {
   EXPECT_EQ(w.contact_count(), 0u);  // the joint has opened
 }
 
-TEST(BoltSupport, PretensionStartsAtPAndClampsTheBlockToTheRoof) {
+TEST_P(BoltContactModes, PretensionStartsAtPAndClampsTheBlockToTheRoof) {
   const double p = 5000.0;  // above the weight: the joint stays closed
-  const Scenario sc = parse_scenario(hanging("pretension = 5000\n", 1), "pretension.toml");
-  World w = build_world(sc);
-  run_stage(w, sc.stages[0]);
+  World w = world_of(hanging("pretension = 5000\n", 1));
+  run_stage(w, stages_[0]);
   // After the first step (forces at the installed pose): the pretension exactly.
   EXPECT_EQ(w.bolts()[0].axial_force, p);
   Stage more;
@@ -93,6 +104,12 @@ TEST(BoltSupport, PretensionStartsAtPAndClampsTheBlockToTheRoof) {
   EXPECT_NEAR(w.bolts()[0].axial_force, expected, 1e-6 * expected);
   EXPECT_EQ(w.contact_count(), 1u);
 }
+
+INSTANTIATE_TEST_SUITE_P(BoltSupport, BoltContactModes,
+                         ::testing::Values(ContactMode::face_integrated, ContactMode::boon2012),
+                         [](const ::testing::TestParamInfo<ContactMode>& mode) {
+                           return std::string(to_string(mode.param));
+                         });
 
 TEST(BoltSupport, TendonYieldsAtItsYieldForceThenRupturesAndTheBlockFalls) {
   const double fy = 0.5 * kWeight;
