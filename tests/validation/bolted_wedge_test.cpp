@@ -152,6 +152,20 @@ TEST(BoltedWedge, PatternOnTheOpeningPutsBoltsNormalToItsFacesAndHoldsTheWedge) 
               roof.size());
 }
 
+// The bolted tunnel example's pattern (docs/support.md quotes these counts): 135 collars at
+// 0.75 m on the faces the tunnel shares with the rock, 26 of whose bolts cross no joint or
+// leave the model.
+TEST(BoltedWedge, TunnelPatternPutsInTheBoltsTheDocsCount) {
+  const std::filesystem::path file =
+      std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" / "examples" / "tunnel_bolted.toml";
+  const Scenario sc = load_scenario(file.string());
+  std::size_t bolts = 0;
+  for (const Stage& st : sc.stages) bolts += st.bolts.size();
+  EXPECT_EQ(bolts, 109u);
+  ASSERT_FALSE(sc.warnings.empty());
+  EXPECT_NE(sc.warnings.back().find("26 of 135 bolts"), std::string::npos) << sc.warnings.back();
+}
+
 }  // namespace
 }  // namespace bolted_wedge_test
 }  // namespace blockdem
