@@ -27,7 +27,12 @@ std::string bolt_rows(const World& world, const std::string& stage) {
 }
 
 void write_bolts_csv(const std::filesystem::path& path, const std::string& rows) {
-  std::string text = "stage,bolt,segment,block,from_m,to_m,axial_force_N,shear_force_N,state\n";
+  std::string text;
+  for (const char* column : kBoltColumns) {
+    if (!text.empty()) text.push_back(',');
+    text.append(column);
+  }
+  text.push_back('\n');
   text.append(rows);
   write_file_atomically(path, text);
 }

@@ -85,7 +85,8 @@ std::vector<Eigen::Vector3d> face_collars(const SharedFace& face, double along, 
   if (a.norm() < 1e-6) a = Eigen::Vector3d::UnitX() - n.x() * n;
   a.normalize();
   const Eigen::Vector3d b = n.cross(a);
-  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+  const double inf = std::numeric_limits<double>::infinity();
+  double a0 = inf, a1 = -inf, b0 = inf, b1 = -inf;
   for (const auto& p : face.polygon) {
     a0 = std::min(a0, p.dot(a));
     a1 = std::max(a1, p.dot(a));

@@ -233,14 +233,6 @@ double Tendon::plate_force() const {
   return f;
 }
 
-double Bolt::axial_force_at(double s) const {
-  if (!spec.grouted()) return axial_force;
-  const auto it = std::upper_bound(node_at.begin(), node_at.end(), s);
-  const auto e = std::clamp<std::ptrdiff_t>(
-      it - node_at.begin() - 1, 0, static_cast<std::ptrdiff_t>(tendon.elements.size()) - 1);
-  return tendon.elements[static_cast<std::size_t>(e)].force;
-}
-
 double Bolt::largest_axial_force(double from, double to) const {
   if (!spec.grouted()) return axial_force;
   double best = 0.0;

@@ -131,8 +131,6 @@ struct Bolt {
   double largest_strain = 0.0;  ///< the tendon's largest strain so far (-)
 
   bool active() const { return state == State::intact || state == State::yielded; }
-  /// The tendon's axial force at arc length s (m): the element's there (N).
-  double axial_force_at(double s) const;
   /// The largest tendon tension over [from, to] (N).
   double largest_axial_force(double from, double to) const;
 };

@@ -2,6 +2,7 @@
 // blocks after the contacts' in a fixed order (bolt by bolt), so that every thread count gives
 // the same bits.
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "blockdem/world/world.hpp"
@@ -30,7 +31,8 @@ void World::apply_bolts() {
   // Serial and in bolt order: a bolt's loads on a block are summed in the same order for any
   // number of threads. The bolts' stiffnesses join the contacts' in the automatic time step.
   for (Bolt& bolt : bolts_) apply_bolt(bolt, blocks_, stiffness_, rotational_stiffness_);
-  double dt_min = contact_dt_ > 0.0 ? contact_dt_ / settings_.safety_factor : INFINITY;
+  double dt_min = contact_dt_ > 0.0 ? contact_dt_ / settings_.safety_factor
+                                    : std::numeric_limits<double>::infinity();
   for (const Bolt& bolt : bolts_) {
     if (!bolt.active()) continue;
     for (const BoltSpan& s : bolt.spans) {
