@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -84,6 +85,8 @@ TEST_P(BoltContactModes, PointAnchoredBoltCarriesTheWeightAndStretchesWOverK) {
   EXPECT_NEAR(b.axial_force, kWeight, 1e-6 * kWeight);
   const double drop = -(w.blocks()[1].position.z() + 0.25);
   EXPECT_NEAR(drop, kWeight / 1e7, 1e-6 * kWeight / 1e7);
+  std::printf("hanging bolt (%s): N / W - 1 = %.2e, stretch k / W - 1 = %.2e\n",
+              to_string(GetParam()), b.axial_force / kWeight - 1.0, drop * 1e7 / kWeight - 1.0);
   EXPECT_EQ(w.contact_count(), 0u);  // the joint has opened
 }
 
@@ -102,6 +105,8 @@ TEST_P(BoltContactModes, PretensionStartsAtPAndClampsTheBlockToTheRoof) {
   const double k = 1e7, kn = 1e10 * 0.25;
   const double expected = p - k * (p - kWeight) / (k + kn);
   EXPECT_NEAR(w.bolts()[0].axial_force, expected, 1e-6 * expected);
+  std::printf("pretensioned bolt (%s): N / expected - 1 = %.2e\n", to_string(GetParam()),
+              w.bolts()[0].axial_force / expected - 1.0);
   EXPECT_EQ(w.contact_count(), 1u);
 }
 
@@ -175,6 +180,8 @@ TEST(BoltSupport, DowelOnAnInclineCarriesTheDrivingForceLessFriction) {
   // On the plate (block_b) down the slope; on the block, up it.
   const double dowel = b.crossings[0].force.x();
   EXPECT_NEAR(dowel, expected, 0.01 * expected);
+  std::printf("dowel on an incline: shear %.6g N against %.6g N (%.2e)\n", dowel, expected,
+              dowel / expected - 1.0);
   // The block's slip at the bolt (its material point at the crossing; its centroid moves a
   // little more, as the block also tilts forward by some 2e-5 rad).
   const BoltCrossing& c = b.crossings[0];
@@ -250,6 +257,10 @@ TEST(BoltSupport, GroutedBoltInPullOutFollowsTheShearLagSolution) {
   const double stiffness = into_rock / -b.tendon.u[node];
   const double expected = kEA * alpha * std::tanh(alpha * l);
   EXPECT_NEAR(stiffness, expected, 0.02 * expected);
+  std::printf(
+      "grouted pull-out: largest |N(x) - closed form| / F = %.2e, head stiffness %.6g "
+      "N/m against %.6g (%.2e)\n",
+      worst, stiffness, expected, stiffness / expected - 1.0);
   EXPECT_EQ(b.state, Bolt::State::intact);
 }
 

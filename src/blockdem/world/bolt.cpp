@@ -328,9 +328,12 @@ void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& sti
       bolt.axial_force = 0.0;
       return;
     }
-    double force = 0.0;
+    // Yield in tension only: a slack tendon carries nothing, so it cannot yield in compression.
     const double stretch = l - bolt.anchored_length + spec.pretension / k;
-    yielded |= plastic_member(k, spec.yield_force, stretch, bolt.plastic_extension, force);
+    double force = k * (stretch - bolt.plastic_extension);
+    if (force > spec.yield_force) {
+      yielded |= plastic_member(k, spec.yield_force, stretch, bolt.plastic_extension, force);
+    }
     bolt.axial_force = std::max(force, 0.0);
     load(blocks, bolt.ties[0].block, bolt.axial_force * axis, x0, k, stiffness, rotational);
     load(blocks, bolt.ties[1].block, -bolt.axial_force * axis, x1, k, stiffness, rotational);
