@@ -6,12 +6,13 @@
 // - a tendon that yields below W is capped at its yield force, ruptures at its rupture strain,
 //   and the block falls;
 // - a block on a plane dipping ψ > φ held by a dowel across the joint (Hudson & Harrison 1997,
-//   Engineering Rock Mechanics, §18.2, with the bolt normal to the plane, β = 90°): the dowel's
-//   shear force is W (sin ψ - cos ψ tan φ), reached after a slip of that force over k_s;
+//   Engineering Rock Mechanics, the bolted block on an inclined plane, with the bolt normal to the
+//   plane, β = 90°): the dowel's shear force is W (sin ψ - cos ψ tan φ), reached after a slip of
+//   that force over k_s;
 // - a fully grouted bolt pulled at its head (the shear-lag solution of Farmer 1975, Int. J.
-//   Rock Mech. Min. Sci. 12:347, eq. 4; Li & Stillborg 1999, Int. J. Rock Mech. Min. Sci.
-//   36:1013, eq. 9): N(x) = F sinh(α(L - x)) / sinh(αL), head stiffness E A α tanh(αL),
-//   α = sqrt(k_b / (E A)), and the grout yields first at the head when F = s_b tanh(αL) / α.
+//   Rock Mech. Min. Sci. 12:347; Li & Stillborg 1999, Int. J. Rock Mech. Min. Sci. 36:1013):
+//   N(x) = F sinh(α(L - x)) / sinh(αL), head stiffness E A α tanh(αL), α = sqrt(k_b / (E A)),
+//   and the grout yields first at the head when F = s_b tanh(αL) / α.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -65,8 +65,9 @@ std::string bolt_span_problem(const BoltSpec& spec, const std::vector<BoltSpan>&
 /// nodes 0..n along the bolt, node 0 tied to the collar's block by the face plate, elements
 /// between nodes, and grout springs that tie nodes to blocks. Axial displacements along the bolt
 /// (m), forces positive in tension (N). One-dimensional: the shear-lag model of a fully grouted
-/// bolt (Farmer 1975, eq. 4; Li & Stillborg 1999, eq. 9), E A u'' = k_b (u - w), discretised by
-/// lumping the grout at the nodes (trapezoidal rule).
+/// bolt (Farmer 1975, Int. J. Rock Mech. Min. Sci. 12:347; Li & Stillborg 1999, Int. J. Rock
+/// Mech. Min. Sci. 36:1013), E A u'' = k_b (u - w), discretised by lumping the grout at the
+/// nodes (trapezoidal rule).
 struct Tendon {
   struct Element {
     double stiffness = 0.0;  ///< E A / h (N/m)
