@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "stability_support.hpp"
+#include "support/cli_runner.hpp"
+#include "support/input_error.hpp"
 #include "support/sanitized_run.hpp"
 
 namespace blockdem {
@@ -164,6 +166,18 @@ TEST(BoltedWedge, TunnelPatternPutsInTheBoltsTheDocsCount) {
   EXPECT_EQ(bolts, 109u);
   ASSERT_FALSE(sc.warnings.empty());
   EXPECT_NE(sc.warnings.back().find("26 of 135 bolts"), std::string::npos) << sc.warnings.back();
+}
+
+// Restart files do not hold bolts yet: asking for checkpoints is refused before anything is
+// written, rather than losing the bolts on a restart.
+TEST(BoltedWedge, CheckpointsAreRefusedWithBolts) {
+  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
+                                     "examples" / "roof_wedge_bolted.toml";
+  const auto out = test::run_folder("bolted_wedge_checkpoint");
+  std::filesystem::remove_all(out);
+  const auto r = test::run_cli("run '" + file.string() + "' --out '" + out.string() +
+                               "' --quiet --no-figures --checkpoint-every 100");
+  test::expect_input_error(r, out, {"roof_wedge_bolted.toml", "checkpoints", "bolts"});
 }
 
 }  // namespace
