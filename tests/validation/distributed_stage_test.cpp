@@ -140,8 +140,9 @@ std::string read_text(const std::filesystem::path& p) {
 Files write_outputs(World w, const Stage& stage, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   {
-    TimeHistoryWriter history(dir / "time_history.csv", w,
-                              TimeHistoryOptions{10, 0.0, 20000, {"c0", "c150", "c361", "base"}});
+    TimeHistoryWriter history(
+        dir / "time_history.csv", w,
+        TimeHistoryOptions{10, 0.0, 20000, {"c0", "c150", "c361", "base"}, {}});
     RunRecorder recorder(dir, false);
     StageSync sync;
     sync.after_step_synchronizes = true;

@@ -48,6 +48,10 @@ TimeHistoryWriter::TimeHistoryWriter(const std::filesystem::path& path, const Wo
          {"_ux_m", "_uy_m", "_uz_m", "_vx_m_s", "_vy_m_s", "_vz_m_s", "_rotation_deg"})
       columns.push_back(name + c);
   }
+  for (const auto& name : options_.bolts) {
+    columns.push_back(name + "_axial_force_N");
+    columns.push_back(name + "_shear_force_N");
+  }
   next_coarsening_ = options_.max_rows / 2;
   csv_ = std::make_unique<CsvWriter>(path, std::move(columns), append);
 }
@@ -181,6 +185,16 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
       .cell(e.seismic_work);
   for (const auto& row : columns) {
     for (const double x : row) csv_->cell(x);
+  }
+  // The chosen bolts' largest tendon force and dowel shear, found by name (a stage installs them).
+  for (const auto& name : options_.bolts) {
+    double axial = 0.0, shear = 0.0;
+    for (const Bolt& b : world.bolts()) {
+      if (b.spec.name != name || !b.active()) continue;
+      axial = b.largest_axial_force(0.0, b.spec.length);
+      for (const BoltCrossing& c : b.crossings) shear = std::max(shear, c.force.norm());
+    }
+    csv_->cell(axial).cell(shear);
   }
   csv_->end_row();
   ++rows_;

@@ -21,6 +21,9 @@ struct TimeHistoryOptions {
   /// the interval doubles (about interval × max_rows × log2(max_rows) / 2 steps are covered).
   std::int64_t max_rows = 20000;
   std::vector<std::string> blocks;  ///< blocks whose displacement and velocity get columns
+  /// Bolts whose largest tendon force and largest dowel shear get columns (N; 0 before the
+  /// stage that installs them and after they rupture). One process only (bolts are).
+  std::vector<std::string> bolts;
 };
 
 class TimeHistoryWriter {

@@ -236,7 +236,57 @@ Grid contact_grid(const World& world, const std::vector<const Contact*>& contact
   return g;
 }
 
+// The bolts as lines: one cell per tendon element (a point-anchored bolt is one element), from
+// its points in the blocks that hold them at their present poses.
+Grid bolt_grid(const World& world) {
+  constexpr std::uint8_t kVtkLine = 3;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::int32_t> bolt_id, state;
+  std::vector<double> force;
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  const auto& blocks = world.blocks();
+  const Eigen::Vector3d& origin = world.settings().origin;
+  const auto at = [&](const BoltTie& t) -> Eigen::Vector3d {
+    return blocks[static_cast<std::size_t>(t.block)].to_world(t.body_point) + origin;
+  };
+  for (std::size_t k = 0; k < world.bolts().size(); ++k) {
+    const Bolt& bolt = world.bolts()[k];
+    const bool removed = bolt.state == Bolt::State::removed;
+    const std::size_t elements = bolt.spec.grouted() ? bolt.tendon.elements.size() : 1;
+    for (std::size_t e = 0; e < elements; ++e) {
+      // A grouted element's ends: its two springs' points; a removed bolt at installation.
+      const BoltTie& t0 = bolt.ties[bolt.spec.grouted() ? 2 * e : 0];
+      const BoltTie& t1 = bolt.ties[bolt.spec.grouted() ? 2 * e + 1 : 1];
+      connectivity.push_back(static_cast<std::int64_t>(points.size()));
+      connectivity.push_back(static_cast<std::int64_t>(points.size()) + 1);
+      points.push_back(removed ? Eigen::Vector3d(t0.installed + origin) : at(t0));
+      points.push_back(removed ? Eigen::Vector3d(t1.installed + origin) : at(t1));
+      offsets.push_back(static_cast<std::int64_t>(points.size()));
+      types.push_back(kVtkLine);
+      bolt_id.push_back(static_cast<std::int32_t>(k));
+      state.push_back(static_cast<std::int32_t>(bolt.state));
+      force.push_back(!bolt.active()        ? 0.0
+                      : bolt.spec.grouted() ? bolt.tendon.elements[e].force
+                                            : bolt.axial_force);
+    }
+  }
+  Grid g;
+  g.points = points.size();
+  g.cells = types.size();
+  g.cell_data = {array("bolt", "Int32", 1, bolt_id), array("axial_force", "Float64", 1, force),
+                 array("state", "Int32", 1, state)};
+  g.coordinates = vectors("Points", points);
+  g.topology = {array("connectivity", "Int64", 1, connectivity),
+                array("offsets", "Int64", 1, offsets), array("types", "UInt8", 1, types)};
+  return g;
+}
+
 }  // namespace
+
+void write_vtu_bolts(const std::filesystem::path& path, const World& world) {
+  write_grid(path, world.level_time(), bolt_grid(world));
+}
 
 void write_vtu_blocks(const std::filesystem::path& path, const World& world, int stage) {
   std::vector<int> all(world.blocks().size());

@@ -27,6 +27,12 @@ void write_vtu_blocks(const std::filesystem::path& path, const World& world, int
 /// and status (ContactStatus), and the field TimeValue (World::level_time, s).
 void write_vtu_contacts(const std::filesystem::path& path, const World& world);
 
+/// Writes every bolt as lines, one cell per tendon element (one for a point-anchored bolt),
+/// at the blocks' present poses, with cell data bolt (its index), axial_force (N, tension
+/// positive) and state (Bolt::State: 0 intact, 1 yielded, 2 ruptured, 3 removed; a removed
+/// bolt where it was installed), and the field TimeValue (s).
+void write_vtu_bolts(const std::filesystem::path& path, const World& world);
+
 /// A frame of a run spread over processes (WorldSettings::distribution) is written in pieces,
 /// one per process, and a parallel index (.pvtu) that names them: ParaView and VTK's
 /// vtkXMLPUnstructuredGridReader open the index as one data set. The pieces have the fields of

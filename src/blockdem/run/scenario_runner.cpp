@@ -3,6 +3,7 @@
 // summary last.
 #include "blockdem/run/scenario_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -12,8 +13,10 @@
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/io/time_history.hpp"
+#include "blockdem/io/vtu.hpp"
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
+#include "blockdem/run/bolt_outputs.hpp"
 #include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
@@ -125,6 +128,12 @@ void check_built_world(const Scenario& sc, const World& world, int ranks) {
                         "cannot run " + std::to_string(world.blocks().size()) + " blocks on " +
                             std::to_string(ranks) +
                             " processes: need at least one block per process");
+  for (std::size_t k = 0; k < sc.stages.size(); ++k) {
+    if (ranks > 1 && !sc.stages[k].bolts.empty())
+      throw ScenarioError(sc.file, "bolts",
+                          "bolts run on one process (their loads are summed serially): run "
+                          "without mpirun");
+  }
   for (const auto& name : sc.output.history_blocks) {
     if (world.find_block(name) < 0)
       throw ScenarioError(sc.file, "output.history_blocks", "no block named '" + name + "'");
@@ -243,7 +252,8 @@ class RunOutputs final : public RunObserver {
     history_ = std::make_unique<TimeHistoryWriter>(
         out_ / "time_history.csv", world,
         TimeHistoryOptions{sc_.output.history_interval, sc_.output.history_interval_s,
-                           sc_.output.history_max_rows, sc_.output.history_blocks},
+                           sc_.output.history_max_rows, sc_.output.history_blocks,
+                           sc_.output.history_bolts},
         resumed);
   }
   /// A restart: the writers continue their files, and the summary, stages and counters go on
@@ -322,6 +332,22 @@ class RunOutputs final : public RunObserver {
   std::map<std::string, Eigen::Vector3d> start_positions_;  ///< an excavation's blocks at start
   bool resumed_in_stage_ = false;  ///< resume() continues a stage: its start is not now
   std::string interrupted_where_;
+  std::string bolt_rows_;  ///< bolts.csv's rows so far
+  int bolt_frames_ = 0;
+  std::unique_ptr<PvdCollection> bolts_pvd_;
+
+  /// A stage end's bolts: bolts.csv's rows, a VTK frame of their lines, their counts.
+  void write_bolts(const World& world, const std::string& stage) {
+    bolt_rows_ += bolt_rows(world, stage);
+    write_bolts_csv(out_ / "bolts.csv", bolt_rows_);
+    stages_.back()["bolts"] = bolt_counts(world);
+    if (!sc_.output.vtk) return;
+    if (!bolts_pvd_) bolts_pvd_ = std::make_unique<PvdCollection>(out_ / "vtk" / "bolts.pvd");
+    char name[64];
+    std::snprintf(name, sizeof name, "bolts_%06d.vtu", bolt_frames_++);
+    write_vtu_bolts(out_ / "vtk" / name, world);
+    bolts_pvd_->add(world.level_time(), name);
+  }
 };
 
 void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
@@ -344,6 +370,7 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
                      {"broken_bonds", world.broken_bond_count()},
                      {"broken_bonds_by_set", broken_bonds_by_set(world, sc_.joint_sets)},
                      {"message", end.message()}});
+  if (!world.bolts().empty() && !end.diverged) write_bolts(world, stage.name);
   if (!stage.remove.empty()) {
     // An excavation: the blocks that fell or slid into the opening.
     stages_.back()["removed_blocks"] = stage.remove.size();
@@ -600,6 +627,7 @@ void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const
   summary["contacts"] = world.contact_count();
   summary["broken_bonds"] = world.broken_bond_count();
   summary["broken_bonds_by_set"] = broken_bonds_by_set(world, joint_sets);
+  if (!world.bolts().empty()) summary["bolts"] = bolt_counts(world);
   // Every excavation stage's key blocks (from `stages`, which a restart carries on).
   nlohmann::json all_key_blocks = nlohmann::json::array();
   bool any_excavation = false;
@@ -717,7 +745,11 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
                    const RunControl& control) {
   const auto wall0 = Clock::now();
   const BuiltScene* scene = sc.built.get();
-  const std::string no_checkpoints = scene ? scene->without_checkpoints() : std::string();
+  const bool bolted = std::any_of(sc.stages.begin(), sc.stages.end(),
+                                  [](const Stage& st) { return !st.bolts.empty(); });
+  const std::string no_checkpoints = scene    ? scene->without_checkpoints()
+                                     : bolted ? std::string("scenarios with bolts")
+                                              : std::string();
   if (!no_checkpoints.empty() && (control.checkpoint_every > 0 ||
                                   control.checkpoint_seconds > 0.0 || !control.restart.empty()))
     throw std::invalid_argument("checkpoints and restarts are not available for " + no_checkpoints +

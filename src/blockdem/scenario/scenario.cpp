@@ -22,6 +22,7 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/bolt_input.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 #include "blockdem/scenario/stage_input.hpp"
 #include "blockdem/scenario/water_input.hpp"
@@ -284,6 +285,7 @@ void read_output(const CheckedTable& o, OutputSpec& output) {
   output.history_max_rows = o.integer("history_max_rows", output.history_max_rows);
   if (output.history_max_rows < 2) o.fail("history_max_rows", "must be at least 2");
   if (o.has("history_blocks")) output.history_blocks = o.strings("history_blocks");
+  if (o.has("history_bolts")) output.history_bolts = o.strings("history_bolts");
   o.finish();
 }
 
@@ -499,6 +501,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
     }
     if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
   }
+  read_bolts(t, sc);
   add_elastic_twins(sc);
   warn_point_contact_searches(sc);
   if (sc.in_situ && sc.settings.contact_mode == ContactMode::boon2012)
@@ -508,6 +511,13 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
         "the blocks start with unbalanced moments; contact_mode = \"face_integrated\" carries "
         "the field exactly (docs/ground-stress.md)");
   if (t.has("output")) read_output(t.table("output"), sc.output);
+  for (const auto& name : sc.output.history_bolts) {
+    const bool known = std::any_of(sc.stages.begin(), sc.stages.end(), [&](const Stage& st) {
+      return std::any_of(st.bolts.begin(), st.bolts.end(),
+                         [&](const BoltSpec& b) { return b.name == name; });
+    });
+    if (!known) t.fail("output.history_bolts", "no bolt named '" + name + "'");
+  }
   // Unknown keys first: a misspelt [[stages]] is named as such.
   t.finish();
   // A built scene without stages can be generated (blockdem generate), not run.
@@ -530,6 +540,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
         sc.settings.water->table = sc.settings.water->table.shifted_by(sc.settings.origin);
       for (Stage& st : sc.stages) {
         if (st.water) st.water->table = st.water->table.shifted_by(sc.settings.origin);
+        for (BoltSpec& bolt : st.bolts) bolt.start -= sc.settings.origin;
       }
       for (auto& b : sc.blocks) {
         b.position -= sc.settings.origin;

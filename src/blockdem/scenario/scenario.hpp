@@ -25,6 +25,7 @@ struct OutputSpec {
   double history_interval_s = 0.0;
   std::int64_t history_max_rows = 20000;
   std::vector<std::string> history_blocks;  ///< blocks with their own columns
+  std::vector<std::string> history_bolts;   ///< bolts with their own columns
 };
 
 struct Scenario {

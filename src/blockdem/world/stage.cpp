@@ -24,6 +24,13 @@ void Stage::validate() const {
   if (ramp_steps < 0) fail("ramp_steps must be zero or positive");
   if (relax_steps < 0) fail("relax_steps must be zero or positive");
   if (relax_steps > 0 && remove.empty()) fail("relax_steps needs blocks to remove");
+  for (const BoltSpec& b : bolts) {
+    try {
+      b.validate();
+    } catch (const std::invalid_argument& e) {
+      fail("bolt '" + b.name + "': " + e.what());
+    }
+  }
   if (check_interval <= 0) fail("check_interval must be positive");
   if (kind == Kind::steps && steps <= 0) fail("steps must be positive");
   if (kind == Kind::duration && !(duration > 0.0)) fail("duration must be positive");
@@ -120,6 +127,14 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
       world.remove_blocks_gradually(gone);
     } else {
       world.remove_blocks(gone);
+    }
+  }
+  // After the removals: the bolts, along their lines through the blocks that stay.
+  for (const BoltSpec& bolt : stage.bolts) {
+    try {
+      world.install_bolt(bolt);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("stage '" + stage.name + "': " + e.what());
     }
   }
   // After the removals: the median block is that of the blocks that stay.

@@ -51,6 +51,9 @@ struct Stage {
   /// A gradual excavation: the loads the removed blocks exerted on the others go linearly to
   /// zero over this many steps (0: removed at once).
   std::int64_t relax_steps = 0;
+  /// Bolts installed at the stage start, after the removals (World::install_bolt): they carry
+  /// only what moves from then on.
+  std::vector<BoltSpec> bolts;
 
   // Kind::equilibrium: converged when, at a check, every measure is below its tolerance and
   // every active servo is within its force tolerance.

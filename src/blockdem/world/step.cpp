@@ -44,6 +44,8 @@ void World::step() {
       fail_step(e.what());
     }
   }
+  // 5b. Bolts: their loads after the contacts', bolt by bolt (one process only).
+  if (!bolts_.empty()) apply_bolts();
   // 6. Servos, then integration with each block's terms of the energy budget (parallel per
   // block).
   apply_servos(s.dt, s.distributed ? &decomposition_.own() : nullptr);

@@ -471,6 +471,7 @@ void World::save_checkpoint() {
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
   checkpoint_.broken_by_set = broken_by_set_;
+  checkpoint_.bolts = bolts_;
   checkpoint_.energy = energy_;
   checkpoint_.valid = true;
 }
@@ -593,6 +594,7 @@ void World::restore_checkpoint() {
   step_count_ = checkpoint_.step_count;
   broken_bonds_ = checkpoint_.broken_bonds;
   broken_by_set_ = checkpoint_.broken_by_set;
+  bolts_ = checkpoint_.bolts;
   energy_ = checkpoint_.energy;
   // The checkpoint is whole on every process: so is the world now.
   decomposition_.reset_whole();

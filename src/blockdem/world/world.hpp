@@ -26,6 +26,7 @@
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/numerics/exact_sum.hpp"
 #include "blockdem/response/water_pressure.hpp"
+#include "blockdem/world/bolt.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/contact_preload.hpp"
 #include "blockdem/world/decomposition.hpp"
@@ -213,7 +214,18 @@ class World {
   /// Whether removed blocks' loads are still being relaxed.
   bool relaxing() const { return !relaxation_.empty(); }
   /// Removes blocks (an excavation): later blocks move down in index, their contacts are kept.
+  /// A bolt tied to a removed block is removed with it (Bolt::State::removed).
   void remove_blocks(const std::vector<int>& indices);
+
+  /// Installs a bolt (world/bolt.hpp, docs/support.md) along its line through the blocks at their
+  /// present poses: from the next step it carries what moves after now. One process only.
+  /// Returns its index in bolts(). Throws std::invalid_argument naming the bolt and the reason
+  /// (a value, a line outside the rock or crossing no joint, a distributed world).
+  int install_bolt(const BoltSpec& spec);
+  /// The bolts, in installation order.
+  const std::vector<Bolt>& bolts() const { return bolts_; }
+  /// How many bolts are in `state`.
+  std::int64_t bolt_count(Bolt::State state) const;
 
   /// Prestresses the joints of an in-situ stress field (world_prestress.cpp): every pair of
   /// `pairs` (the set-up's candidate pairs, sorted by (a, b)) whose blocks share a face with a
@@ -443,6 +455,11 @@ class World {
   void integrate_blocks(StepScratch& s);
   void check_step(StepScratch& s);
   void keep_divergence_checkpoint();
+  /// After the contacts' loads: the bolts' (world_support.cpp), and their stiffness in the
+  /// automatic time step.
+  void apply_bolts();
+  /// After a removal: the bolts' blocks by their new indices (-1: removed).
+  void renumber_bolts(const std::vector<int>& new_index);
   /// A block whose pairs this process finds and keeps: its own, not resting.
   bool keeps_pairs_of(int i) const { return decomposition_.keeps_pairs_of(i); }
 
@@ -571,6 +588,7 @@ class World {
     Eigen::Vector3d force, torque;            ///< (N), (N m)
   };
   std::vector<Relaxation> relaxation_;
+  std::vector<Bolt> bolts_;  ///< installed bolts (world_support.cpp)
   std::vector<std::pair<int, int>> pairs_;
 
   // Per-block stiffness sums of this step, for the automatic time step.
@@ -663,6 +681,7 @@ class World {
     std::int64_t step_count = 0;
     std::int64_t broken_bonds = 0;
     std::vector<std::array<std::int64_t, 2>> broken_by_set;
+    std::vector<Bolt> bolts;
     EnergyLedger energy;
     bool valid = false;
     /// A distributed part (world/decomposition_replica.cpp): `blocks` and `motions` hold this

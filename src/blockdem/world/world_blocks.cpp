@@ -65,6 +65,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
   }
   blocks_ = std::move(kept);
   preloads_.renumber(new_index);
+  renumber_bolts(new_index);
   std::size_t kept_relaxing = 0;
   for (Relaxation& r : relaxation_) {
     r.block = new_index[static_cast<std::size_t>(r.block)];

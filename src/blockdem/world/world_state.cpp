@@ -183,6 +183,9 @@ void World::save_state(StateWriter& w) const {
   decomposition_.require_replica("save_state");
   if (checkpoint_.partial)
     throw std::logic_error("save_state: the divergence checkpoint is in parts; call synchronize()");
+  // Bolts are not in the state's bytes: a restart would lose them.
+  if (!bolts_.empty())
+    throw std::invalid_argument("save_state: a world with bolts cannot be saved for a restart yet");
   // Settings a stage changes.
   w.vec(settings_.gravity);
   w.pod(settings_.damping);

@@ -87,6 +87,14 @@ TEST_P(BadScenario, ExitsTwoNamingFileKeyAndReasonAndWritesNothing) {
 }
 
 const std::string kTop = "name = \"top\"\nmaterial = \"rock\"\nsize = [0.2, 0.2, 0.2]\n";
+// A bolt down through the top block into the base; each case adds its start and length.
+const std::string kBolt =
+    "[[bolts]]\nname = \"B1\"\ndirection = [0, 0, -1]\naxial_stiffness = 1e7\n"
+    "install_stage = \"settle\"\n";
+// A bolt pattern on an excavation the scenario does not have; each case adds its spacing.
+const std::string kPattern =
+    "[[bolt_patterns]]\nexcavation = \"tunnel\"\nlength = 0.3\naxial_stiffness = 1e7\n"
+    "install_stage = \"settle\"\n";
 
 INSTANTIATE_TEST_SUITE_P(
     Catalogue, BadScenario,
@@ -236,6 +244,32 @@ INSTANTIATE_TEST_SUITE_P(
                      "output.history_max_rows", "at least 2"},
         ScenarioCase{"vtk_interval_negative", "", "[output]\nvtk_interval = -5",
                      "output.vtk_interval", "positive"},
+        ScenarioCase{"bolt_outside_every_block", "", kBolt + "start = [0, 0, 0.5]\nlength = 0.3",
+                     "bolts[1].start", "outside every block"},
+        ScenarioCase{"bolt_crossing_no_joint", "", kBolt + "start = [0, 0, 0.2]\nlength = 0.1",
+                     "bolts[1].start", "crosses no joint"},
+        ScenarioCase{"bolt_beyond_the_rock", "", kBolt + "start = [0, 0, 0.2]\nlength = 0.5",
+                     "bolts[1].start", "far end"},
+        ScenarioCase{"bolt_length_zero", "", kBolt + "start = [0, 0, 0.2]\nlength = 0",
+                     "bolts[1].length", "positive"},
+        ScenarioCase{"bolt_stiffness_negative", "",
+                     kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nshear_stiffness = -1e8",
+                     "bolts[1].shear_stiffness", "positive"},
+        ScenarioCase{"bolt_stage_unknown", "",
+                     "[[bolts]]\nname = \"B1\"\ndirection = [0, 0, -1]\naxial_stiffness = 1e7\n"
+                     "start = [0, 0, 0.2]\nlength = 0.3\ninstall_stage = \"support\"",
+                     "bolts[1].install_stage", "no stage named \"support\""},
+        ScenarioCase{"bolt_unknown_key", "",
+                     kBolt + "start = [0, 0, 0.2]\nlength = 0.3\ndiameter = 0.025",
+                     "bolts[1].diameter", "unknown"},
+        ScenarioCase{"bolt_pretension_grouted", "",
+                     kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nbond_stiffness = 1e8\n"
+                             "pretension = 1e3",
+                     "bolts[1].pretension", "point-anchored"},
+        ScenarioCase{"bolt_pattern_spacing_zero", "", kPattern + "spacing = [0, 1.5]",
+                     "bolt_patterns[1].spacing", "positive"},
+        ScenarioCase{"bolt_pattern_unknown_excavation", "", kPattern + "spacing = [1.5, 1.5]",
+                     "bolt_patterns[1].excavation", "no excavation named \"tunnel\""},
         ScenarioCase{"huge_array", "gravity = [0, 0, -9.81]",
                      "gravity = [0, 0, -9.81]\nhold = [" +
                          [] {

@@ -57,7 +57,7 @@ TEST(TimeHistory, RowsAtTheIntervalDescribeOneTimeLevel) {
   const auto dir = test::temp_path("time_history_test");
   std::filesystem::create_directories(dir);
   {
-    TimeHistoryWriter h(dir / "time_history.csv", w, {10, 0.0, 1000, {"stone"}});
+    TimeHistoryWriter h(dir / "time_history.csv", w, {10, 0.0, 1000, {"stone"}, {}});
     for (int k = 0; k < 100; ++k) {
       w.step();
       h.after_step(w, "fall");
@@ -92,7 +92,7 @@ TEST(TimeHistory, NeverExceedsMaxRowsAndCoarsens) {
   World w = test::linear_world(1e10, 1e9, 40, s);
   w.add_block(test::box_block({0.1, 0.1, 0.1}, {0, 0, 0}, 1000.0));
   const auto path = test::temp_path("time_history_cap.csv");
-  TimeHistoryWriter h(path, w, {1, 0.0, 8, {}});
+  TimeHistoryWriter h(path, w, {1, 0.0, 8, {}, {}});
   for (int k = 0; k < 200; ++k) {
     w.step();
     h.after_step(w, "s");
