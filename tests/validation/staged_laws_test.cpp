@@ -120,6 +120,38 @@ TEST(StagedLaws, ElasticConsolidationKeepsTheBondThatTheRealLawThenJudges) {
   EXPECT_LT(strong.travel, 1e-6);
 }
 
+// Giving J1 the law it has (set_laws that change nothing) leaves the run bit for bit as it is
+// without set_laws: every block's pose and velocity, and every contact's forces, after both
+// stages. Reference: the same scenario without the set_laws lines.
+TEST(StagedLaws, ALawChangeThatChangesNothingLeavesTheRunBitIdentical) {
+  const std::string with = incline("bonded", "bonded", 0.9 * needed_cohesion());
+  std::string without = with;
+  for (std::size_t at; (at = without.find("set_laws")) != std::string::npos;)
+    without.erase(at, without.find('\n', at) - at + 1);
+  ASSERT_EQ(without.find("set_laws"), std::string::npos);
+  const auto run_both = [](const std::string& text) {
+    const Scenario sc = parse_scenario(text, "incline.toml");
+    World w = build_world(sc);
+    for (const Stage& st : sc.stages) run_stage(w, st);
+    return w;
+  };
+  const World a = run_both(with);
+  const World b = run_both(without);
+  ASSERT_EQ(a.step_count(), b.step_count());
+  ASSERT_GT(a.broken_bond_count(), 0) << "the case must do something: its bond breaks";
+  for (std::size_t i = 0; i < a.blocks().size(); ++i) {
+    EXPECT_EQ(a.blocks()[i].position, b.blocks()[i].position);
+    EXPECT_EQ(a.blocks()[i].orientation.coeffs(), b.blocks()[i].orientation.coeffs());
+    EXPECT_EQ(a.blocks()[i].velocity, b.blocks()[i].velocity);
+  }
+  const auto ca = a.contacts(), cb = b.contacts();
+  ASSERT_EQ(ca.size(), cb.size());
+  for (std::size_t k = 0; k < ca.size(); ++k) {
+    EXPECT_EQ(ca[k]->normal_force, cb[k]->normal_force);
+    EXPECT_EQ(ca[k]->shear.force, cb[k]->shear.force);
+  }
+}
+
 TEST(StagedLaws, UnknownJointSetOrLawIsAnInputError) {
   try {
     parse_scenario(incline("elastic", "nonsense", 1e4), "incline.toml");
