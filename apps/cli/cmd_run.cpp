@@ -359,7 +359,6 @@ bool run_completed(const std::string& out) {
          summary["status"] == "completed";
 }
 
-
 int run_one(RunOptions opt, const MpiSession& mpi) {
   Progress progress(!opt.quiet);
   RunCallbacks cb;

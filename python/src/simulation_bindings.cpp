@@ -277,8 +277,8 @@ void bind_simulation(py::module_& m) {
             if (it == sets.end()) {
               std::string known;
               for (const auto& n : sets) known += (known.empty() ? "" : ", ") + n;
-              throw py::key_error("set_laws: no joint set named \"" + name + "\" (known: " +
-                                  known + ")");
+              throw py::key_error("set_laws: no joint set named \"" + name + "\" (known: " + known +
+                                  ")");
             }
             c.joint_set = static_cast<int>(it - sets.begin());
           } else {

@@ -68,8 +68,8 @@ TEST_P(StagedSlope, FactorOfSafetyMatchesHoekBrayWithCohesion) {
   const auto& fos = r.summary["factor_of_safety"];
   const double f = *r.factor_of_safety;
   std::printf("staged slope (%s): F = %.4f (stable at %.4f, failed at %.4f), Hoek & Bray %.4f\n",
-              name.c_str(), f, fos["last_stable"].get<double>(),
-              fos["first_failed"].get<double>(), expected);
+              name.c_str(), f, fos["last_stable"].get<double>(), fos["first_failed"].get<double>(),
+              expected);
   EXPECT_NEAR(f, expected, 0.03 * expected);
   // Without the cohesion the answer would be tan(phi) / tan(psi) = 1: the bond carries the rest.
   EXPECT_GT(fos["last_stable"].get<double>(), 1.3);

@@ -13,8 +13,11 @@ nlohmann::json broken_bonds_by_set(const World& world, const std::vector<std::st
   nlohmann::json by_set = nlohmann::json::object();
   const auto& table = world.broken_bonds_by_set();
   for (std::size_t k = 0; k <= sets.size() || k < table.size(); ++k) {
-    const std::array<std::int64_t, 2> row = k < table.size() ? table[k] : std::array<std::int64_t, 2>{};
-    const std::string name = k == 0 ? "other faces" : k - 1 < sets.size() ? sets[k - 1] : "set " + std::to_string(k - 1);
+    const std::array<std::int64_t, 2> row =
+        k < table.size() ? table[k] : std::array<std::int64_t, 2>{};
+    const std::string name = k == 0                ? "other faces"
+                             : k - 1 < sets.size() ? sets[k - 1]
+                                                   : "set " + std::to_string(k - 1);
     by_set[name] = {{"tension", row[0]}, {"shear", row[1]}};
   }
   return by_set;

@@ -28,7 +28,6 @@
 namespace blockdem {
 namespace {
 
-
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point since) {
@@ -203,7 +202,6 @@ std::set<std::string> prepare_folder(const std::filesystem::path& out, RunPoint*
   return foreign;
 }
 
-
 /// The run's own outputs, as an observer of the stages: RunRecorder's tables and VTK frames,
 /// time_history.csv, the stability searches' files, the stages' entries of summary.json, the
 /// result's counters, and the callbacks' stage lines.
@@ -324,22 +322,22 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
   const Stage& stage = end.stage;
   const StageResult& result = end.result;
   res_.steps_per_stage.push_back(result.steps);
-  stages_.push_back({{"name", stage.name},
-                     {"converged", result.converged},
-                     // Whether the rock is at rest by the stage's tolerances, whatever its kind
-                     // (a steps or duration stage converges when its steps or time are done).
-                     {"in_equilibrium",
-                      result.measures.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
-                          result.measures.kinetic_energy_ratio <= stage.kinetic_tolerance},
-                     {"status", end.failure ? to_string(*end.failure) : "completed"},
-                     {"steps", result.steps},
-                     {"time_s", result.time},
-                     {"unbalanced_force_ratio", result.measures.unbalanced_force_ratio},
-                     {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
-                     {"contacts", world.contact_count()},
-                     {"broken_bonds", world.broken_bond_count()},
-                     {"broken_bonds_by_set", broken_bonds_by_set(world, sc_.joint_sets)},
-                     {"message", end.message()}});
+  stages_.push_back(
+      {{"name", stage.name},
+       {"converged", result.converged},
+       // Whether the rock is at rest by the stage's tolerances, whatever its kind
+       // (a steps or duration stage converges when its steps or time are done).
+       {"in_equilibrium", result.measures.unbalanced_force_ratio <= stage.unbalanced_tolerance &&
+                              result.measures.kinetic_energy_ratio <= stage.kinetic_tolerance},
+       {"status", end.failure ? to_string(*end.failure) : "completed"},
+       {"steps", result.steps},
+       {"time_s", result.time},
+       {"unbalanced_force_ratio", result.measures.unbalanced_force_ratio},
+       {"kinetic_energy_ratio", result.measures.kinetic_energy_ratio},
+       {"contacts", world.contact_count()},
+       {"broken_bonds", world.broken_bond_count()},
+       {"broken_bonds_by_set", broken_bonds_by_set(world, sc_.joint_sets)},
+       {"message", end.message()}});
   if (!world.bolts().empty() && !end.diverged) write_bolts(world, stage.name);
   if (!stage.remove.empty()) {
     // An excavation: the blocks that fell or slid into the opening.
@@ -577,7 +575,6 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
   }
   if (scene) res.message += scene->failure_note();
 }
-
 
 /// What the run does between steps and stages: checkpoints, the caller's stop, time-history rows
 /// and VTK frames, status lines. `first`/`resumed`: where a restart takes the run up.

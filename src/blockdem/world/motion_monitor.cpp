@@ -121,9 +121,8 @@ FailureKind classify_failure(const MotionMonitor& monitor, bool blew_up) {
 
 bool collapse_is_certain(const MotionMonitor& monitor, const MechanismCriteria& criteria) {
   const MotionReport& r = monitor.report();
-  return r.max_displacement > r.displacement_limit &&
-         r.growing_checks >= criteria.growth_checks && r.time_step_ratio <= 1.0 &&
-         std::isfinite(r.kinetic_energy) && !monitor.energy_created();
+  return r.max_displacement > r.displacement_limit && r.growing_checks >= criteria.growth_checks &&
+         r.time_step_ratio <= 1.0 && std::isfinite(r.kinetic_energy) && !monitor.energy_created();
 }
 
 const char* to_string(FailureKind kind) {

@@ -564,7 +564,7 @@ class World {
   std::vector<std::vector<PendingContact>> pending_;
   std::size_t pending_run_ = 1;
   std::size_t active_count_ = 0;
-  std::int64_t broken_bonds_ = 0;        ///< see broken_bond_count()
+  std::int64_t broken_bonds_ = 0;                           ///< see broken_bond_count()
   std::vector<std::array<std::int64_t, 2>> broken_by_set_;  ///< see broken_bonds_by_set()
   /// This step's broken bonds per set and cause, of this process's pairs (scatter_loads).
   std::vector<std::array<std::int64_t, 2>> step_breaks_;
