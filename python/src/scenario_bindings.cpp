@@ -151,8 +151,8 @@ void bind_scenario(py::module_& m) {
       "message, exit_code, steps, wall_time (s), factor_of_safety, collapse (g) and summary.");
   m.def(
       "run_output_names", [] { return run_output_names(); },
-      "The files and folders directly under an output folder that a run may write (what an "
-      "input error found while running removes again).");
+      "The files and folders directly under an output folder that a run may write (what a "
+      "new run into that folder clears first).");
 }
 
 }  // namespace blockdem::python

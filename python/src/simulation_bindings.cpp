@@ -5,7 +5,10 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -97,10 +100,50 @@ py::dict collapse_dict(const StabilitySearch& cs) {
   return d;
 }
 
-/// Runs stage `i` with the driver `blockdem run` uses; `hook` may stop it.
-py::dict run_one_stage(Simulation& s, int i, const StepHook& hook) {
+/// Where run_stage's status lines go: None, to sys.stderr at most every 2 s of wall time (as
+/// `blockdem run` updates its line on a pipe); False, nowhere; a callable, every line to it.
+using LineFn = std::function<void(const std::string&)>;
+LineFn progress_lines(const py::object& progress) {
+  if (progress.is(py::bool_(false))) return {};
+  if (!progress.is_none()) {
+    if (!PyCallable_Check(progress.ptr()))
+      throw py::type_error("progress: None (print), False (silent) or a callable(line)");
+    return [progress](const std::string& line) { progress(line); };
+  }
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
+  return [last](const std::string& line) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - *last < std::chrono::seconds(2)) return;
+    *last = now;
+    py::module_::import("sys").attr("stderr").attr("write")("blockdem: " + line + "\n");
+  };
+}
+
+/// The status lines of stage `level` of `s`: step, unbalanced and kinetic-energy ratios, rate.
+std::function<ProgressFn(int)> stage_lines(const Simulation& s, const LineFn& line) {
+  if (!line) return {};
+  const int n = static_cast<int>(s.scenario->stages.size());
+  return [line, n](int level) -> ProgressFn {
+    const auto wall0 = std::chrono::steady_clock::now();
+    return [line, n, level, wall0](const Stage& st, std::int64_t k, const EquilibriumMeasures& m) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      char rate[64];
+      std::snprintf(rate, sizeof rate, "%.2e, KE ratio %.2e, %.0f steps/s",
+                    m.unbalanced_force_ratio, m.kinetic_energy_ratio,
+                    wall > 0.0 ? static_cast<double>(k) / wall : 0.0);
+      line("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + st.name + ": step " +
+           std::to_string(k) + ", unbalanced " + rate);
+    };
+  };
+}
+
+/// Runs stage `i` with the driver `blockdem run` uses; `hook` may stop it; `line` gets its
+/// status lines (a strength reduction's trials' too).
+py::dict run_one_stage(Simulation& s, int i, const StepHook& hook, const LineFn& line) {
   const Stage& stage = s.scenario->stages[i];
   DriveControl control;
+  control.progress = stage_lines(s, line);
   if (hook) {
     control.after_step = [&hook](int, const StageResume& at, const MotionMonitor&, const World*) {
       return !hook(at.steps_done);
@@ -154,7 +197,8 @@ void bind_simulation(py::module_& m) {
                              [](const Simulation& s) { return s.scenario->stages.size(); })
       .def(
           "run_stage",
-          [](py::object self, std::optional<int> index, py::object callback, std::int64_t every) {
+          [](py::object self, std::optional<int> index, py::object callback, std::int64_t every,
+             py::object progress) {
             Simulation& s = self.cast<Simulation&>();
             const int n = static_cast<int>(s.scenario->stages.size());
             const int i = index.value_or(s.next_stage);
@@ -162,11 +206,15 @@ void bind_simulation(py::module_& m) {
               throw py::index_error("stage " + std::to_string(i) + " out of range (" +
                                     std::to_string(n) + " stages)");
             s.next_stage = i + 1;
-            return run_one_stage(s, i, make_hook(self, callback, every));
+            return run_one_stage(s, i, make_hook(self, callback, every), progress_lines(progress));
           },
           py::arg("index") = py::none(), py::arg("callback") = py::none(), py::arg("every") = 100,
+          py::arg("progress") = py::none(),
           "Runs stage `index` (default: the next one) as `blockdem run` does; callback(sim, "
-          "steps) every `every` steps, returning False stops the stage. Returns a dict (name, "
+          "steps) every `every` steps, returning False stops the stage. progress: None prints "
+          "a status line (step, unbalanced and kinetic-energy ratios, steps/s; a strength "
+          "reduction's trials named with their factor) to sys.stderr at most every 2 s, False "
+          "prints nothing, a callable(line) gets every line. Returns a dict (name, "
           "converged, stopped, mechanism, steps, time, message, unbalanced_force_ratio, "
           "kinetic_energy_ratio); a strength_reduction stage returns factor_of_safety, "
           "last_stable, first_failed and leaves the world unchanged; a failed stage with "

@@ -65,12 +65,16 @@ def test_rock_mass_from_a_scene_matches_the_program(tmp_path, cli, source_dir):
         assert (py_out / name).read_bytes() == (cli_out / name).read_bytes(), name
 
 
-def test_an_input_error_found_while_running_leaves_nothing(tmp_path, source_dir):
-    # Factor bounds that do not bracket the failure are found only by the search: the error
-    # names the stage's key, and the outputs written so far are removed (as `blockdem run`).
+def test_an_input_error_found_while_running_keeps_the_run(tmp_path, source_dir):
+    # Factor bounds that do not bracket the failure are found only by the search: as `blockdem
+    # run`, the run ends with status input_error and exit code 2, the message names the stage's
+    # key, and what the run wrote before the stage stays, with the state before it saved.
     scene = bd.Scene.from_toml(source_dir / "scenarios/examples/planar_sliding.toml")
     scene.data["stages"][2]["factor_bounds"] = [2.0, 3.0]  # F = 1.45 fails at both
-    with pytest.raises(bd.ScenarioError) as err:
-        bd.run(scene, tmp_path / "out")
-    assert err.value.key.startswith("stages[3]")
-    assert not (tmp_path / "out").exists()
+    r = bd.run(scene, tmp_path / "out")
+    assert r["status"] == "input_error"
+    assert r["exit_code"] == 2
+    assert "stages[3].factor_bounds" in r["message"]
+    for kept in ("summary.json", "history.csv", "checkpoint.bdck"):
+        assert (tmp_path / "out" / kept).exists(), kept
+    assert r["summary"]["stages"][2]["status"] == "input_error"

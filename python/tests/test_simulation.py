@@ -143,14 +143,20 @@ def test_strength_reduction_stage(source_dir):
     # Planar sliding, Hoek & Bray: F = tan 40 / tan 30 = 1.453 (scenarios/examples).
     sc = bd.load(source_dir / "scenarios/examples/planar_sliding.toml")
     sim = bd.Simulation(sc)
-    sim.run_stage()
-    sim.run_stage()
+    sim.run_stage(progress=False)
+    sim.run_stage(progress=False)
     before = sim.positions
-    r = sim.run_stage()
+    lines = []
+    r = sim.run_stage(progress=lines.append)
     assert r["factor_of_safety"] == pytest.approx(np.tan(np.radians(40)) / np.tan(np.radians(30)),
                                                   abs=0.03)
     assert r["last_stable"] < r["first_failed"]
     np.testing.assert_array_equal(sim.positions, before)
+    # Status lines from inside the trials, each named with its factor.
+    assert lines and all(line.startswith("[3/3] factor of safety F = ") for line in lines), lines
+    assert len({line.split(": step")[0] for line in lines}) >= 2, lines
+    with pytest.raises(TypeError):
+        sim.run_stage(0, progress="loud")
 
 
 def test_torque_velocity_and_settings_bindings():

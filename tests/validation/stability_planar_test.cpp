@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -57,6 +59,32 @@ INSTANTIATE_TEST_SUITE_P(HoekBray, PlanarSliding,
                            return "psi" + std::to_string(static_cast<int>(p.param.psi_deg)) +
                                   "_phi" + std::to_string(static_cast<int>(p.param.phi_deg));
                          });
+
+// Where the trials start: from the state before the stage, or from the last stable trial's
+// equilibrium (trial_start = "last_stable"). A block on one plane does not slip below the limit,
+// so both brackets contain Hoek & Bray's tan 40 / tan 30 = 1.4532 (to the bracket's 0.01 and the
+// 0.5% of PlanarSliding), the later ones' trials start settled, and the search takes fewer steps.
+TEST(StrengthReductionTrialStart, BothStartsBracketHoekAndBray) {
+  const double expected = std::tan(deg_to_rad(40.0)) / std::tan(deg_to_rad(30.0));
+  std::int64_t steps[2] = {0, 0};
+  int k = 0;
+  for (const std::string start : {"stage_start", "last_stable"}) {
+    const RunResult r =
+        test::run_text(test::incline_scenario(
+                           30, 40, 0.1, 0.02,
+                           std::string(kStrengthReduction) + "trial_start = \"" + start + "\"\n"),
+                       "stab_trial_start_" + start);
+    ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+    const auto& fos = r.summary["factor_of_safety"];
+    EXPECT_LE(fos["last_stable"].get<double>(), expected * 1.005) << start;
+    EXPECT_GE(fos["first_failed"].get<double>(), expected * 0.995) << start;
+    EXPECT_LE(fos["first_failed"].get<double>() - fos["last_stable"].get<double>(), 0.01 + 1e-12);
+    steps[k++] = r.steps_per_stage.back();
+  }
+  EXPECT_LT(steps[1], steps[0]);
+  std::printf("search steps: stage_start %lld, last_stable %lld\n",
+              static_cast<long long>(steps[0]), static_cast<long long>(steps[1]));
+}
 
 // With cohesion: psi = 35 degrees is steeper than phi = 30 degrees, so the block stands only by
 // its cohesion; strength reduction divides c and tan(phi) together.

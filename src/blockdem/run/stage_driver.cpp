@@ -2,6 +2,8 @@
 // explained, observers told, and the collapse search of a failed stage that asks for one.
 #include "blockdem/run/stage_driver.hpp"
 
+#include <memory>
+
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
@@ -13,16 +15,30 @@ StopFn search_stop(const DriveControl& control, int level, bool before_stage) {
   return [&control, level, before_stage] { return control.between_trials(level, before_stage); };
 }
 
+/// The status lines of a search's trials: each trial's as a stage's of its own (its steps from
+/// 0, its rate from its start).
+ProgressFn trial_progress(const DriveControl& control, int level) {
+  if (!control.progress) return {};
+  auto current = std::make_shared<ProgressFn>();
+  auto last = std::make_shared<std::int64_t>(-1);
+  return [&control, level, current, last](const Stage& s, std::int64_t k,
+                                          const EquilibriumMeasures& m) {
+    if (k <= *last || !*current) *current = control.progress(level);  // a new trial
+    *last = k;
+    if (*current) (*current)(s, k, m);
+  };
+}
+
 /// A strength-reduction stage: the factor of safety; the world stays in the state before it.
 /// Returns false when the caller stopped it between two trials (observers told: interrupted).
 bool reduce_strength(const World& world, const World& before, const Stage& stage, int level,
                      const DriveControl& control, const std::vector<RunObserver*>& observers) {
   StabilitySearch search;
   try {
-    search =
-        strength_reduction(before, stage, laws_named(world, stage.strength.laws),
-                           stage.strength.lower, stage.strength.upper, stage.strength.tolerance,
-                           control.trial_done, search_stop(control, level, true));
+    search = strength_reduction(before, stage, laws_named(world, stage.strength.laws),
+                                stage.strength.lower, stage.strength.upper,
+                                stage.strength.tolerance, control.trial_done,
+                                search_stop(control, level, true), trial_progress(control, level));
   } catch (const std::invalid_argument& e) {
     throw StrengthReductionError(level, e.what());
   }

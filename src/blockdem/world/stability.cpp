@@ -44,14 +44,14 @@ bool has_strength(const JointLaw& law) {
   return s.friction_coefficient > 0.0 || s.cohesion > 0.0 || s.tensile_strength > 0.0;
 }
 
-StabilityTrial run_trial(World& world, Stage stage, double parameter) {
+StabilityTrial run_trial(World& world, Stage stage, double parameter, const ProgressFn& progress) {
   stage.kind = Stage::Kind::equilibrium;
   stage.stop_on_mechanism = true;
   StabilityTrial t;
   t.parameter = parameter;
   std::optional<MotionMonitor> monitor;
   try {
-    const StageResult r = run_stage(world, stage, {}, &monitor);
+    const StageResult r = run_stage(world, stage, progress, &monitor);
     t.steps = r.steps;
     t.motion = r.motion;
     t.stable = r.converged && !r.motion.mechanism;
@@ -115,17 +115,20 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
-                                   double tolerance, const TrialFn& done, const StopFn& stop) {
+                                   double tolerance, const TrialFn& done, const StopFn& stop,
+                                   const ProgressFn& progress) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("tolerance: must be positive");
   if (!(lower > 0.0 && upper > lower))
     throw std::invalid_argument("factor_bounds: need 0 < lo < hi");
   StabilitySearch s;
   auto trial = [&](double factor) {
-    World w = saved;
+    // Factors only grow from the last stable one: its equilibrium, with less strength, is where
+    // a single run reducing the strength step by step would stand (docs/stability.md).
+    World w = stage.strength.from_last_stable && s.stable_world ? *s.stable_world : saved;
     for (int i : laws) w.replace_joint_law(i, divide_strength(saved.joint_laws()[i], factor));
     Stage st = stage;
     st.name = stage.name + " F = " + number_text(factor, "%.4g");
-    StabilityTrial t = run_trial(w, st, factor);
+    StabilityTrial t = run_trial(w, st, factor, progress);
     s.trials.push_back(t);
     if (done) done(t);
     if (t.stable) {

@@ -48,7 +48,8 @@ inline constexpr double kNarrowestRelativeBracket = 1e-12;
 
 /// Runs `stage` (Kind::equilibrium) on a copy of `saved` and says whether it reached
 /// equilibrium without a mechanism. The stage stops as soon as a mechanism forms.
-StabilityTrial run_trial(World& world, Stage stage, double parameter);
+StabilityTrial run_trial(World& world, Stage stage, double parameter,
+                         const ProgressFn& progress = {});
 
 /// The collapse load of a gravity that rises to `stage.gravity`: `saved` is the world in
 /// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
@@ -72,10 +73,16 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 /// Both searches end whatever the tolerance: where the bracket's midpoint equals one of its ends
 /// (the bracket as narrow as doubles go), or where `stop` says so between two trials
 /// (StabilitySearch::interrupted).
+///
+/// With stage.strength.from_last_stable, a trial at a larger factor starts from the equilibrium
+/// of the last stable trial (the factor's strength replacing that trial's), as the strength is
+/// reduced step by step in a single run; the first trial, and any with none stable before it,
+/// from `saved`. `progress` is told of each trial's steps as a stage's (the trial's stage is
+/// named "NAME F = f").
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
                                    double tolerance, const TrialFn& done = {},
-                                   const StopFn& stop = {});
+                                   const StopFn& stop = {}, const ProgressFn& progress = {});
 
 /// Indices into world.joint_laws() of the laws named in `names` (every law when it is empty), in
 /// the world's order: the laws a strength reduction divides.

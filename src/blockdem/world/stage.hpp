@@ -81,6 +81,10 @@ struct Stage {
     double lower = 0.5;             ///< factor that must be stable (-)
     double upper = 4.0;             ///< factor that must fail (-)
     double tolerance = 0.01;        ///< width of the final bracket of F (-)
+    /// `trial_start = "last_stable"`: a trial starts from the equilibrium of the last stable
+    /// trial (its strength divided further; the first trial from the stage's start). False
+    /// (`"stage_start"`, the default): every trial from the stage's start.
+    bool from_last_stable = false;
   } strength;
 
   std::int64_t steps = 0;  ///< Kind::steps
