@@ -441,9 +441,8 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
     std::string line = "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
                        ": step " + std::to_string(k) +
                        (trials ? std::string() : ", t = " + number_text(world.time(), "%.4g s")) +
-                       ", unbalanced " +
-                       number_text(m.unbalanced_force_ratio, "%.2e") + ", KE ratio " +
-                       number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
+                       ", unbalanced " + number_text(m.unbalanced_force_ratio, "%.2e") +
+                       ", KE ratio " + number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
                        number_text(wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0,
                                    "%.0f steps/s");
     double done = -1.0;
