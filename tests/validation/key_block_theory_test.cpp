@@ -97,7 +97,7 @@ TEST(KeyBlockTheory, RoofWedgeVolumeModeAndFactorOfSafety) {
   const double xi = std::acos(across(w.side_a).dot(across(w.side_b)));
   const double expected = std::tan(deg_to_rad(55.0)) / (std::tan(psi) * std::sin(0.5 * xi));
   const double f = b["factor_of_safety"].get<double>();
-  std::printf("roof wedge: V = %.6g m3 (tetrahedron %.6g), F = %.5g (Hoek & Bray %.5g)\n",
+  std::printf("roof wedge: V = %.12g m3 (tetrahedron %.12g), F = %.8g (Hoek & Bray %.8g)\n",
               b["volume_m3"].get<double>(), volume, f, expected);
   EXPECT_NEAR(f, expected, 0.01 * expected);
   EXPECT_NEAR(f, 1.2818, 0.01 * 1.2818);  // the example's quoted value

@@ -58,7 +58,8 @@ BlockEquilibrium block_equilibrium(std::span<const ContactPlane> planes,
 /// (S1 = b . s), so F(T) = (R0 + T R1) / (S0 + T S1) = required gives
 ///     T = (required S0 - R0) / (R1 - required S1).
 /// One plane, bolt at angle theta from the up-slope direction towards the plane (b = -cos(theta)
-/// s - sin(theta) n): R1 = sin(theta) tan(phi), S1 = -cos(theta), so
+/// s + sin(theta) n, n the plane's outward normal, into the rock): R1 = sin(theta) tan(phi),
+/// S1 = -cos(theta), so
 ///     T = (W (F sin(psi) - cos(psi) tan(phi)) - c A) / (F cos(theta) + sin(theta) tan(phi)),
 /// the planar-failure form of Hoek & Bray (ch. 7, reinforcement) and Hudson & Harrison (1997,
 /// Engineering Rock Mechanics, ch. 18). Falling: the factor is the support's component against

@@ -1,10 +1,11 @@
-// Removable blocks: the faces an excavation exposes, each exposed block's contact planes and
-// joint strengths, and its block-theory limit equilibrium.
+// Removable blocks: the blocks an excavation exposes, the faces each shares with the rock that
+// stays and their joint strengths, and its block-theory limit equilibrium.
 #include "blockdem/run/removable_blocks.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -30,21 +31,53 @@ Posed posed(const Block& b) {
   return p;
 }
 
-/// The joint law of plane `plane` of block `k`: its face's law, else the last group rule that
-/// covers the block's group (World::law_for's order); -1 when none.
-int plane_law(const Scenario& sc, std::size_t k, int plane) {
-  if (k < sc.face_laws.size() && !sc.face_laws[k].empty()) {
-    const int law = sc.face_laws[k][static_cast<std::size_t>(plane)];
-    if (law >= 0) return law;
-  }
-  const std::string& group = sc.blocks[k].group();
-  int found = -1;
-  for (const JointRule& r : sc.joint_rules) {
-    if ((r.group_a.empty() || r.group_a == group) && (r.group_b.empty() || r.group_b == group))
-      found = r.law;
-  }
-  return found;
+/// The face law of plane `plane` of block `k` (-1: none).
+int face_law(const Scenario& sc, std::size_t k, int plane) {
+  if (k >= sc.face_laws.size() || sc.face_laws[k].empty()) return -1;
+  return sc.face_laws[k][static_cast<std::size_t>(plane)];
 }
+
+/// The joint law between block `a` and block `b` where they share `face` (plane_a on `a`), as
+/// the world chooses it (World::shared_face_law, the pair's lower block index first): the face
+/// law of the block of lower index, else the other's, else the last group rule that covers both
+/// groups (World::law_for); -1 when none.
+int contact_law(const Scenario& sc, std::size_t a, std::size_t b, const SharedFace& face) {
+  const int first = a < b ? face_law(sc, a, face.plane_a) : face_law(sc, b, face.plane_b);
+  const int second = a < b ? face_law(sc, b, face.plane_b) : face_law(sc, a, face.plane_a);
+  int law = first >= 0 ? first : second;
+  if (law >= 0) return law;
+  const std::string& ga = sc.blocks[a].group();
+  const std::string& gb = sc.blocks[b].group();
+  auto matches = [](const std::string& rule, const std::string& group) {
+    return rule.empty() || rule == group;
+  };
+  for (const JointRule& r : sc.joint_rules) {
+    if ((matches(r.group_a, ga) && matches(r.group_b, gb)) ||
+        (matches(r.group_a, gb) && matches(r.group_b, ga)))
+      law = r.law;
+  }
+  return law;
+}
+
+/// Where two blocks touch: the shared polygon, when it is a face and not an edge.
+std::optional<SharedFace> touching(const Block& a, const Posed& pa, const Block& b,
+                                   const Posed& pb) {
+  const double reach = a.shape.bounding_radius() + b.shape.bounding_radius();
+  if ((a.position - b.position).norm() > reach) return std::nullopt;
+  auto face = shared_face(a.shape, pa.vertices, pa.planes, pb.planes, 1e-9 * reach);
+  const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
+  if (face && !(face->area > 1e-6 * size * size)) return std::nullopt;
+  return face;
+}
+
+/// One of a block's contact planes as found: its face's plane (-1: a roller), the joint set
+/// that made that face ("" for none), the joint strength summed over its neighbours.
+struct FoundPlane {
+  int plane = -1;
+  ContactPlane contact;
+  double friction_area = 0.0;  ///< sum of tan(phi) A over the neighbours (m^2)
+  double cohesion_area = 0.0;  ///< sum of c A (N)
+};
 
 /// Dip and dip direction (degrees, clockwise from north = +y) of the plane with normal n.
 std::pair<double, double> dip_of(Eigen::Vector3d n) {
@@ -65,46 +98,68 @@ Eigen::Vector3d gravity_at(const Scenario& sc, std::size_t stage) {
   return g;
 }
 
+/// A block's contact planes: the faces it shares with blocks that stay (their joint strengths
+/// area-weighted over its neighbours on one plane), and two frictionless planes across each axis
+/// along which a roller boundary blocks its translation.
+std::vector<FoundPlane> contact_planes(const Scenario& sc, const std::vector<Posed>& posed_blocks,
+                                       const std::vector<std::size_t>& left, std::size_t k) {
+  const Block& b = sc.blocks[k];
+  std::map<int, FoundPlane> by_plane;
+  for (std::size_t j : left) {
+    if (j == k) continue;
+    const auto face = touching(b, posed_blocks[k], sc.blocks[j], posed_blocks[j]);
+    if (!face) continue;
+    FoundPlane& f = by_plane[face->plane_a];
+    f.plane = face->plane_a;
+    f.contact.normal = face->normal;
+    f.contact.area += face->area;
+    const int law = contact_law(sc, k, j, *face);
+    if (law < 0) continue;
+    const JointStrength& s = strength_of(sc.joint_laws[static_cast<std::size_t>(law)].shear);
+    f.friction_area += s.friction_coefficient * face->area;
+    f.cohesion_area += s.cohesion * face->area;
+  }
+  std::vector<FoundPlane> out;
+  for (auto& [plane, f] : by_plane) {
+    f.contact.friction_coefficient = f.friction_area / f.contact.area;
+    f.contact.cohesion = f.cohesion_area / f.contact.area;
+    out.push_back(f);
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!b.blocked_translation(axis)) continue;
+    for (const double sign : {1.0, -1.0}) {
+      FoundPlane roller;
+      roller.plane = -1 - axis;
+      roller.contact.normal = sign * Eigen::Vector3d::Unit(axis);
+      out.push_back(roller);
+    }
+  }
+  return out;
+}
+
 /// One exposed block's entry, or null when gravity cannot move it into the opening.
-nlohmann::json block_entry(const Scenario& sc, std::size_t k, const std::vector<double>& exposed,
+nlohmann::json block_entry(const Scenario& sc, std::size_t k, const std::vector<FoundPlane>& found,
                            const Eigen::Vector3d& gravity, double required_factor,
                            const std::string& stage) {
   const Block& b = sc.blocks[k];
-  const Posed p = posed(b);
-  // The contact planes: each face's area less what it shares with removed blocks.
   std::vector<ContactPlane> planes;
-  std::vector<int> plane_index;
-  for (const Face& f : b.shape.faces()) {
-    const double area = b.shape.face_area(static_cast<int>(&f - b.shape.faces().data()));
-    const double touching = area - exposed[static_cast<std::size_t>(f.plane)];
-    if (!(touching > 1e-6 * area)) continue;
-    ContactPlane c;
-    c.normal = p.planes[static_cast<std::size_t>(f.plane)].normal;
-    c.area = touching;
-    const int law = plane_law(sc, k, f.plane);
-    if (law >= 0) {
-      const JointStrength& s = strength_of(sc.joint_laws[static_cast<std::size_t>(law)].shear);
-      c.friction_coefficient = s.friction_coefficient;
-      c.cohesion = s.cohesion;
-    }
-    planes.push_back(c);
-    plane_index.push_back(f.plane);
-  }
+  for (const FoundPlane& f : found) planes.push_back(f.contact);
   const double weight = b.mass * gravity.norm();
   const BlockEquilibrium eq = block_equilibrium(planes, gravity, weight);
   if (eq.mode == BlockMode::stable) return nullptr;
   nlohmann::json sliding = nlohmann::json::array();
   for (std::size_t m = 0; m < eq.planes.size(); ++m) {
     const std::size_t i = static_cast<std::size_t>(eq.planes[m]);
-    const int plane = plane_index[i];
+    const int plane = found[i].plane;
     std::string set;
-    if (k < sc.face_sets.size() && !sc.face_sets[k].empty()) {
+    if (plane >= 0 && k < sc.face_sets.size() && !sc.face_sets[k].empty()) {
       const int s = sc.face_sets[k][static_cast<std::size_t>(plane)];
       if (s >= 0 && static_cast<std::size_t>(s) < sc.joint_sets.size())
         set = sc.joint_sets[static_cast<std::size_t>(s)];
     }
     const auto [dip, direction] = dip_of(planes[i].normal);
-    sliding.push_back({{"joint_set", set},
+    sliding.push_back({{"contact", plane >= 0 ? "joint" : "roller"},
+                       {"joint_set", set},
                        {"dip_deg", dip},
                        {"dip_direction_deg", direction},
                        {"area_m2", planes[i].area},
@@ -135,33 +190,23 @@ nlohmann::json removable_blocks(const Scenario& sc, std::size_t stage, double re
   std::set<std::string> removed;
   for (std::size_t s = 0; s <= stage; ++s)
     removed.insert(sc.stages[s].remove.begin(), sc.stages[s].remove.end());
-  std::vector<std::size_t> gone;
+  std::vector<std::size_t> gone, left;
+  std::vector<Posed> posed_blocks;
   for (std::size_t k = 0; k < sc.blocks.size(); ++k) {
-    if (removed.count(sc.blocks[k].name)) gone.push_back(k);
+    (removed.count(sc.blocks[k].name) ? gone : left).push_back(k);
+    posed_blocks.push_back(posed(sc.blocks[k]));
   }
-  std::vector<Posed> gone_posed;
-  for (std::size_t r : gone) gone_posed.push_back(posed(sc.blocks[r]));
-  for (std::size_t k = 0; k < sc.blocks.size(); ++k) {
+  for (std::size_t k : left) {
     const Block& b = sc.blocks[k];
-    if (removed.count(b.name) || !b.is_dynamic()) continue;
-    // The area of each of its planes that the opening exposes, and whether this stage did.
-    std::vector<double> exposed(b.shape.planes().size(), 0.0);
-    bool opened_now = false;
-    const Posed p = posed(b);
-    for (std::size_t g = 0; g < gone.size(); ++g) {
-      const Block& r = sc.blocks[gone[g]];
-      const double reach = b.shape.bounding_radius() + r.shape.bounding_radius();
-      if ((b.position - r.position).norm() > reach) continue;
-      const auto face =
-          shared_face(b.shape, p.vertices, p.planes, gone_posed[g].planes, 1e-9 * reach);
-      if (!face || !(face->area > 1e-6 * b.shape.bounding_radius() * b.shape.bounding_radius()))
-        continue;
-      exposed[static_cast<std::size_t>(face->plane_a)] += face->area;
-      opened_now = opened_now || now.count(r.name) > 0;
-    }
+    if (!b.is_dynamic()) continue;
+    // Exposed by this stage: it shares a face with a block this stage removes.
+    const bool opened_now = std::any_of(gone.begin(), gone.end(), [&](std::size_t r) {
+      return now.count(sc.blocks[r].name) > 0 &&
+             touching(b, posed_blocks[k], sc.blocks[r], posed_blocks[r]).has_value();
+    });
     if (!opened_now) continue;
-    nlohmann::json entry =
-        block_entry(sc, k, exposed, gravity, required_factor, sc.stages[stage].name);
+    nlohmann::json entry = block_entry(sc, k, contact_planes(sc, posed_blocks, left, k), gravity,
+                                       required_factor, sc.stages[stage].name);
     if (!entry.is_null()) out.push_back(std::move(entry));
   }
   std::stable_sort(out.begin(), out.end(), [](const nlohmann::json& x, const nlohmann::json& y) {

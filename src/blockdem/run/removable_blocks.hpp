@@ -19,10 +19,10 @@ inline constexpr double kDefaultRequiredFactor = 1.5;
 /// (analysis/block_theory.hpp), at their poses in the scenario, lowest factor of safety first:
 /// block, stage, volume_m3, weight_N, mode, planes (the planes it slides on), direction,
 /// factor_of_safety, support_force_N (a bolt against the motion, to `required_factor`).
-/// Contact planes: every face of the block but the parts it shares with removed blocks (faces on
-/// the model's outer boundary count, as the boundary conditions hold them); their friction and
-/// cohesion are the peak values of the joint law of the face (a joint set's), else the block
-/// group's rule. Gravity: the last one set by the stages up to `stage` (none: an empty list).
+/// Contact planes: the faces the block shares with blocks that stay, with the peak friction and
+/// cohesion of the joint law the world gives that contact (area-weighted over the neighbours on
+/// one plane), and two frictionless planes across each axis a roller boundary holds it along.
+/// Gravity: the last one set by the stages up to `stage` (none: an empty list).
 nlohmann::json removable_blocks(const Scenario& scenario, std::size_t stage,
                                 double required_factor = kDefaultRequiredFactor);
 

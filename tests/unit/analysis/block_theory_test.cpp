@@ -19,9 +19,10 @@ namespace block_theory_test {
 
 const Eigen::Vector3d kDown(0, 0, -9.81);
 
-/// Outward normal of the base of a block resting on a plane dipping psi towards +x.
+/// Outward normal of the base of a block resting on a plane dipping psi towards +x: down, into
+/// the rock below.
 Eigen::Vector3d base_normal(double psi) {
-  return {std::sin(psi), 0.0, -std::cos(psi)};
+  return {-std::sin(psi), 0.0, -std::cos(psi)};
 }
 
 TEST(BlockTheory, BlockOnInclinedPlaneSlidesOnOne) {
@@ -84,7 +85,7 @@ TEST(BlockTheory, BoltForceMatchesPlanarFailureWithReinforcement) {
   const double required = 1.5;
   for (const double theta_deg : {0.0, 15.0, 25.0, 50.0}) {
     const double theta = deg_to_rad(theta_deg);
-    const Eigen::Vector3d bolt = -std::cos(theta) * eq.direction - std::sin(theta) * n;
+    const Eigen::Vector3d bolt = -std::cos(theta) * eq.direction + std::sin(theta) * n;
     const double t = support_force(planes, eq, kDown, w, bolt, required);
     const double expected =
         (w * (required * std::sin(psi) - std::cos(psi) * std::tan(phi)) - c * area) /
