@@ -19,18 +19,6 @@
 namespace blockdem {
 namespace {
 
-/// A block at its pose: world vertices and planes.
-struct Posed {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Halfspace> planes;
-};
-Posed posed(const Block& b) {
-  Posed p;
-  for (const auto& v : b.shape.vertices()) p.vertices.push_back(b.to_world(v));
-  p.planes = planes_at_pose(b);
-  return p;
-}
-
 /// The face law of plane `plane` of block `k` (-1: none).
 int face_law(const Scenario& sc, std::size_t k, int plane) {
   if (k >= sc.face_laws.size() || sc.face_laws[k].empty()) return -1;
@@ -60,8 +48,8 @@ int contact_law(const Scenario& sc, std::size_t a, std::size_t b, const SharedFa
 }
 
 /// Where two blocks touch: the shared polygon, when it is a face and not an edge.
-std::optional<SharedFace> touching(const Block& a, const Posed& pa, const Block& b,
-                                   const Posed& pb) {
+std::optional<SharedFace> touching(const Block& a, const PosedBlock& pa, const Block& b,
+                                   const PosedBlock& pb) {
   const double reach = a.shape.bounding_radius() + b.shape.bounding_radius();
   if ((a.position - b.position).norm() > reach) return std::nullopt;
   auto face = shared_face(a.shape, pa.vertices, pa.planes, pb.planes, 1e-9 * reach);
@@ -101,7 +89,8 @@ Eigen::Vector3d gravity_at(const Scenario& sc, std::size_t stage) {
 /// A block's contact planes: the faces it shares with blocks that stay (their joint strengths
 /// area-weighted over its neighbours on one plane), and two frictionless planes across each axis
 /// along which a roller boundary blocks its translation.
-std::vector<FoundPlane> contact_planes(const Scenario& sc, const std::vector<Posed>& posed_blocks,
+std::vector<FoundPlane> contact_planes(const Scenario& sc,
+                                       const std::vector<PosedBlock>& posed_blocks,
                                        const std::vector<std::size_t>& left, std::size_t k) {
   const Block& b = sc.blocks[k];
   std::map<int, FoundPlane> by_plane;
@@ -191,10 +180,10 @@ nlohmann::json removable_blocks(const Scenario& sc, std::size_t stage, double re
   for (std::size_t s = 0; s <= stage; ++s)
     removed.insert(sc.stages[s].remove.begin(), sc.stages[s].remove.end());
   std::vector<std::size_t> gone, left;
-  std::vector<Posed> posed_blocks;
+  std::vector<PosedBlock> posed_blocks;
   for (std::size_t k = 0; k < sc.blocks.size(); ++k) {
     (removed.count(sc.blocks[k].name) ? gone : left).push_back(k);
-    posed_blocks.push_back(posed(sc.blocks[k]));
+    posed_blocks.push_back(posed_block(sc.blocks[k]));
   }
   for (std::size_t k : left) {
     const Block& b = sc.blocks[k];
