@@ -14,6 +14,7 @@
 #include "blockdem/collision/shared_face.hpp"
 #include "blockdem/contact/joint_strength.hpp"
 #include "blockdem/contact/shear_laws.hpp"
+#include "blockdem/numerics/number_text.hpp"
 #include "blockdem/world/bolt.hpp"
 
 namespace blockdem {
@@ -238,6 +239,26 @@ nlohmann::json block_theory_check(const nlohmann::json& stages, const StabilityS
           {"dem_factor", 0.5 * (sr.last_stable + sr.first_failed)},
           {"dem_bracket", {sr.last_stable, sr.first_failed}},
           {"agrees", agrees}};
+}
+
+std::string removable_blocks_line(const nlohmann::json& removable) {
+  std::string line = "  block theory: " + std::to_string(removable.size()) + " removable block" +
+                     (removable.size() == 1 ? "" : "s");
+  for (std::size_t k = 0; k < removable.size() && k < 3; ++k) {
+    const nlohmann::json& b = removable[k];
+    line += (k == 0 ? ": " : ", ") + b["block"].get<std::string>() + " " +
+            b["mode"].get<std::string>() +
+            " F = " + number_text(b["factor_of_safety"].get<double>(), "%.4g");
+  }
+  if (removable.size() > 3) line += ", ...";
+  return line + " (summary.json, removable_blocks)";
+}
+
+std::string block_theory_check_line(const nlohmann::json& check) {
+  return "  block theory: " + check["block"].get<std::string>() +
+         " F = " + number_text(check["block_theory_factor"].get<double>(), "%.4g") +
+         (check["agrees"].get<bool>() ? ", agrees" : ", differs") +
+         " (summary.json, block_theory_check)";
 }
 
 }  // namespace blockdem

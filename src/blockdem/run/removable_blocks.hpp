@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "blockdem/scenario/scenario.hpp"
 #include "blockdem/world/stability.hpp"
@@ -26,12 +27,19 @@ inline constexpr double kDefaultRequiredFactor = 1.5;
 nlohmann::json removable_blocks(const Scenario& scenario, std::size_t stage,
                                 double required_factor = kDefaultRequiredFactor);
 
+/// One line for a run's progress: how many blocks `removable` (removable_blocks's list) holds,
+/// and the first three: name, mode, factor of safety.
+std::string removable_blocks_line(const nlohmann::json& removable);
+
 /// A strength reduction's cross-check of block theory: the block that moved most between the
 /// search's last stable trial and its first failed one, when an earlier stage of `stages`
 /// (summary.json's) lists it in "removable_blocks": block, block_theory_factor, dem_factor (the
 /// bracket's middle), dem_bracket, agrees (the block-theory factor lies in the bracket widened by
 /// kBlockTheoryAgreement at each end). Null when no listed block moved.
 nlohmann::json block_theory_check(const nlohmann::json& stages, const StabilitySearch& search);
+
+/// One line for a run's progress: block_theory_check's block, factors and verdict.
+std::string block_theory_check_line(const nlohmann::json& check);
 
 /// Relative widening of a strength reduction's bracket within which block theory agrees (-).
 inline constexpr double kBlockTheoryAgreement = 0.02;

@@ -362,6 +362,8 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
                    (end.failure ? to_string(*end.failure) : "done") + " after " +
                    std::to_string(result.steps) + " steps (unbalanced " +
                    number_text(result.measures.unbalanced_force_ratio, "%.2e") + ")");
+    if (stages_.back().contains("removable_blocks"))
+      cb_.stage_done(removable_blocks_line(stages_.back()["removable_blocks"]));
   }
 }
 
@@ -390,6 +392,7 @@ void RunOutputs::on_strength_reduction(const World& world, const Stage& stage, i
     cb_.stage_done(stage_label(level, stage) + "factor of safety " + number_text(F, "%.4g") +
                    " (stable at " + number_text(sr.last_stable, "%.4g") + ", failed at " +
                    number_text(sr.first_failed, "%.4g") + ")");
+  if (cb_.stage_done && !check.is_null()) cb_.stage_done(block_theory_check_line(check));
 }
 
 void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySearch& cs) {
