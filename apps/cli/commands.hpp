@@ -24,5 +24,6 @@ void register_analytic(CLI::App& app);
 void register_lab(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_generate(CLI::App& app);
+void register_keyblocks(CLI::App& app);
 
 }  // namespace blockdem::cli

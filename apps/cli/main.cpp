@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   blockdem::cli::register_lab(app);
   blockdem::cli::register_calibrate(app);
   blockdem::cli::register_generate(app);
+  blockdem::cli::register_keyblocks(app);
 
   try {
     app.parse(argc, argv);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -67,6 +68,19 @@ TEST(KeyBlock, RoofWedgeFactorOfSafetyMatchesBlockTheory) {
               r.summary["factor_of_safety"]["first_failed"].get<double>(), expected,
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   EXPECT_NEAR(f, expected, 0.01 * expected);
+  // The excavation stage's summary lists the wedge by block theory (docs/key-blocks.md), and the
+  // strength reduction's entry compares the two: they agree within its bracket +-2%.
+  const nlohmann::json& stages = r.summary["stages"];
+  const auto excavation = std::find_if(stages.begin(), stages.end(), [](const nlohmann::json& s) {
+    return s.contains("removable_blocks");
+  });
+  ASSERT_NE(excavation, stages.end());
+  ASSERT_EQ((*excavation)["removable_blocks"].size(), 1u);
+  EXPECT_NEAR((*excavation)["removable_blocks"][0]["factor_of_safety"].get<double>(), expected,
+              0.01 * expected);
+  const nlohmann::json& check = stages.back()["block_theory_check"];
+  EXPECT_EQ(check["block"], (*excavation)["removable_blocks"][0]["block"]);
+  EXPECT_TRUE(check["agrees"].get<bool>()) << check.dump();
 }
 
 }  // namespace

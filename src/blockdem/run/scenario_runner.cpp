@@ -18,6 +18,7 @@
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/bolt_outputs.hpp"
 #include "blockdem/run/key_blocks.hpp"
+#include "blockdem/run/removable_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/run_restart.hpp"
@@ -165,6 +166,9 @@ class RunOutputs final : public RunObserver {
   nlohmann::json& summary() { return res_.summary; }
   nlohmann::json& stages() { return stages_; }
   const std::string& interrupted_where() const { return interrupted_where_; }
+  /// The excavation stages' removable blocks by stage index (block theory, found before the
+  /// world took the scenario's blocks).
+  void set_removable(std::map<int, nlohmann::json> removable) { removable_ = std::move(removable); }
 
   /// After every step: a time_history.csv row and a VTK frame when due.
   void after_step(const World& w, const Stage& s, int level) {
@@ -217,6 +221,7 @@ class RunOutputs final : public RunObserver {
   std::string bolt_rows_;  ///< bolts.csv's rows so far
   int bolt_frames_ = 0;
   std::unique_ptr<PvdCollection> bolts_pvd_;
+  std::map<int, nlohmann::json> removable_;  ///< set_removable's lists
 
   /// A stage end's bolts: bolts.csv's rows, a VTK frame of their lines, their counts.
   void write_bolts(const World& world, const std::string& stage) {
@@ -257,6 +262,9 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
     // An excavation: the blocks that fell or slid into the opening.
     stages_.back()["removed_blocks"] = stage.remove.size();
     stages_.back()["key_blocks"] = key_blocks(world, start_positions_);
+    // And those that block theory finds free to move into it (removable_blocks.hpp).
+    if (const auto it = removable_.find(end.level); it != removable_.end())
+      stages_.back()["removable_blocks"] = it->second;
   }
   // Outputs of this level. A level that did not converge is written flagged converged = 0; a
   // diverged one is not written (the rows so far end with the last good state).
@@ -268,6 +276,8 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
                    (end.failure ? to_string(*end.failure) : "done") + " after " +
                    std::to_string(result.steps) + " steps (unbalanced " +
                    number_text(result.measures.unbalanced_force_ratio, "%.2e") + ")");
+    if (stages_.back().contains("removable_blocks"))
+      cb_.stage_done(removable_blocks_line(stages_.back()["removable_blocks"]));
   }
 }
 
@@ -289,11 +299,14 @@ void RunOutputs::on_strength_reduction(const World& world, const Stage& stage, i
                      {"steps", result.steps},
                      {"factor_of_safety", F},
                      {"message", ""}});
+  const nlohmann::json check = block_theory_check(stages_, sr);
+  if (!check.is_null()) stages_.back()["block_theory_check"] = check;
   recorder_->record(world, result, level);
   if (cb_.stage_done)
     cb_.stage_done(stage_label(level, stage) + "factor of safety " + number_text(F, "%.4g") +
                    " (stable at " + number_text(sr.last_stable, "%.4g") + ", failed at " +
                    number_text(sr.first_failed, "%.4g") + ")");
+  if (cb_.stage_done && !check.is_null()) cb_.stage_done(block_theory_check_line(check));
 }
 
 void RunOutputs::on_collapse_search(const Stage& stage, int, const StabilitySearch& cs) {
@@ -620,6 +633,11 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   RunPoint* resume = restart.point ? &*restart.point : nullptr;
   auto setup0 = Clock::now();
   if (cb.progress) cb.progress("setting up the world (initial-overlap check, first contacts)");
+  // Block theory reads the scenario's blocks, which building the world may take.
+  std::map<int, nlohmann::json> removable;
+  for (std::size_t s = 0; s < sc.stages.size(); ++s) {
+    if (!sc.stages[s].remove.empty()) removable[static_cast<int>(s)] = removable_blocks(sc, s);
+  }
   World world = build();  // may throw ScenarioError: nothing written yet
   report_setup(cb, setup0,
                "world of " + std::to_string(world.blocks().size()) +
@@ -640,6 +658,7 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   RunResult res;
   res.foreign_files = prepare_folder(out, resume);
   RunOutputs outputs(sc, out, cb, res);
+  outputs.set_removable(std::move(removable));
   outputs.open_recorder(!(scene && scene->writes_own_tables()), resume != nullptr,
                         (control.shared_out.empty() ? out : control.shared_out) / "vtk");
   // Every process writes its VTK pieces into the shared folder: not before process 0 has

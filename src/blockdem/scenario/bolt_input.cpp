@@ -115,18 +115,6 @@ std::vector<Eigen::Vector3d> face_collars(const SharedFace& face, double along, 
   return out;
 }
 
-/// The world vertices and planes of a block at its pose.
-struct Posed {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Halfspace> planes;
-};
-Posed posed(const Block& b) {
-  Posed p;
-  for (const auto& v : b.shape.vertices()) p.vertices.push_back(b.to_world(v));
-  p.planes = planes_at_pose(b);
-  return p;
-}
-
 /// One [[bolt_patterns]] entry's bolts: on every face where a block of the excavation touches a
 /// block that stays, collars on a lattice, each bolt normal to the face into the rock. Bolts
 /// whose line crosses no joint or leaves the model are left out (counted in a warning).
@@ -155,12 +143,12 @@ void read_pattern(const CheckedTable& t, std::size_t k, Scenario& sc) {
   std::size_t idle = 0;
   for (const Block& r : sc.blocks) {
     if (!removed.count(r.name)) continue;
-    const Posed pr = posed(r);
+    const PosedBlock pr = posed_block(r);
     for (const Block& rock : left) {
       if (removed.count(rock.name)) continue;
       const double reach = r.shape.bounding_radius() + rock.shape.bounding_radius();
       if ((r.position - rock.position).norm() > reach) continue;
-      const Posed pk = posed(rock);
+      const PosedBlock pk = posed_block(rock);
       const double tolerance = 1e-9 * reach;
       const auto face = shared_face(r.shape, pr.vertices, pr.planes, pk.planes, tolerance);
       if (!face) continue;

@@ -62,6 +62,13 @@ std::vector<Halfspace> planes_at_pose(const Block& block) {
   return planes;
 }
 
+PosedBlock posed_block(const Block& block) {
+  PosedBlock p;
+  for (const auto& v : block.shape.vertices()) p.vertices.push_back(block.to_world(v));
+  p.planes = planes_at_pose(block);
+  return p;
+}
+
 std::vector<BoltSpan> bolt_spans(const BoltSpec& spec, const std::vector<Block>& blocks) {
   const Eigen::Vector3d p0 = spec.start;
   const Eigen::Vector3d p1 = spec.start + spec.length * spec.direction;

@@ -49,6 +49,14 @@ struct BoltSpan {
 /// them), for a block whose world_planes may be stale or absent.
 std::vector<Halfspace> planes_at_pose(const Block& block);
 
+/// A block at its present pose: its vertices and planes in the world (m).
+struct PosedBlock {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Halfspace> planes;
+};
+/// The vertices (Block::to_world) and planes_at_pose of `block`.
+PosedBlock posed_block(const Block& block);
+
 /// The blocks a bolt's line passes through, in order from the collar: each block's interval of
 /// the segment start + s direction, s in [0, length], found by clipping the segment by the
 /// block's planes at its present pose (geometry/segment_clip.hpp). Spans shorter than 1e-9 of

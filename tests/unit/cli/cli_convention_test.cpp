@@ -83,6 +83,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCommand{"generate_bad_option",
                    "generate '" + kRockMass + "' --out OUT --no-such-option"},
         BadCommand{"generate_bad_value", "generate '" + kScenario + "' --out OUT"},
+        BadCommand{"keyblocks_missing_file", "keyblocks /no/such/file.toml --out OUT"},
+        BadCommand{"keyblocks_bad_option",
+                   "keyblocks '" + kRockMass + "' --out OUT --no-such-option"},
+        BadCommand{"keyblocks_bad_number",
+                   "keyblocks '" + kRockMass + "' --out OUT --required-factor high"},
+        BadCommand{"keyblocks_bad_value", "keyblocks '" + kScenario + "' --out OUT"},
         BadCommand{"reproduce_bad_number", "reproduce boon2015 --jobs two --out OUT"},
         BadCommand{"analytic_bad_number",
                    "analytic voussoir --span long --depth 0.046 --density 1207 --gravity 9.81 "
