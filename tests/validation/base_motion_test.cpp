@@ -15,14 +15,20 @@
 // to 1e-9 relative.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "blockdem/dynamics/base_motion.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/run/scene_builders.hpp"
 #include "blockdem/scenario/scenario.hpp"
 #include "blockdem/world/stage.hpp"
 #include "support/cli_runner.hpp"
@@ -73,10 +79,10 @@ struct Shaken {
   Eigen::Vector3d base_shift = Eigen::Vector3d::Zero();
 };
 
-Shaken run_shaken(const std::string& text, const std::string& file) {
-  const Scenario sc = parse_scenario(text, file);
+Shaken run_scenario_stages(const Scenario& sc, const std::string& base_block,
+                           const Eigen::Vector3d& along) {
   World world = build_world(sc);
-  const int block = world.find_block("block"), plate = world.find_block("plate");
+  const int block = world.find_block("block"), plate = world.find_block(base_block);
   Shaken out;
   Eigen::Vector3d block0 = Eigen::Vector3d::Zero(), plate0 = Eigen::Vector3d::Zero();
   double t0 = 0.0;
@@ -86,10 +92,10 @@ Shaken run_shaken(const std::string& text, const std::string& file) {
     if (st.kind != Stage::Kind::dynamic) return;
     const Block& b = w.blocks()[static_cast<std::size_t>(block)];
     const Block& p = w.blocks()[static_cast<std::size_t>(plate)];
-    const double rel = (b.position.x() - block0.x()) - (p.position.x() - plate0.x());
+    const double rel = ((b.position - block0) - (p.position - plate0)).dot(along);
     out.largest_relative = std::max(out.largest_relative, std::abs(rel));
     // Velocities at t_{n+1/2}: the step's mid time.
-    const double v = b.velocity.x() - p.velocity.x();
+    const double v = (b.velocity - p.velocity).dot(along);
     const double t = w.time() - 0.5 * w.last_time_step() - t0;
     if (v < -1e-3) slipping = true;
     if (slipping && out.stop_time < 0.0 && v >= 0.0)
@@ -108,7 +114,7 @@ Shaken run_shaken(const std::string& text, const std::string& file) {
   }
   const Block& b = world.blocks()[static_cast<std::size_t>(block)];
   const Block& p = world.blocks()[static_cast<std::size_t>(plate)];
-  out.relative_slip = (b.position.x() - block0.x()) - (p.position.x() - plate0.x());
+  out.relative_slip = ((b.position - block0) - (p.position - plate0)).dot(along);
   out.base_shift = p.position - plate0;
   out.stage_time = world.time() - t0;
   // After the stage the base is fixed again where the motion left it.
@@ -117,6 +123,10 @@ Shaken run_shaken(const std::string& text, const std::string& file) {
   // The damping before the stage is back.
   EXPECT_EQ(world.settings().damping, 0.7);
   return out;
+}
+
+Shaken run_shaken(const std::string& text, const std::string& file) {
+  return run_scenario_stages(parse_scenario(text, file), "plate", Eigen::Vector3d::UnitX());
 }
 
 class NewmarkPulse : public ::testing::TestWithParam<const char*> {};
@@ -190,6 +200,56 @@ TEST(BaseMotionRecord, BaseFollowsTheRecordExactly) {
   EXPECT_LE((s.base_shift - u).norm(), 1e-9 * u.norm());
 }
 
+// The example scenarios/examples/slope_shaken.toml: a block on a plane dipping psi = 20 degrees
+// towards +x, friction phi = 30 degrees, the plane shaken horizontally along x by a record.
+// Newmark's rigid block on an incline under horizontal base acceleration: in the plane's frame the
+// block feels gravity and the inertial force -m a_b. With a_u = -a_x the base's acceleration up the
+// slope (horizontal), the normal force is m (g cos psi - a_u sin psi) and the downslope driving
+// force m (g sin psi + a_u cos psi), so the block slides down the plane when
+//   a_u > a_y = g (tan phi cos psi - sin psi) / (cos psi + tan phi sin psi) = g tan(phi - psi),
+// and while it slides its acceleration relative to the plane, along the slope, is
+//   s'' = (cos psi + tan phi sin psi) (a_u - a_y) = cos(phi - psi) / cos(phi) (a_u - a_y),
+// until its relative velocity s' returns to zero (it cannot slide up the slope: that needs
+// a_u < -g tan(phi + psi), far beyond the record). (Newmark 1965 for the rigid block; the
+// inclined, horizontally shaken form as in Kramer, Geotechnical Earthquake Engineering, 1996,
+// section 10.6.1.) The oracle integrates s'' with a 1e-5 s step (midpoint accelerations).
+// Tolerance 3% on the permanent slip: the block is elastic on its joint (it rocks on the plane's
+// shear and normal springs), and it slides in a few excursions each of which starts and stops on
+// a spring.
+double newmark_incline_slip(const BaseMotion& record, double psi, double phi, double T) {
+  const double g = kG;
+  const double a_y = g * std::tan(phi - psi);
+  const double k = std::cos(phi - psi) / std::cos(phi);
+  const double h = 1e-5;
+  double s = 0.0, v = 0.0;
+  for (double t = 0.0; t < T; t += h) {
+    const double a_u = -record.at(t + 0.5 * h).acceleration.x();
+    if (v > 0.0 || a_u > a_y) {
+      const double v_new = std::max(0.0, v + h * k * (a_u - a_y));
+      s += 0.5 * h * (v + v_new);
+      v = v_new;
+    }
+  }
+  return s;
+}
+
+TEST(SlopeShaken, PermanentDisplacementMatchesNewmark) {
+  const std::string file =
+      std::string(BLOCKDEM_SOURCE_DIR) + "/scenarios/examples/slope_shaken.toml";
+  const Scenario sc = load_scenario(file);
+  const double psi = deg_to_rad(20.0), phi = deg_to_rad(30.0);
+  const Eigen::Vector3d down(std::cos(psi), 0.0, -std::sin(psi));
+  const Shaken s = run_scenario_stages(sc, "plane", down);
+  const Stage& shake = sc.stages.back();
+  const double newmark = newmark_incline_slip(*shake.base_motion, psi, phi, s.stage_time);
+  std::printf(
+      "[slope_shaken] permanent slip down the plane %.6g m, Newmark %.6g m (a_y = %.4g "
+      "m/s^2)\n",
+      s.relative_slip, newmark, kG * std::tan(phi - psi));
+  EXPECT_GT(newmark, 0.01);
+  EXPECT_NEAR(s.relative_slip, newmark, 0.03 * newmark);
+}
+
 // Bad input to `blockdem run`: exit 2, a message naming the file, the key and the reason,
 // nothing written.
 struct BadCase {
@@ -247,3 +307,66 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace blockdem::test::base_motion_validation
+
+namespace blockdem::test::base_motion_restart {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A dynamic stage continued from a checkpoint taken inside it ends with the same time_history.csv
+// (bytes) and the same summary.json stages as the run never stopped: the base's motion is a
+// function of the stage time and of the base's position before each step, both in the checkpoint.
+TEST(BaseMotionRestart, ContinuingInsideTheDynamicStageIsBitIdentical) {
+  const fs::path dir = fresh_case_dir("base_motion_restart", "case");
+  const fs::path file = dir / "case.toml";
+  std::ofstream(file)
+      << "[settings]\ndamping = 0.7\n[[materials]]\nname = \"rock\"\ndensity = 2500.0\n"
+      << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+      << "shear = { law = \"linear\", stiffness = 1e10, friction_deg = 30 }\n"
+      << "[[blocks]]\nname = \"plate\"\ngroup = \"base\"\nmaterial = \"rock\"\n"
+      << "size = [3.0, 1.0, 0.1]\nposition = [0.0, 0.0, -0.05]\nmotion = \"fixed\"\n"
+      << "[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [0.4, 0.4, 0.2]\n"
+      << "position = [0.0, 0.0, 0.1]\n"
+      << "[output]\nhistory_interval = 7\nhistory_blocks = [\"block\", \"plate\"]\n"
+      << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\n"
+      << "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\nduration = 0.15\n"
+      << "base_motion = { group = \"base\", pulse = \"sine\", amplitude_m_s2 = 6.0, period = 0.1 }\n"
+      << "[[stages]]\nname = \"rest\"\nmax_steps = 300\n";
+  const fs::path reference = dir / "reference";
+  const auto run = [&](const fs::path& out, const std::string& extra) {
+    return run_cli("run '" + file.string() + "' --out '" + out.string() +
+                   "' --quiet --no-figures --threads 1 " + extra);
+  };
+  const CommandOutput r = run(reference, "");
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.err;
+  const auto summary = nlohmann::json::parse(file_bytes(reference / "summary.json"));
+  const auto& stages = summary["stages"];
+  ASSERT_EQ(stages.size(), 3u);
+  const std::int64_t settle = stages[0]["steps"], shake = stages[1]["steps"];
+  std::printf("[restart] settle %lld steps, shake %lld steps\n", static_cast<long long>(settle),
+              static_cast<long long>(shake));
+  ASSERT_GT(shake, 20);
+  // Stopped (SIGTERM: a checkpoint, exit 143) half way through the shake stage, then resumed.
+  const fs::path out = dir / "continued";
+  const std::string at = std::to_string(settle + shake / 2);
+  ::setenv("BLOCKDEM_TEST_KILL_RANK", ("0:" + at + ":TERM").c_str(), 1);
+  const CommandOutput stopped = run(out, "");
+  ::unsetenv("BLOCKDEM_TEST_KILL_RANK");
+  ASSERT_EQ(stopped.exit_code, 143) << stopped.err;
+  const CommandOutput c = run(out, "--resume");
+  EXPECT_EQ(c.exit_code, r.exit_code) << c.err;
+  EXPECT_EQ(file_bytes(reference / "time_history.csv"), file_bytes(out / "time_history.csv"));
+  const auto continued = nlohmann::json::parse(file_bytes(out / "summary.json"));
+  EXPECT_EQ(summary["stages"].dump(), continued["stages"].dump());
+  // The base columns are there and the permanent displacements are reported.
+  EXPECT_NE(file_bytes(reference / "time_history.csv").find("base_ax_m_s2"), std::string::npos);
+  EXPECT_TRUE(stages[1].contains("permanent_displacements"));
+}
+
+}  // namespace
+}  // namespace blockdem::test::base_motion_restart
