@@ -68,34 +68,42 @@ std::string rectangular_stage(double a0, double t0, double duration) {
   return s.str();
 }
 
-// The dynamic stage's record: the block's displacement relative to the base along x, its
-// extreme, and when the relative velocity came back to zero after the slip.
+// The dynamic stage's record of one material point of the block, the centre of its bottom face
+// (on the joint: the block's rocking on its joint springs moves the centroid but hardly that
+// point): its displacement relative to the base along a direction, its extreme, and when its
+// relative velocity came back to zero after the slip.
 struct Shaken {
   double relative_slip = 0.0;     ///< (m), at the stage end
   double largest_relative = 0.0;  ///< max |relative displacement| over the stage (m)
   double stop_time = -1.0;        ///< stage time at which v_rel returned to 0 (s); -1: never
-  double base_displacement = 0.0;
   double stage_time = 0.0;
   Eigen::Vector3d base_shift = Eigen::Vector3d::Zero();
 };
 
+/// `foot`: from the block's centroid to the centre of its bottom face at the dynamic stage's
+/// start (world frame, m).
 Shaken run_scenario_stages(const Scenario& sc, const std::string& base_block,
-                           const Eigen::Vector3d& along) {
+                           const Eigen::Vector3d& along, const Eigen::Vector3d& foot) {
   World world = build_world(sc);
   const int block = world.find_block("block"), plate = world.find_block(base_block);
   Shaken out;
-  Eigen::Vector3d block0 = Eigen::Vector3d::Zero(), plate0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d foot0 = Eigen::Vector3d::Zero(), plate0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d foot_body = Eigen::Vector3d::Zero();  // the point in the block's body frame
   double t0 = 0.0;
   double v_prev = 0.0, t_prev = 0.0;
   bool slipping = false;
+  const auto relative = [&](const World& w) {
+    const Block& b = w.blocks()[static_cast<std::size_t>(block)];
+    const Block& p = w.blocks()[static_cast<std::size_t>(plate)];
+    return ((b.to_world(foot_body) - foot0) - (p.position - plate0)).dot(along);
+  };
   const StepFn on_step = [&](const World& w, const Stage& st, std::int64_t) {
     if (st.kind != Stage::Kind::dynamic) return;
     const Block& b = w.blocks()[static_cast<std::size_t>(block)];
     const Block& p = w.blocks()[static_cast<std::size_t>(plate)];
-    const double rel = ((b.position - block0) - (p.position - plate0)).dot(along);
-    out.largest_relative = std::max(out.largest_relative, std::abs(rel));
+    out.largest_relative = std::max(out.largest_relative, std::abs(relative(w)));
     // Velocities at t_{n+1/2}: the step's mid time.
-    const double v = (b.velocity - p.velocity).dot(along);
+    const double v = (b.point_velocity(b.to_world(foot_body)) - p.velocity).dot(along);
     const double t = w.time() - 0.5 * w.last_time_step() - t0;
     if (v < -1e-3) slipping = true;
     if (slipping && out.stop_time < 0.0 && v >= 0.0)
@@ -105,16 +113,17 @@ Shaken run_scenario_stages(const Scenario& sc, const std::string& base_block,
   };
   for (const Stage& st : sc.stages) {
     if (st.kind == Stage::Kind::dynamic) {
-      block0 = world.blocks()[static_cast<std::size_t>(block)].position;
+      const Block& b = world.blocks()[static_cast<std::size_t>(block)];
+      foot0 = b.position + foot;
+      foot_body = b.orientation.conjugate() * foot;
       plate0 = world.blocks()[static_cast<std::size_t>(plate)].position;
       t0 = world.time();
     }
     const StageResult r = run_stage(world, st, {}, nullptr, {}, nullptr, on_step);
     EXPECT_TRUE(r.converged) << st.name << ": " << r.message;
   }
-  const Block& b = world.blocks()[static_cast<std::size_t>(block)];
   const Block& p = world.blocks()[static_cast<std::size_t>(plate)];
-  out.relative_slip = ((b.position - block0) - (p.position - plate0)).dot(along);
+  out.relative_slip = relative(world);
   out.base_shift = p.position - plate0;
   out.stage_time = world.time() - t0;
   // After the stage the base is fixed again where the motion left it.
@@ -126,7 +135,8 @@ Shaken run_scenario_stages(const Scenario& sc, const std::string& base_block,
 }
 
 Shaken run_shaken(const std::string& text, const std::string& file) {
-  return run_scenario_stages(parse_scenario(text, file), "plate", Eigen::Vector3d::UnitX());
+  return run_scenario_stages(parse_scenario(text, file), "plate", Eigen::Vector3d::UnitX(),
+                             Eigen::Vector3d(0.0, 0.0, -0.1));
 }
 
 class NewmarkPulse : public ::testing::TestWithParam<const char*> {};
@@ -239,7 +249,10 @@ TEST(SlopeShaken, PermanentDisplacementMatchesNewmark) {
   const Scenario sc = load_scenario(file);
   const double psi = deg_to_rad(20.0), phi = deg_to_rad(30.0);
   const Eigen::Vector3d down(std::cos(psi), 0.0, -std::sin(psi));
-  const Shaken s = run_scenario_stages(sc, "plane", down);
+  // The bottom face's centre: 0.05 m (half the block's thickness) below the centroid, normal to
+  // the plane.
+  const Eigen::Vector3d normal(std::sin(psi), 0.0, std::cos(psi));
+  const Shaken s = run_scenario_stages(sc, "plane", down, -0.05 * normal);
   const Stage& shake = sc.stages.back();
   const double newmark = newmark_incline_slip(*shake.base_motion, psi, phi, s.stage_time);
   std::printf(
@@ -335,7 +348,8 @@ TEST(BaseMotionRestart, ContinuingInsideTheDynamicStageIsBitIdentical) {
       << "[output]\nhistory_interval = 7\nhistory_blocks = [\"block\", \"plate\"]\n"
       << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\n"
       << "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\nduration = 0.15\n"
-      << "base_motion = { group = \"base\", pulse = \"sine\", amplitude_m_s2 = 6.0, period = 0.1 }\n"
+      << "base_motion = { group = \"base\", pulse = \"sine\", amplitude_m_s2 = 6.0, period = 0.1 "
+         "}\n"
       << "[[stages]]\nname = \"rest\"\nmax_steps = 300\n";
   const fs::path reference = dir / "reference";
   const auto run = [&](const fs::path& out, const std::string& extra) {
