@@ -242,11 +242,14 @@ bool share_restart(const RunOptions& opt, const MpiSession& mpi, RunControl& con
   std::string why;
   std::shared_ptr<MappedCheckpoint> mine;
   std::string checksum(sizeof(std::uint64_t), '\0');
+  std::string hash(sizeof(std::uint64_t), '\0');  // the scenario hash the file carries
   if (mpi.rank() == 0) {
     try {
-      mine = std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
+      mine = std::make_shared<MappedCheckpoint>(control.restart, control.fingerprint.accepted());
       const std::uint64_t sum = mine->checksum();
       std::memcpy(checksum.data(), &sum, sizeof sum);
+      const std::uint64_t carried = mine->scenario_hash();
+      std::memcpy(hash.data(), &carried, sizeof carried);
     } catch (const CheckpointError& e) {
       why = e.what();
     }
@@ -256,13 +259,15 @@ bool share_restart(const RunOptions& opt, const MpiSession& mpi, RunControl& con
     return false;
   }
   mpi.broadcast(checksum, 0);
+  mpi.broadcast(hash, 0);
+  std::memcpy(&control.restart_hash, hash.data(), sizeof control.restart_hash);
   if (mpi.rank() != 0 && unseen_restart_rank_from_environment() != mpi.rank()) {
     // --resume: the checkpoint in process 0's output folder (this process's own is scratch).
     const std::filesystem::path file = opt.resume && !opt.shared_out.empty()
                                            ? std::filesystem::path(opt.shared_out) / kCheckpointName
                                            : control.restart;
     try {
-      mine = std::make_shared<MappedCheckpoint>(file, control.scenario_hash);
+      mine = std::make_shared<MappedCheckpoint>(file, control.fingerprint.accepted());
       std::uint64_t first = 0;
       std::memcpy(&first, checksum.data(), sizeof first);
       if (mine->checksum() != first)
@@ -433,9 +438,9 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     control.checkpoint_seconds = opt.checkpoint_seconds;
     if (!opt.restart.empty()) control.restart = opt.restart;
     if (opt.resume) control.restart = std::filesystem::path(opt.out) / kCheckpointName;
-    // The scenario's bytes and the options that change results (not --threads).
-    control.scenario_hash = fnv1a64("max_steps=" + std::to_string(opt.max_steps),
-                                    fnv1a64(read_file_bytes(opt.scenario)));
+    // The scenario up to each stage and the options that change results (not --threads).
+    control.fingerprint = scenario_fingerprint(read_file_bytes(opt.scenario),
+                                               "max_steps=" + std::to_string(opt.max_steps));
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : mpi.rank() == 0 ? sc.warnings : std::vector<std::string>{})
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";

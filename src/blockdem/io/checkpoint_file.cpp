@@ -181,7 +181,7 @@ namespace {
 // payload's size. `hashed` is told after each chunk of the checksum (the bytes before that file
 // offset are not read again).
 std::size_t check_envelope(const std::filesystem::path& file, std::string_view bytes,
-                           std::uint64_t scenario_hash,
+                           const std::vector<std::uint64_t>& accepted,
                            const std::function<void(std::size_t)>& hashed) {
   const auto get_at = [&bytes]<class T>(T, std::size_t at) {
     T v;
@@ -213,30 +213,41 @@ std::size_t check_envelope(const std::filesystem::path& file, std::string_view b
   }
   if (get_at(std::uint64_t{}, body) != hash)
     throw CheckpointError(file, "corrupt (checksum mismatch)");
-  if (get_at(std::uint64_t{}, 16) != scenario_hash)
+  if (std::find(accepted.begin(), accepted.end(), get_at(std::uint64_t{}, 16)) == accepted.end())
     throw CheckpointError(file,
-                          "written for another scenario file or other run options (--max-steps); "
-                          "restart with the scenario and options of the run that wrote it");
+                          "written for another scenario or other run options (--max-steps): the "
+                          "settings, blocks, laws and outputs, and the stages up to the "
+                          "checkpoint's, must be those of the run that wrote it (later stages "
+                          "may differ)");
   return static_cast<std::size_t>(size);
 }
 
 }  // namespace
 
 std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash) {
+  return read_checkpoint_file(file, std::vector<std::uint64_t>{scenario_hash});
+}
+
+std::string read_checkpoint_file(const std::filesystem::path& file,
+                                 const std::vector<std::uint64_t>& accepted) {
   std::string bytes;
   try {
     bytes = read_file_bytes(file);
   } catch (const std::runtime_error&) {
     throw CheckpointError(file, "cannot be read");
   }
-  const std::size_t size = check_envelope(file, bytes, scenario_hash, {});
+  const std::size_t size = check_envelope(file, bytes, accepted, {});
   // The payload in place (no second copy of a file that can hold a large world).
   bytes.resize(kHeader + size);
   bytes.erase(0, kHeader);
   return bytes;
 }
 
-MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file, std::uint64_t scenario_hash) {
+MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file, std::uint64_t scenario_hash)
+    : MappedCheckpoint(file, std::vector<std::uint64_t>{scenario_hash}) {}
+
+MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file,
+                                   const std::vector<std::uint64_t>& accepted) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat st {};
   if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -255,13 +266,14 @@ MappedCheckpoint::MappedCheckpoint(const std::filesystem::path& file, std::uint6
   }
   ::close(fd);  // the mapping keeps the file
   try {
-    payload_size_ = check_envelope(file, std::string_view(base_, size_), scenario_hash,
+    payload_size_ = check_envelope(file, std::string_view(base_, size_), accepted,
                                    [this](std::size_t at) { release_file_before(at); });
   } catch (...) {
     if (base_) ::munmap(const_cast<char*>(base_), size_);
     throw;
   }
   std::memcpy(&checksum_, base_ + kHeader + payload_size_, sizeof checksum_);
+  std::memcpy(&scenario_hash_, base_ + 16, sizeof scenario_hash_);
   released_ = 0;  // the checksum's pass gave back every page: a reader's pass starts again
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace blockdem {
 
@@ -58,6 +59,9 @@ class CheckpointFileWriter {
 /// byte order, the format version, the size, the checksum and the scenario hash. Throws
 /// CheckpointError with the reason.
 std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_t scenario_hash);
+/// The same for a checkpoint that may carry any of the hashes `accepted`.
+std::string read_checkpoint_file(const std::filesystem::path& file,
+                                 const std::vector<std::uint64_t>& accepted);
 
 /// A checkpoint file mapped into memory (read only) and checked as read_checkpoint_file checks
 /// it, with the same errors. Its payload is read in place, and the pages a reader has passed can
@@ -68,6 +72,9 @@ std::string read_checkpoint_file(const std::filesystem::path& file, std::uint64_
 class MappedCheckpoint {
  public:
   MappedCheckpoint(const std::filesystem::path& file, std::uint64_t scenario_hash);
+  /// The same for a checkpoint that may carry any of the hashes `accepted` (a run that branches
+  /// from it, docs/restart.md).
+  MappedCheckpoint(const std::filesystem::path& file, const std::vector<std::uint64_t>& accepted);
   ~MappedCheckpoint();
   MappedCheckpoint(const MappedCheckpoint&) = delete;
   MappedCheckpoint& operator=(const MappedCheckpoint&) = delete;
@@ -75,6 +82,8 @@ class MappedCheckpoint {
   /// The file's checksum (its last 8 bytes): two mappings with the same checksum hold the same
   /// checkpoint.
   std::uint64_t checksum() const { return checksum_; }
+  /// The scenario hash the file carries (one of those accepted).
+  std::uint64_t scenario_hash() const { return scenario_hash_; }
   /// Gives back the whole pages of the payload before payload offset `offset` (bytes read there
   /// again are read from the file again).
   void release_before(std::size_t offset);
@@ -89,6 +98,7 @@ class MappedCheckpoint {
   std::size_t payload_size_ = 0;  ///< the payload's bytes
   std::size_t released_ = 0;      ///< file bytes given back so far (whole pages)
   std::uint64_t checksum_ = 0;
+  std::uint64_t scenario_hash_ = 0;
 };
 
 }  // namespace blockdem

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/units.hpp"
 #include "blockdem/rockmass/excavation_shapes.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 
@@ -131,8 +132,21 @@ Excavation read_excavation(const CheckedTable& t, std::size_t i) {
   std::string fallback = "excavation_";
   fallback.append(std::to_string(i + 1));
   ex.name = t.string("name", fallback);
-  const std::string shape = t.choice("shape", "tunnel", {"tunnel", "box", "planes"});
-  if (shape == "box") {
+  const std::string shape = t.choice("shape", "tunnel", {"tunnel", "box", "planes", "slope"});
+  if (shape == "slope") {
+    // A slope cut: the rock in front of a face through the toe line (dip, dip direction) and
+    // above the toe's level. The face's normal out of the rock left standing is
+    // (sin d sin a, sin d cos a, cos d) for dip d and dip direction a (x east, y north, z up).
+    const Eigen::Vector3d toe = t.vec3("toe");
+    const double dip = t.number("dip_deg");
+    if (!(dip > 0.0 && dip <= 90.0)) t.fail("dip_deg", "must be in (0, 90]");
+    const double dd = t.number("dip_direction_deg");
+    if (!(dd >= 0.0 && dd < 360.0)) t.fail("dip_direction_deg", "must be in [0, 360)");
+    const double d = dip * kPi / 180.0, a = dd * kPi / 180.0;
+    const Eigen::Vector3d n(std::sin(d) * std::sin(a), std::sin(d) * std::cos(a), std::cos(d));
+    ex.planes.push_back(Halfspace{-n, -n.dot(toe)});
+    ex.planes.push_back(Halfspace{-Eigen::Vector3d::UnitZ(), -toe.z()});
+  } else if (shape == "box") {
     const Eigen::Vector3d lo = t.vec3("min"), hi = t.vec3("max");
     for (int k = 0; k < 3; ++k) {
       if (!(hi[k] > lo[k])) t.fail("max", "must exceed min along every axis");

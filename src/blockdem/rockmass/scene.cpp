@@ -44,7 +44,16 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
     sc.face_laws.push_back(std::move(made.face_laws[i]));
     sc.face_sets.push_back(std::move(made.face_sets[i]));
   }
-  for (auto& [name, blocks] : made.excavated) sc.excavations[name] = std::move(blocks);
+  const std::size_t rock_blocks = made.blocks.size();
+  for (auto& [name, blocks] : made.excavated) {
+    // Removing nothing is refused when the rock mass is cut; removing every block leaves a run
+    // with no rock (a half-space of the wrong sign does that).
+    if (blocks.size() == rock_blocks)
+      sc.warnings.push_back("excavation \"" + name + "\" removes every block of the rock mass (" +
+                            std::to_string(rock_blocks) +
+                            "): check its outline (a plane's sign, a slope's dip direction)");
+    sc.excavations[name] = std::move(blocks);
+  }
   if (scene->model.default_law >= 0)
     sc.joint_rules.push_back(JointRule{"", "", scene->model.default_law});
   for (const auto& set : scene->model.spec.joint_sets) sc.joint_sets.push_back(set.name);

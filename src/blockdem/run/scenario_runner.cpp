@@ -21,6 +21,7 @@
 #include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
 #include "blockdem/run/run_files.hpp"
+#include "blockdem/run/run_restart.hpp"
 #include "blockdem/run/run_summary.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/run/stage_driver.hpp"
@@ -42,49 +43,8 @@ std::string state_bytes(const World& world) {
   return std::string(w.bytes().begin(), w.bytes().end());
 }
 
-/// `passed`: told every few MB how far the reader has come (a mapped checkpoint gives back the
-/// pages behind it).
-void load_bytes(World& world, std::string_view bytes,
-                const std::function<void(std::size_t)>& passed = {}) {
-  StateReader r(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-  if (passed) r.on_progress(std::size_t{16} << 20, passed);
-  world.load_state(r);
-  if (!r.done()) throw StateError("saved world state is corrupt (bytes left over)");
-}
-
 bool is_checkpoint(const std::string& rel) {
   return rel == kCheckpointName || rel == kPreviousCheckpointName;
-}
-
-/// The restart file of a run that continues one, read and checked before anything is written.
-/// A file read by this process is mapped, not read into memory: the world's states are read in
-/// place and the pages behind the reader given back, so that the file's bytes and the loaded
-/// world are never both resident (a payload handed over by the caller is a string).
-struct Restart {
-  std::optional<RunPoint> point;
-  std::shared_ptr<MappedCheckpoint> mapped;
-  std::string_view world, before;  ///< the saved states, in `point` or in `mapped`
-};
-
-/// Fills `r` in place (its views point into it).
-void read_restart(const RunControl& control, int stages, Restart& r) {
-  if (control.restart.empty()) return;
-  try {
-    if (control.restart_payload) {
-      r.point = decode_run_point(std::move(*control.restart_payload));
-      r.world = r.point->world;
-      r.before = r.point->before;
-    } else {
-      r.mapped = control.restart_file
-                     ? control.restart_file
-                     : std::make_shared<MappedCheckpoint>(control.restart, control.scenario_hash);
-      r.point = decode_run_point(r.mapped->payload(), r.world, r.before);
-    }
-  } catch (const StateError& e) {
-    throw CheckpointError(control.restart, e.what());
-  }
-  if (r.point->level >= stages)
-    throw CheckpointError(control.restart, "saved stage index is corrupt");
 }
 
 /// Reports a set-up part that took a second or more, with its wall time.
@@ -129,62 +89,6 @@ void check_built_world(const Scenario& sc, const World& world, int ranks) {
     if (world.find_block(name) < 0)
       throw ScenarioError(sc.file, "output.history_blocks", "no block named '" + name + "'");
   }
-}
-
-/// Loads the checkpoint's world (and, part way into a stage, its motion monitor and the world
-/// before a searching stage) into `world`, as built, and `start`; the restart's bytes go.
-void load_restart(Restart& restart, const Scenario& sc, World& world, const RunControl& control,
-                  DriveStart& start) {
-  RunPoint& point = *restart.point;
-  const Stage& at = sc.stages[point.level];
-  const bool search = at.find_collapse && at.kind == Stage::Kind::equilibrium;
-  std::shared_ptr<MappedCheckpoint>& mapped = restart.mapped;
-  try {
-    // The world before the searching stage starts from the world as built (a copy: the
-    // scenario's blocks may have been moved into the world).
-    if (point.in_stage && search) start.before.emplace(world);
-    const auto passed = [&](std::string_view part) -> std::function<void(std::size_t)> {
-      if (!mapped) return {};
-      const auto from = static_cast<std::size_t>(part.data() - mapped->payload().data());
-      return [&mapped, from](std::size_t read) { mapped->release_before(from + read); };
-    };
-    load_bytes(world, restart.world, passed(restart.world));
-    if (point.in_stage) {
-      if (at.kind == Stage::Kind::strength_reduction || search != !restart.before.empty())
-        throw StateError("saved stage state does not fit the scenario's stage");
-      StateReader r(reinterpret_cast<const std::uint8_t*>(point.monitor.data()),
-                    point.monitor.size());
-      start.monitor.emplace(r);
-      if (search) load_bytes(*start.before, restart.before, passed(restart.before));
-    }
-    // The ground water and earthquake the stages run so far set, which the saved states do not
-    // hold: the world's and the state before a searching stage's up to the stage before. A
-    // strength reduction's act in its trials only.
-    const auto apply_up_to = [&sc](WorldSettings& settings, int end) {
-      for (int k = 0; k < end; ++k) {
-        const Stage& st = sc.stages[static_cast<std::size_t>(k)];
-        if (st.kind != Stage::Kind::strength_reduction) apply_stage_loads(settings, st);
-      }
-    };
-    apply_up_to(world.settings(), point.level);
-    if (point.in_stage) {
-      // This stage's water; its seismic load run_stage takes from the ramp (world/stage.hpp).
-      Stage water_only = at;
-      water_only.seismic.reset();
-      apply_stage_loads(world.settings(), water_only);
-    }
-    if (start.before) apply_up_to(start.before->settings(), point.level);
-    // The worlds hold their states now (a large world's state): the bytes go.
-    restart.world = restart.before = {};
-    std::string().swap(point.world);
-    std::string().swap(point.before);
-    if (mapped) mapped->close();  // also the caller's (restart_file): the file may be replaced
-    mapped.reset();
-  } catch (const StateError& e) {
-    throw CheckpointError(control.restart, e.what());
-  }
-  start.level = point.level;
-  if (point.in_stage) start.resume = &point.stage;
 }
 
 /// The output folder: what an earlier run left goes; a restart puts back the files written so
@@ -290,6 +194,16 @@ class RunOutputs final : public RunObserver {
   void on_collapse_search(const Stage& stage, int, const StabilitySearch& search) override;
   void on_interrupted(const World& world, const Stage& stage, int level,
                       const StageResult* result) override;
+  void on_input_error(const World& world, const Stage& stage, int,
+                      const std::string& message) override {
+    res_.steps_per_stage.push_back(0);
+    stages_.push_back({{"name", stage.name},
+                       {"converged", false},
+                       {"status", "input_error"},
+                       {"steps", 0},
+                       {"time_s", world.time()},
+                       {"message", message}});
+  }
 
  private:
   std::string stage_label(int level, const Stage& stage) const {
@@ -515,7 +429,7 @@ void Checkpoints::write(int level, const StageResume* at, const MotionMonitor* m
   // The world's state streams into the file as it is merged (encode_run_point's layout): no
   // process holds it whole, nor process 0 its bytes.
   const auto [head, tail] = encode_run_point_around_world(p);
-  CheckpointFileWriter file(out_ / kCheckpointName, control_.scenario_hash);
+  CheckpointFileWriter file(out_ / kCheckpointName, control_.fingerprint.at(level, at != nullptr));
   file.append(head);
   const std::uint64_t length_at = file.size();
   file.append(std::string(sizeof(std::uint64_t), '\0'));
@@ -542,12 +456,15 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
       : resume && (stage.kind == Stage::Kind::duration || stage.kind == Stage::Kind::dynamic)
           ? (world.time() - stage_time0) / stage.duration
           : 0.0;
-  return [&world, &cb, level, n, stage_wall0, stage_time0, stage_steps0, done0](
+  // A strength reduction's trials step copies of the world: their time is not the world's.
+  const bool trials = stage.kind == Stage::Kind::strength_reduction;
+  return [&world, &cb, level, n, stage_wall0, stage_time0, stage_steps0, done0, trials](
              const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
     const double wall = seconds_since(stage_wall0);
     std::string line = "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
                        ": step " + std::to_string(k) +
-                       ", t = " + number_text(world.time(), "%.4g s") + ", unbalanced " +
+                       (trials ? std::string() : ", t = " + number_text(world.time(), "%.4g s")) +
+                       ", unbalanced " +
                        number_text(m.unbalanced_force_ratio, "%.2e") + ", KE ratio " +
                        number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
                        number_text(wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0,
@@ -572,6 +489,17 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
                    const std::filesystem::path& out, RunResult& res) {
   res.status = d.status;
   if (d.status == RunStatus::completed) return;
+  if (d.status == RunStatus::input_error) {
+    res.exit_code = 2;
+    std::error_code ec;
+    res.message = d.stage.message;
+    if (no_checkpoints.empty() && std::filesystem::exists(out / kCheckpointName, ec))
+      res.message += "\nthe state before stage '" + d.stage.name + "' is saved in " +
+                     (out / kCheckpointName).string() +
+                     ": correct the stage and continue from there with --restart " +
+                     (out / kCheckpointName).string() + " (docs/restart.md, \"Branching\")";
+    return;
+  }
   if (d.status == RunStatus::interrupted) {
     res.interrupted = true;
     res.exit_code = 130;
@@ -661,9 +589,15 @@ StageSync run_sync() {
   return sync;
 }
 
-/// Drives the stages; an unusable strength-reduction bracket is an input error of its stage.
+/// Drives the stages. An input error found while running (an unusable strength-reduction
+/// bracket, a stage's value refused) ends the run there as RunStatus::input_error, with the
+/// outputs so far kept; `keep_state_before(level)` then saves the state before a strength
+/// reduction (which leaves the world as it was), from which a corrected stage can continue.
 DriveResult drive(const Scenario& sc, World& world, DriveStart start, const DriveControl& dc,
-                  const std::vector<RunObserver*>& observers) {
+                  const std::vector<RunObserver*>& observers,
+                  const std::function<void(int)>& keep_state_before) {
+  int level = -1;
+  std::string message;
   try {
     return drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), std::move(start), dc,
                         observers);
@@ -672,9 +606,18 @@ DriveResult drive(const Scenario& sc, World& world, DriveStart start, const Driv
     const std::string what = e.what();
     const auto colon = what.find(": ");
     const std::string key = colon == std::string::npos ? "kind" : what.substr(0, colon);
-    throw ScenarioError(sc.file, "stages[" + std::to_string(e.level + 1) + "]." + key,
-                        colon == std::string::npos ? what : what.substr(colon + 2));
+    level = e.level;
+    message = ScenarioError(sc.file, "stages[" + std::to_string(e.level + 1) + "]." + key,
+                            colon == std::string::npos ? what : what.substr(colon + 2))
+                  .what();
   }
+  const Stage& stage = sc.stages[level];
+  for (RunObserver* o : observers) o->on_input_error(world, stage, level, message);
+  if (keep_state_before) keep_state_before(level);
+  DriveResult ended{RunStatus::input_error, level, {}, true, {}};
+  ended.stage.name = stage.name;
+  ended.stage.message = message;
+  return ended;
 }
 
 /// run_scenario with the world built by `build` (from the scenario's blocks, copied or moved),
@@ -695,7 +638,10 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
     throw std::invalid_argument("checkpoints and restarts are not available for " + no_checkpoints +
                                 " yet");
   Restart restart;
-  read_restart(control, static_cast<int>(sc.stages.size()), restart);
+  std::vector<std::string> stage_names;
+  for (const Stage& st : sc.stages) stage_names.push_back(st.name);
+  read_restart(control, stage_names, restart);
+  if (restart.point && cb.setup_done) cb.setup_done(restart.compared);
   RunPoint* resume = restart.point ? &*restart.point : nullptr;
   auto setup0 = Clock::now();
   if (cb.progress) cb.progress("setting up the world (initial-overlap check, first contacts)");
@@ -728,7 +674,10 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   outputs.open_history(world, resume != nullptr);
   res.summary = fresh_summary(sc, world);
   report_time_step(world, cb, res.summary);
-  if (resume) outputs.resume(*resume, control.restart);
+  if (resume) {
+    outputs.resume(*resume, control.restart);
+    res.summary["scenario"] = sc.file;  // a branch may continue under another file's name
+  }
   Checkpoints checkpoints(world, out, control, outputs, res);
   DriveControl dc = run_control(sc, world, cb, control, no_checkpoints.empty(), outputs,
                                 checkpoints, start.level, start.resume, resume != nullptr);
@@ -736,7 +685,9 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   dc.sync = &sync;
   std::vector<RunObserver*> observers{&outputs};
   if (scene_observer) observers.push_back(scene_observer.get());
-  const DriveResult d = drive(sc, world, std::move(start), dc, observers);
+  const DriveResult d = drive(sc, world, std::move(start), dc, observers, [&](int level) {
+    if (no_checkpoints.empty()) checkpoints.take(level, nullptr, nullptr, nullptr);
+  });
   settle_result(d, sc, outputs, scene_observer.get(), no_checkpoints, out, res);
   res.steps = world.step_count();
   res.wall_time = seconds_since(wall0);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "blockdem/run/scenario_fingerprint.hpp"
 #include "blockdem/scenario/run_observer.hpp"
 #include "blockdem/scenario/scenario.hpp"
 
@@ -78,9 +79,13 @@ struct RunControl {
   /// sees the file maps it itself); null: see restart_payload. The runner loads the world from
   /// it in place and releases it once loaded.
   std::shared_ptr<MappedCheckpoint> restart_file;
-  /// Identifies the scenario file and the options that change results; a checkpoint written
-  /// under another hash is refused.
-  std::uint64_t scenario_hash = 0;
+  /// Identifies the scenario and the options that change results, up to each stage: a
+  /// checkpoint is accepted when the scenario agrees with the run that wrote it up to the
+  /// checkpoint's stage (later stages may differ: a branch), refused otherwise.
+  ScenarioFingerprint fingerprint;
+  /// The hash carried by the checkpoint in `restart_payload` (its envelope was checked by the
+  /// process that read it).
+  std::uint64_t restart_hash = 0;
   /// Polled after every step of a stage and between stages, with the world's step count and
   /// whether this process's wall clock says a timed checkpoint is due. Its answer is what the
   /// run does. Every process of an MPI run calls it at the same points, so that the caller can

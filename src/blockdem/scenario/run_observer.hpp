@@ -52,6 +52,11 @@ class RunObserver {
   /// The caller stopped the run: in `stage` after `result->steps` steps, or before the stage
   /// started when `result` is null.
   virtual void on_interrupted(const World&, const Stage&, int /*level*/, const StageResult*) {}
+  /// An input error found only while running `stage` (strength-reduction bounds that do not
+  /// bracket the failure): the run stops there, keeping what it wrote (`message`: file, key and
+  /// reason).
+  virtual void on_input_error(const World&, const Stage&, int /*level*/,
+                              const std::string& /*message*/) {}
   /// Added to the message of a run that failed (e.g. the last stable load level).
   virtual std::string failure_note() const { return {}; }
   /// Adds the observer's entries to summary.json when the run ends with `status`.

@@ -14,6 +14,7 @@ enum class RunStatus {
   not_converged,  ///< no equilibrium and no mechanism within the step limit
   interrupted,    ///< the caller asked the run to stop
   failed,         ///< the run threw before it ended (a study's case)
+  input_error,    ///< an input error found only while running (the outputs so far are kept)
 };
 
 /// The word summary.json, reports and messages use ("completed", "not_converged", ...).
@@ -31,6 +32,8 @@ constexpr const char* to_string(RunStatus status) {
       return "interrupted";
     case RunStatus::failed:
       return "failed";
+    case RunStatus::input_error:
+      return "input_error";
   }
   return "failed";
 }

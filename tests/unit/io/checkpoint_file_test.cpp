@@ -179,7 +179,7 @@ TEST(MappedCheckpoint, RefusesWhatTheReaderRefusesWithTheSameMessage) {
   std::string flipped = good;
   flipped[good.size() / 2] ^= 1;
   both(flipped, 7, "corrupt (checksum mismatch)");
-  both(good, 8, "written for another scenario file");
+  both(good, 8, "written for another scenario or other run options");
   fs::remove(dir / "c.bdck");
   EXPECT_EQ(message([&] { MappedCheckpoint(dir / "c.bdck", 7); }),
             (dir / "c.bdck").string() + ": cannot be read");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "blockdem/rockmass/rock_mass_model.hpp"
@@ -174,6 +175,60 @@ excavation = "hole"
   EXPECT_NEAR(before - after, 1.0, 1e-9);
   for (std::size_t i = 0; i < w.blocks().size(); ++i)
     EXPECT_EQ(w.blocks()[i].index, static_cast<int>(i));
+}
+
+// A slope cut by name: a face dipping 60° east through the toe (6, y, 3) in a 10 × 2 × 10 m
+// region. Reference: the volume in front of the face and above the toe, 2 (7 × 4 + 7²/(2 tan 60°))
+// m³ = 84.29 m³, removed to 1e-9; the same cut as the two half-spaces {−n·x ≤ −n·toe, −z ≤ −3}
+// removes the same volume; the dip direction turned by 180° (toe at x = 5) removes the other side
+// (the rock west of a face dipping west), 2 (7 × 5 + 7²/(2 tan 60°)) m³.
+TEST(RockMassWorld, SlopeCutByToeDipAndDipDirection) {
+  const auto removed = [](const std::string& outline) {
+    const std::string text = R"(
+[[joint_laws]]
+name = "rock"
+normal = { law = "linear", stiffness = 1e9 }
+shear = { law = "linear", stiffness = 1e8, friction_deg = 40 }
+[rock_mass]
+region = { min = [0, 0, 0], max = [10, 2, 10] }
+density = 2500
+[[excavations]]
+name = "cut"
+)" + outline + R"(
+[[stages]]
+name = "dig"
+kind = "steps"
+steps = 1
+excavation = "cut"
+)";
+    const Scenario sc = parse_scenario(text, "slope.toml");
+    World w = build_world(sc);
+    double before = 0.0, after = 0.0;
+    for (const auto& b : w.blocks()) before += b.shape.volume();
+    run_stage(w, sc.stages[0]);
+    for (const auto& b : w.blocks()) after += b.shape.volume();
+    EXPECT_NEAR(before, 200.0, 1e-9);
+    return before - after;
+  };
+  const double t60 = std::tan(std::numbers::pi / 3.0);
+  const double east = 2.0 * (28.0 + 24.5 / t60);
+  EXPECT_NEAR(removed("shape = \"slope\"\ntoe = [6, 0, 3]\ndip_deg = 60\ndip_direction_deg = 90"),
+              east, 1e-9);
+  const double s = std::sin(std::numbers::pi / 3.0), c = 0.5;
+  std::ostringstream planes;
+  planes.precision(17);
+  planes << "shape = \"planes\"\nplanes = [[" << -s << ", 0, " << -c << ", " << -(6 * s + 3 * c)
+         << "], [0, 0, -1, -3]]";
+  EXPECT_NEAR(removed(planes.str()), east, 1e-9);
+  EXPECT_NEAR(removed("shape = \"slope\"\ntoe = [5, 0, 3]\ndip_deg = 60\ndip_direction_deg = 270"),
+              2.0 * (35.0 + 24.5 / t60), 1e-9);
+  // Bad input names the key.
+  try {
+    removed("shape = \"slope\"\ntoe = [6, 0, 3]\ndip_deg = 0\ndip_direction_deg = 90");
+    ADD_FAILURE() << "dip 0 accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.key(), "excavations[1].dip_deg");
+  }
 }
 
 // The three-set rock mass of the scale benchmark (bench/make_rockmass.py, about 125 blocks) in

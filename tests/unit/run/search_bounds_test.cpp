@@ -128,7 +128,7 @@ TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSa
   ASSERT_EQ(whole.steps_per_stage.size(), 3u);
   const std::int64_t at_search = whole.steps_per_stage[0] + whole.steps_per_stage[1];
   RunControl control;
-  control.scenario_hash = 42;
+  control.fingerprint.whole = 42;
   int calls_there = 0;
   control.poll = [&](std::int64_t steps, bool) {
     if (steps == at_search) ++calls_there;
@@ -149,7 +149,7 @@ TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSa
   // The checkpoint stands before the strength reduction: the restart runs it again, to the
   // factor of the run never stopped.
   RunControl again;
-  again.scenario_hash = 42;
+  again.fingerprint.whole = 42;
   again.restart = out / kCheckpointName;
   const RunResult resumed = run_scenario(sc, out, {}, again);
   ASSERT_TRUE(resumed.factor_of_safety) << resumed.message;

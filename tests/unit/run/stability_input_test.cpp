@@ -1,5 +1,6 @@
 // Bad input to the stability searches: every error names the file, the key and the reason,
-// `blockdem run` exits 2 and leaves no output folder (but the restart checkpoints it wrote).
+// `blockdem run` exits 2; an error found before the run starts leaves no output folder, one
+// found while running keeps what the run wrote before it.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -10,6 +11,8 @@
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "../../validation/stability_support.hpp"
 #include "support/temp_path.hpp"
@@ -69,10 +72,36 @@ TEST(StabilityInput, FindCollapseNeedsGravity) {
   EXPECT_EQ(error_of(text).key(), "stages[3].find_collapse");
 }
 
+namespace stability_input_cli {
+
+std::string read_text(const std::filesystem::path& f) {
+  std::ifstream in(f);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// `blockdem run FILE --out OUT --quiet MORE`, stderr to `err`; the exit code.
+int run_cli(const std::filesystem::path& file, const std::filesystem::path& out,
+            const std::string& more, const std::filesystem::path& err) {
+  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
+                          out.string() + " --quiet " + more + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status));
+  return WEXITSTATUS(status);
+}
+
+nlohmann::json summary_of(const std::filesystem::path& out) {
+  return nlohmann::json::parse(read_text(out / "summary.json"));
+}
+
+}  // namespace stability_input_cli
+
 // Bounds that do not bracket the failure (F = tan 40 / tan 30 = 1.45): both stable, and both
-// failed. The error names the factors tried and what each did; the CLI exits 2 and writes
-// nothing.
+// failed. The error is found only after two trials: the CLI exits 2 with a message naming the
+// file, the key, the factors tried and what each did, and keeps what the run wrote before it
+// (the settling and tilting stages' outputs), with summary.json saying where and why it stopped
+// and the state before the stage saved for a corrected restart.
 TEST(StabilityInput, BoundsNotBracketingSayWhichFactorsWereTried) {
+  using namespace stability_input_cli;
   for (const std::string bounds : {"[1.1, 1.3]", "[1.6, 2.0]"}) {
     const std::string text = test::incline_scenario(
         30, 40, 0.1, 0.02, sr_stage("factor_bounds = " + bounds + "\nmax_steps = 60000\n"));
@@ -82,64 +111,89 @@ TEST(StabilityInput, BoundsNotBracketingSayWhichFactorsWereTried) {
     const auto file = dir / "srm.toml";
     std::ofstream(file) << text;
     const auto out = dir / "out";
-    const auto err = dir / "err.txt";
-    const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
-                            out.string() + " --quiet 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 2);
-    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing may be written";
-    std::ifstream in(err);
-    const std::string msg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(run_cli(file, out, "", dir / "err.txt"), 2);
+    const std::string msg = read_text(dir / "err.txt");
     EXPECT_NE(msg.find("srm.toml"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("factor_bounds"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("stages[3].factor_bounds"), std::string::npos) << msg;
     EXPECT_NE(msg.find(bounds == "[1.1, 1.3]" ? "both stable" : "both failed"), std::string::npos)
         << msg;
     EXPECT_NE(msg.find(bounds == "[1.1, 1.3]" ? "F = 1.1" : "F = 1.6"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--restart " + (out / "checkpoint.bdck").string()), std::string::npos)
+        << msg;
+    // What the first two stages wrote stays.
+    for (const char* kept : {"summary.json", "history.csv", "blocks.csv", "checkpoint.bdck"})
+      EXPECT_TRUE(std::filesystem::exists(out / kept)) << kept;
+    const auto summary = summary_of(out);
+    EXPECT_EQ(summary["status"], "input_error");
+    ASSERT_EQ(summary["stages"].size(), 3u);
+    EXPECT_EQ(summary["stages"][0]["status"], "completed");
+    EXPECT_EQ(summary["stages"][2]["name"], "srm");
+    EXPECT_EQ(summary["stages"][2]["status"], "input_error");
+    EXPECT_NE(summary["stages"][2]["message"].get<std::string>().find("factor_bounds"),
+              std::string::npos);
   }
 }
 
-// The same error found after the run has written restart checkpoints (at the ends of its
-// first two stages): the results are removed as before, the last checkpoint is kept and named
-// (the run's progress, not a result), and a restart from it meets the same error again (the
-// checkpoint is whole and continues the run bit for bit, up to the same failure).
-TEST(StabilityInput, AnErrorWhileRunningKeepsTheRunsCheckpoints) {
-  const std::string text = test::incline_scenario(
-      30, 40, 0.1, 0.02, sr_stage("factor_bounds = [1.1, 1.3]\nmax_steps = 60000\n"));
-  const auto dir = test::temp_path("stab_keep");
+// Branching: the run above, stopped by its bounds, continues from the state it saved with
+// corrected bounds (a scenario that differs only in its last stage) and finds the same factor
+// of safety, to the last bit, as a fresh run with those bounds. A scenario that differs before the
+// checkpoint's stage (another friction angle) is refused with exit 2, its folder untouched. A
+// restart from the same checkpoint with the bad bounds meets the same error again (the state
+// continues the run bit for bit).
+TEST(StabilityInput, ABoundsErrorContinuesWithCorrectedBoundsFromItsCheckpoint) {
+  using namespace stability_input_cli;
+  const auto dir = test::temp_path("stab_branch");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  const auto file = dir / "srm.toml";
-  std::ofstream(file) << text;
-  const auto run = [&](const std::filesystem::path& out, const std::string& more,
-                       const std::filesystem::path& err) {
-    const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
-                            out.string() + " --quiet " + more + " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    EXPECT_TRUE(WIFEXITED(status));
-    return WEXITSTATUS(status);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return dir / name;
   };
-  const auto read = [](const std::filesystem::path& f) {
-    std::ifstream in(f);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  };
+  const std::string good_stage = sr_stage("factor_bounds = [1.0, 3.0]\nmax_steps = 60000\n");
+  const auto bad = write("bad.toml", test::incline_scenario(30, 40, 0.1, 0.02,
+                                                            sr_stage("factor_bounds = [1.1, 1.3]"
+                                                                     "\nmax_steps = 60000\n")));
+  // The corrected file, written anew (comments and spacing do not count).
+  const auto good = write(
+      "good.toml", "# corrected bounds\n" + test::incline_scenario(30, 40, 0.1, 0.02, good_stage));
+  const auto other = write("other.toml", test::incline_scenario(30, 38, 0.1, 0.02, good_stage));
   const auto out = dir / "out";
-  EXPECT_EQ(run(out, "--checkpoint-every 1000000", dir / "err.txt"), 2);
-  std::vector<std::string> left;
-  for (const auto& e : std::filesystem::directory_iterator(out))
-    left.push_back(e.path().filename().string());
-  std::sort(left.begin(), left.end());
-  EXPECT_EQ(left, (std::vector<std::string>{"checkpoint.bdck", "checkpoint.bdck.prev"}));
-  const std::string msg = read(dir / "err.txt");
-  EXPECT_NE(msg.find("both stable"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("checkpoint is kept: " + (out / "checkpoint.bdck").string()),
-            std::string::npos)
-      << msg;
-  const auto again = dir / "again";
-  EXPECT_EQ(run(again, "--restart " + (out / "checkpoint.bdck").string(), dir / "err2.txt"), 2);
-  const std::string msg2 = read(dir / "err2.txt");
-  EXPECT_NE(msg2.find("both stable"), std::string::npos) << msg2;
-  EXPECT_NE(msg2.find("F = 1.1"), std::string::npos) << msg2;
+  EXPECT_EQ(run_cli(bad, out, "--checkpoint-every 1500", dir / "e1.txt"), 2);
+  const auto checkpoint = out / "checkpoint.bdck";
+  ASSERT_TRUE(std::filesystem::exists(checkpoint));
+
+  EXPECT_EQ(run_cli(good, dir / "fresh", "", dir / "e2.txt"), 0) << read_text(dir / "e2.txt");
+  EXPECT_EQ(run_cli(good, dir / "branch", "--restart " + checkpoint.string(), dir / "e3.txt"), 0)
+      << read_text(dir / "e3.txt");
+  const auto fresh = summary_of(dir / "fresh");
+  const auto branch = summary_of(dir / "branch");
+  ASSERT_TRUE(fresh.contains("factor_of_safety")) << fresh.dump();
+  EXPECT_EQ(branch["status"], "completed");
+  EXPECT_EQ(branch["factor_of_safety"], fresh["factor_of_safety"]);
+  EXPECT_EQ(read_text(dir / "branch" / "strength_reduction.csv"),
+            read_text(dir / "fresh" / "strength_reduction.csv"));
+  EXPECT_EQ(read_text(dir / "branch" / "history.csv"), read_text(dir / "fresh" / "history.csv"));
+  EXPECT_EQ(branch["scenario"], good.string());
+
+  // The restart says what it compared (shown without --quiet).
+  const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + good.string() + " --out " +
+                          (dir / "branch2").string() + " --restart " + checkpoint.string() + " 2>" +
+                          (dir / "e4.txt").string();
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  const std::string said = read_text(dir / "e4.txt");
+  EXPECT_NE(said.find("stages 1 to 2 are the same"), std::string::npos) << said;
+
+  // Another friction angle: refused before anything is written.
+  EXPECT_EQ(run_cli(other, dir / "refused", "--restart " + checkpoint.string(), dir / "e5.txt"), 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused"));
+  EXPECT_NE(read_text(dir / "e5.txt").find("written for another scenario"), std::string::npos)
+      << read_text(dir / "e5.txt");
+
+  // The bad bounds again, from the same state: the same error.
+  EXPECT_EQ(run_cli(bad, dir / "again", "--restart " + checkpoint.string(), dir / "e6.txt"), 2);
+  const std::string again = read_text(dir / "e6.txt");
+  EXPECT_NE(again.find("both stable"), std::string::npos) << again;
+  EXPECT_NE(again.find("F = 1.1"), std::string::npos) << again;
 }
 
 }  // namespace

@@ -1,0 +1,141 @@
+// Hashes of a scenario up to each stage, for restarts that branch (docs/restart.md).
+#include "blockdem/run/scenario_fingerprint.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/checkpoint_file.hpp"
+
+namespace blockdem {
+namespace {
+
+/// Folds a parsed TOML node into `h`: its type, then its value (tables key by key in key order,
+/// arrays element by element). Two files that parse to the same tree hash alike.
+std::uint64_t hash_node(const toml::node& node, std::uint64_t h) {
+  const auto fold_bytes = [&h](const void* p, std::size_t n) {
+    h = fnv1a64(std::string_view(static_cast<const char*>(p), n), h);
+  };
+  const auto fold_text = [&](std::string_view s) {
+    const std::uint64_t n = s.size();
+    fold_bytes(&n, sizeof n);
+    h = fnv1a64(s, h);
+  };
+  const auto type = static_cast<std::uint8_t>(node.type());
+  fold_bytes(&type, 1);
+  if (const auto* t = node.as_table()) {
+    std::vector<std::pair<std::string_view, const toml::node*>> items;
+    for (auto&& [key, value] : *t) items.emplace_back(key.str(), &value);
+    std::sort(items.begin(), items.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [key, value] : items) {
+      fold_text(key);
+      h = hash_node(*value, h);
+    }
+    const std::uint64_t n = items.size();
+    fold_bytes(&n, sizeof n);
+  } else if (const auto* a = node.as_array()) {
+    for (const auto& element : *a) h = hash_node(element, h);
+    const std::uint64_t n = a->size();
+    fold_bytes(&n, sizeof n);
+  } else if (const auto* s = node.as_string()) {
+    fold_text(s->get());
+  } else if (const auto* i = node.as_integer()) {
+    const std::int64_t v = i->get();
+    fold_bytes(&v, sizeof v);
+  } else if (const auto* f = node.as_floating_point()) {
+    const double v = f->get();
+    fold_bytes(&v, sizeof v);
+  } else if (const auto* b = node.as_boolean()) {
+    const std::uint8_t v = b->get() ? 1 : 0;
+    fold_bytes(&v, 1);
+  } else {
+    // Dates and times: their TOML text.
+    std::ostringstream text;
+    if (const auto* d = node.as_date()) text << d->get();
+    if (const auto* tm = node.as_time()) text << tm->get();
+    if (const auto* dt = node.as_date_time()) text << dt->get();
+    fold_text(text.str());
+  }
+  return h;
+}
+
+}  // namespace
+
+std::uint64_t ScenarioFingerprint::at(int level, bool in_stage) const {
+  if (by_stage.empty()) return whole;
+  const std::size_t k = static_cast<std::size_t>(level) + (in_stage ? 1 : 0);
+  return by_stage[std::min(k, by_stage.size() - 1)];
+}
+
+std::vector<std::uint64_t> ScenarioFingerprint::accepted() const {
+  std::vector<std::uint64_t> all = by_stage;
+  all.push_back(whole);
+  return all;
+}
+
+int ScenarioFingerprint::stages_shared(std::uint64_t hash) const {
+  if (hash == whole) return std::numeric_limits<int>::max();
+  for (std::size_t k = 0; k < by_stage.size(); ++k)
+    if (by_stage[k] == hash) return static_cast<int>(k);
+  return -1;
+}
+
+std::string check_restart_point(const ScenarioFingerprint& f, const std::filesystem::path& file,
+                                std::uint64_t hash, int level, bool in_stage,
+                                const std::vector<std::string>& stage_names) {
+  const int shared = f.stages_shared(hash);
+  const int needed = level + (in_stage ? 1 : 0);
+  const auto stage = [&](int k) {
+    return "stage " + std::to_string(k + 1) + " '" +
+           (k < static_cast<int>(stage_names.size()) ? stage_names[k] : std::string("?")) + "'";
+  };
+  if (shared == std::numeric_limits<int>::max())
+    return "restarting from " + file.string() + " (written for this scenario file, byte for byte)";
+  if (shared != needed || needed > static_cast<int>(stage_names.size()))
+    throw CheckpointError(file, "taken " + std::string(in_stage ? "inside" : "at the start of") +
+                                    " stage " + std::to_string(level + 1) +
+                                    " of a run whose scenario differs from this one before "
+                                    "there (in its settings, blocks, laws, outputs or first " +
+                                    std::to_string(needed) +
+                                    " stages); a restart may change only later stages");
+  std::string line = "restarting from " + file.string() + ", taken " +
+                     (in_stage ? "inside " : "at the start of ") + stage(level) +
+                     ": compared with this file, its settings, blocks, laws and outputs";
+  if (needed == 1) line += " and " + stage(0);
+  if (needed > 1) line += " and stages 1 to " + std::to_string(needed);
+  line += " are the same";
+  if (needed < static_cast<int>(stage_names.size()))
+    line += "; " + stage(needed) + " on are this file's";
+  return line;
+}
+
+ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::string& options) {
+  ScenarioFingerprint f;
+  const std::uint64_t opts = fnv1a64(options);
+  f.whole = fnv1a64(options, fnv1a64(text));  // the hash of every earlier version's files
+  if (text.size() > kMaxFingerprintBytes) return f;
+  toml::table root;
+  try {
+    root = toml::parse(text);
+  } catch (const toml::parse_error&) {
+    return f;
+  }
+  toml::array stages;
+  if (auto* s = root.get_as<toml::array>("stages")) stages = std::move(*s);
+  root.erase("stages");
+  // Distinct from any `whole`: a leading tag.
+  std::uint64_t h = hash_node(root, fnv1a64("blockdem scenario prefix", opts));
+  f.by_stage.push_back(h);
+  for (const auto& stage : stages) {
+    h = hash_node(stage, h);
+    f.by_stage.push_back(h);
+  }
+  return f;
+}
+
+}  // namespace blockdem
