@@ -52,6 +52,11 @@ TimeHistoryWriter::TimeHistoryWriter(const std::filesystem::path& path, const Wo
     columns.push_back(name + "_axial_force_N");
     columns.push_back(name + "_shear_force_N");
   }
+  if (options_.base_motion) {
+    for (const char* c : {"base_ax_m_s2", "base_ay_m_s2", "base_az_m_s2", "base_vx_m_s",
+                          "base_vy_m_s", "base_vz_m_s", "base_ux_m", "base_uy_m", "base_uz_m"})
+      columns.emplace_back(c);
+  }
   next_coarsening_ = options_.max_rows / 2;
   csv_ = std::make_unique<CsvWriter>(path, std::move(columns), append);
 }
@@ -195,6 +200,10 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
       for (const BoltCrossing& c : b.crossings) shear = std::max(shear, c.force.norm());
     }
     csv_->cell(axial).cell(shear);
+  }
+  if (options_.base_motion) {
+    for (const Eigen::Vector3d* v : {&base_.acceleration, &base_.velocity, &base_.displacement})
+      csv_->cell(v->x()).cell(v->y()).cell(v->z());
   }
   csv_->end_row();
   ++rows_;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/dynamics/base_motion.hpp"
 #include "blockdem/io/csv.hpp"
 #include "blockdem/world/state_stream.hpp"
 #include "blockdem/world/world.hpp"
@@ -24,6 +25,10 @@ struct TimeHistoryOptions {
   /// Bolts whose largest tendon force and largest dowel shear get columns (N; 0 before the
   /// stage that installs them and after they rupture). One process only (bolts are).
   std::vector<std::string> bolts;
+  /// Columns of a dynamic stage's base motion (base_ax_m_s2 ... base_uz_m: the history's
+  /// acceleration, velocity and displacement at the row's time, set by set_base; zero outside
+  /// a dynamic stage). Only when a stage moves a base: other runs' files keep their columns.
+  bool base_motion = false;
 };
 
 class TimeHistoryWriter {
@@ -45,6 +50,9 @@ class TimeHistoryWriter {
   std::int64_t interval_steps() const { return interval_steps_; }
   double interval_time() const { return interval_time_; }
 
+  /// The base motion's kinematics at the next row's time (TimeHistoryOptions::base_motion).
+  void set_base(const BaseKinematics& k) { base_ = k; }
+
   /// Writes the buffered rows to the file.
   void flush() { csv_->flush(); }
   /// Where the file stands (rows, interval, next coarsening, last row, next time), for a restart.
@@ -63,6 +71,7 @@ class TimeHistoryWriter {
   std::int64_t next_coarsening_ = 0;  ///< rows at which the interval doubles next
   std::int64_t last_step_ = -1;       ///< level step of the last row
   double next_time_ = 0.0;            ///< model time of the next row (s)
+  BaseKinematics base_;               ///< the base columns' values
 };
 
 }  // namespace blockdem

@@ -17,6 +17,7 @@
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/run/bolt_outputs.hpp"
+#include "blockdem/run/dynamic_outputs.hpp"
 #include "blockdem/run/key_blocks.hpp"
 #include "blockdem/run/removable_blocks.hpp"
 #include "blockdem/run/run_checkpoint.hpp"
@@ -25,6 +26,7 @@
 #include "blockdem/run/run_summary.hpp"
 #include "blockdem/run/stability_outputs.hpp"
 #include "blockdem/run/stage_driver.hpp"
+#include "blockdem/scenario/base_motion_input.hpp"
 #include "blockdem/world/time_step_report.hpp"
 
 namespace blockdem {
@@ -83,6 +85,7 @@ void check_built_world(const Scenario& sc, const World& world, int ranks) {
                           "bolts run on one process (their loads are summed serially): run "
                           "without mpirun");
   }
+  check_dynamic_stages(sc, world, ranks);
   for (const auto& name : sc.output.history_blocks) {
     if (world.find_block(name) < 0)
       throw ScenarioError(sc.file, "output.history_blocks", "no block named '" + name + "'");
@@ -126,7 +129,7 @@ class RunOutputs final : public RunObserver {
         out_ / "time_history.csv", world,
         TimeHistoryOptions{sc_.output.history_interval, sc_.output.history_interval_s,
                            sc_.output.history_max_rows, sc_.output.history_blocks,
-                           sc_.output.history_bolts},
+                           sc_.output.history_bolts, moves_base(sc_.stages)},
         resumed);
   }
   /// A restart: the writers continue their files, and the summary, stages and counters go on
@@ -139,6 +142,7 @@ class RunOutputs final : public RunObserver {
       recorder_->load_state(r);
       // An excavation stage's blocks at its start, for its key blocks at its end.
       resumed_in_stage_ = point.in_stage;
+      stage_start_time_ = point.stage.start_time;
       start_positions_.clear();
       for (std::size_t k = r.size(); k-- > 0;) {
         std::string name = r.str();
@@ -172,6 +176,7 @@ class RunOutputs final : public RunObserver {
 
   /// After every step: a time_history.csv row and a VTK frame when due.
   void after_step(const World& w, const Stage& s, int level) {
+    if (history_->due(w)) set_base_columns(w, s);
     history_->after_step(w, s.name);
     if (sc_.output.vtk_interval > 0 && (w.step_count() - 1) % sc_.output.vtk_interval == 0)
       recorder_->write_frame(w, level);
@@ -182,8 +187,10 @@ class RunOutputs final : public RunObserver {
   void on_stage_start(const World& world, const Stage& stage, int) override {
     // A stage resumed from a checkpoint started before it: its start positions came with it.
     if (std::exchange(resumed_in_stage_, false)) return;
-    start_positions_ =
-        stage.remove.empty() ? std::map<std::string, Eigen::Vector3d>{} : block_positions(world);
+    stage_start_time_ = world.time();
+    start_positions_ = stage.remove.empty() && stage.kind != Stage::Kind::dynamic
+                           ? std::map<std::string, Eigen::Vector3d>{}
+                           : block_positions(world);
   }
   void on_stage_end(const World& world, const StageEnd& end) override;
   void on_strength_reduction(const World& world, const Stage& stage, int level,
@@ -217,6 +224,15 @@ class RunOutputs final : public RunObserver {
   std::unique_ptr<TimeHistoryWriter> history_;
   std::map<std::string, Eigen::Vector3d> start_positions_;  ///< an excavation's blocks at start
   bool resumed_in_stage_ = false;  ///< resume() continues a stage: its start is not now
+  double stage_start_time_ = 0.0;  ///< world time at the running stage's start (s)
+
+  /// time_history.csv's base columns at the level of the next row: a dynamic stage's history
+  /// at its stage time, zero in other stages.
+  void set_base_columns(const World& w, const Stage& s) {
+    history_->set_base(s.kind == Stage::Kind::dynamic
+                           ? s.base_motion->at(w.level_time() - stage_start_time_)
+                           : BaseKinematics{});
+  }
   std::string interrupted_where_;
   std::string bolt_rows_;  ///< bolts.csv's rows so far
   int bolt_frames_ = 0;
@@ -266,10 +282,16 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
     if (const auto it = removable_.find(end.level); it != removable_.end())
       stages_.back()["removable_blocks"] = it->second;
   }
+  if (stage.kind == Stage::Kind::dynamic && !end.diverged)
+    stages_.back()["permanent_displacements"] =
+        permanent_displacements(world, stage, start_positions_);
   // Outputs of this level. A level that did not converge is written flagged converged = 0; a
   // diverged one is not written (the rows so far end with the last good state).
   if (!end.diverged) recorder_->record(world, result, end.level);
-  if (!end.diverged) history_->write(world, stage.name);
+  if (!end.diverged) {
+    set_base_columns(world, stage);
+    history_->write(world, stage.name);
+  }
   history_->flush();  // like the other CSV files, whole at every stage end
   if (cb_.stage_done) {
     cb_.stage_done(stage_label(end.level, stage) +
@@ -441,11 +463,12 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
   const auto stage_wall0 = Clock::now();
   const double stage_time0 = resume ? resume->start_time : world.time();
   const std::int64_t stage_steps0 = resume ? resume->steps_done : 0;
-  const double done0 = resume && stage.kind == Stage::Kind::steps
-                           ? static_cast<double>(stage_steps0) / static_cast<double>(stage.steps)
-                       : resume && stage.kind == Stage::Kind::duration
-                           ? (world.time() - stage_time0) / stage.duration
-                           : 0.0;
+  const double done0 =
+      resume && stage.kind == Stage::Kind::steps
+          ? static_cast<double>(stage_steps0) / static_cast<double>(stage.steps)
+      : resume && (stage.kind == Stage::Kind::duration || stage.kind == Stage::Kind::dynamic)
+          ? (world.time() - stage_time0) / stage.duration
+          : 0.0;
   // A strength reduction's trials step copies of the world: their time is not the world's.
   const bool trials = stage.kind == Stage::Kind::strength_reduction;
   return [&world, &cb, level, n, stage_wall0, stage_time0, stage_steps0, done0, trials](
@@ -460,7 +483,8 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
                                    "%.0f steps/s");
     double done = -1.0;
     if (s.kind == Stage::Kind::steps) done = static_cast<double>(k) / static_cast<double>(s.steps);
-    if (s.kind == Stage::Kind::duration) done = (world.time() - stage_time0) / s.duration;
+    if (s.kind == Stage::Kind::duration || s.kind == Stage::Kind::dynamic)
+      done = (world.time() - stage_time0) / s.duration;
     if (done > done0)
       line += number_text(100.0 * done, ", %.0f%%") +
               number_text(wall * (1 - done) / (done - done0), ", about %.0f s left");

@@ -22,6 +22,7 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/base_motion_input.hpp"
 #include "blockdem/scenario/bolt_input.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 #include "blockdem/scenario/stage_input.hpp"
@@ -504,6 +505,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   read_bolts(t, sc);
   add_elastic_twins(sc);
   warn_point_contact_searches(sc);
+  finish_dynamic_stages(sc);
   if (sc.in_situ && sc.settings.contact_mode == ContactMode::boon2012)
     sc.warnings.push_back(
         "[in_situ] with contact_mode = \"boon2012\": the point contact carries each face's "

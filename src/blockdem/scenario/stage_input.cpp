@@ -9,6 +9,7 @@
 
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/scenario/base_motion_input.hpp"
 #include "blockdem/scenario/water_input.hpp"
 #include "blockdem/world/stability.hpp"
 
@@ -132,7 +133,7 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.name = t.string("name");
   const std::string kind =
       t.choice("kind", "equilibrium",
-               {"equilibrium", "steps", "duration", "excavation", "strength_reduction"});
+               {"equilibrium", "steps", "duration", "excavation", "strength_reduction", "dynamic"});
   // An excavation stage removes the blocks inside an excavation, then runs to equilibrium.
   if (kind == "excavation" && !t.has("excavation"))
     t.fail("excavation", "a stage of kind \"excavation\" names the excavation to remove");
@@ -146,6 +147,7 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.kind = kind == "steps"                ? Stage::Kind::steps
            : kind == "duration"           ? Stage::Kind::duration
            : kind == "strength_reduction" ? Stage::Kind::strength_reduction
+           : kind == "dynamic"            ? Stage::Kind::dynamic
                                           : Stage::Kind::equilibrium;
   if (t.has("gravity")) s.gravity = t.vec3("gravity");
   if (t.has("damping")) {
@@ -188,6 +190,7 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
              "a \"duration\" stage runs in time, which density scaling distorts (it is exact "
              "only at static equilibrium): use an equilibrium stage, or leave it off");
   }
+  read_dynamic_stage(t, known.groups, s);
   read_stability_keys(t, s);
   auto check_block = [&](const std::string& key, const std::string& name) {
     if (!block_names.count(name)) t.fail(key, "no block named \"" + name + "\"");

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "blockdem/numerics/number_text.hpp"
+#include "blockdem/world/base_drive.hpp"
 
 namespace blockdem {
 
@@ -38,6 +39,19 @@ void Stage::validate() const {
     fail(
         "density_scaling: a duration stage runs in time, which density scaling distorts (it is "
         "exact only at static equilibrium)");
+  if (kind == Kind::dynamic) {
+    if (!base_motion) fail("a dynamic stage needs base_motion");
+    if (!(duration > 0.0 && std::isfinite(duration))) fail("duration must be positive");
+    if (density_scaling.value_or(false))
+      fail("density_scaling: a dynamic stage runs in time, which density scaling distorts");
+    try {
+      base_motion->validate();
+    } catch (const std::invalid_argument& e) {
+      fail(std::string("base_motion.") + e.what());
+    }
+  } else if (base_motion) {
+    fail("base_motion: only a stage of kind \"dynamic\" takes it");
+  }
   if (find_collapse && !gravity && !seismic)
     fail("find_collapse needs a new gravity or seismic coefficients in this stage");
   if (seismic) {
@@ -172,6 +186,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   StageResult r;
   r.name = stage.name;
   const double t0 = resume ? resume->start_time : world.time();
+  // A dynamic stage's base follows its history (nothing for another stage).
+  BaseDrive base(world, stage, t0, resume != nullptr);
   auto last_report = std::chrono::steady_clock::now();
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
     const bool relaxing = world.relaxing();
@@ -191,7 +207,9 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
                           static_cast<double>(stage.relax_steps);
       world.relax(1.0 - done);
     }
+    base.before_step(world);
     world.step();
+    base.after_step(world);
     r.steps = k;
     const bool check = k % stage.check_interval == 0;
     if (deferred && on_step && (!sync->on_step_reads || sync->on_step_reads(world)))
@@ -215,7 +233,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
       r.converged = true;
       break;
     }
-    if (stage.kind == Stage::Kind::duration && world.time() - t0 >= stage.duration * (1 - 1e-12)) {
+    const bool timed = stage.kind == Stage::Kind::duration || stage.kind == Stage::Kind::dynamic;
+    if (timed && world.time() - t0 >= stage.duration * (1 - 1e-12)) {
       r.converged = true;
       break;
     }
@@ -263,6 +282,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     }
   }
   if (!deferred || sync->end_synchronizes) world.synchronize();
+  if (!r.interrupted) base.finish(world);
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.edit_servo().hold = true;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/dynamics/base_motion.hpp"
 #include "blockdem/world/motion_monitor.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -23,7 +24,8 @@ struct ServoCommand {
 struct Stage {
   /// strength_reduction: equilibrium trials with the joint strengths divided by a factor F,
   /// bisected for the factor of safety (each trial from the state before the stage).
-  enum class Kind { equilibrium, steps, duration, strength_reduction };
+  /// dynamic: a run in time of `duration` whose base blocks follow `base_motion`.
+  enum class Kind { equilibrium, steps, duration, strength_reduction, dynamic };
   std::string name = "stage";
   Kind kind = Kind::equilibrium;
 
@@ -88,7 +90,17 @@ struct Stage {
   } strength;
 
   std::int64_t steps = 0;  ///< Kind::steps
-  double duration = 0.0;   ///< Kind::duration (s)
+  double duration = 0.0;   ///< Kind::duration and Kind::dynamic (s)
+
+  /// Kind::dynamic: the base group's acceleration history (docs/water-and-earthquakes.md). Its
+  /// blocks, fixed before the stage, move with it during the stage (translation only) and are
+  /// fixed again where it leaves them at the end. Without `damping` the stage runs with no local
+  /// damping.
+  std::optional<BaseMotion> base_motion;
+  /// Kind::dynamic: the local damping the world takes back after the stage (the scenario reader
+  /// sets the one before the stage). Empty: the one the stage found at its start (a resumed
+  /// stage keeps its own).
+  std::optional<double> damping_after;
 
   /// Density scaling during the stage (World::set_density_scaling; docs/stability.md): each
   /// block's inertia raised so that the time step follows the median block, not the smallest.
@@ -99,6 +111,7 @@ struct Stage {
   std::optional<bool> density_scaling;
   /// Whether the stage runs with density scaling (`density_scaling`, else the kind's default).
   bool scales_density() const {
+    if (kind == Kind::dynamic) return false;
     return density_scaling.value_or((kind == Kind::equilibrium && !find_collapse) ||
                                     kind == Kind::strength_reduction);
   }
