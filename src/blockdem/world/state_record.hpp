@@ -46,8 +46,13 @@ class SaveArchive {
   template <class T>
   requires std::is_arithmetic_v<T>
   void operator()(const T& v) { w_.pod(v); }
-  void operator()(const Eigen::Vector3d& v) { w_.vec(v); }
-  void operator()(const Eigen::Quaterniond& q) { w_.quat(q); }
+  /// A vector, and a quaternion (x, y, z, w as Eigen keeps them), coefficient by coefficient.
+  void operator()(const Eigen::Vector3d& v) {
+    for (int i = 0; i < 3; ++i) w_.pod(v[i]);
+  }
+  void operator()(const Eigen::Quaterniond& q) {
+    for (int i = 0; i < 4; ++i) w_.pod(q.coeffs()[i]);
+  }
   /// `v` stored as `Stored` (a flag or an enum as a fixed-width integer).
   template <class Stored, class T>
   void as(const T& v) {
@@ -73,8 +78,12 @@ class LoadArchive {
   template <class T>
   requires std::is_arithmetic_v<T>
   void operator()(T& v) { v = r_.template pod<T>(); }
-  void operator()(Eigen::Vector3d& v) { v = r_.vec(); }
-  void operator()(Eigen::Quaterniond& q) { q = r_.quat(); }
+  void operator()(Eigen::Vector3d& v) {
+    for (int i = 0; i < 3; ++i) v[i] = r_.template pod<double>();
+  }
+  void operator()(Eigen::Quaterniond& q) {
+    for (int i = 0; i < 4; ++i) q.coeffs()[i] = r_.template pod<double>();
+  }
   /// `v` stored as `Stored`; a flag is true for any non-zero byte.
   template <class Stored, class T>
   void as(T& v) {
@@ -107,12 +116,6 @@ class WireWriter {
     out_.resize(at + sizeof(T));
     std::memcpy(out_.data() + at, &value, sizeof(T));
   }
-  void vec(const Eigen::Vector3d& v) {
-    for (int i = 0; i < 3; ++i) pod(v[i]);
-  }
-  void quat(const Eigen::Quaterniond& q) {
-    for (int i = 0; i < 4; ++i) pod(q.coeffs()[i]);
-  }
 
  private:
   std::vector<char>& out_;
@@ -132,16 +135,6 @@ class WireReader {
     std::memcpy(static_cast<void*>(&value), in_.data() + at_, sizeof(T));
     at_ += sizeof(T);
     return value;
-  }
-  Eigen::Vector3d vec() {
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) v[i] = pod<double>();
-    return v;
-  }
-  Eigen::Quaterniond quat() {
-    Eigen::Quaterniond q;
-    for (int i = 0; i < 4; ++i) q.coeffs()[i] = pod<double>();
-    return q;
   }
 
  private:

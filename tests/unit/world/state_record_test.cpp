@@ -106,32 +106,42 @@ void expect_same_block(const Block& x, const Block& y) {
   EXPECT_TRUE(same_bits(x.initial_orientation, y.initial_orientation));
 }
 
-TEST(StateRecord, ABlockComesBackWithEveryFieldTheRecordStores) {
-  Distinct d;
-  const Block b = block_with_every_field(d);
-  const Eigen::Vector3d box_min = d.vec(), box_max = d.vec();
-  const std::vector<int> laws = {3, -1, 0};
+// A block's record with what the World keeps beside the block: its box and its faces' laws.
+struct BlockRecord {
+  Block block;
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
+  std::vector<int> laws;
+};
+
+std::vector<std::uint8_t> bytes_of(const BlockRecord& x, const Eigen::Vector3d* loads) {
   StateWriter w;
   Saver save(w);
-  block_record(save, b, box_min, box_max, laws, nullptr, 4);
+  block_record(save, x.block, x.box_min, x.box_max, x.laws, loads, 4);
+  return w.bytes();
+}
 
-  Block back;
-  Eigen::Vector3d back_min, back_max;
-  std::vector<int> back_laws;
-  StateReader r(w.bytes().data(), w.bytes().size());
+// Reads a block's record (faces' laws up to `law_count`); the bytes must end with it.
+BlockRecord read_block(const std::vector<std::uint8_t>& bytes, int law_count) {
+  BlockRecord x;
+  StateReader r(bytes.data(), bytes.size());
   Loader load(r);
-  block_record(load, back, back_min, back_max, back_laws, nullptr, 4);
+  block_record(load, x.block, x.box_min, x.box_max, x.laws, nullptr, law_count);
   EXPECT_TRUE(r.done());
-  expect_same_block(b, back);
-  EXPECT_TRUE(same_bits(box_min, back_min));
-  EXPECT_TRUE(same_bits(box_max, back_max));
-  EXPECT_EQ(back_laws, laws);
+  return x;
+}
 
+TEST(StateRecord, ABlockComesBackWithEveryFieldTheRecordStores) {
+  Distinct d;
+  BlockRecord saved{block_with_every_field(d), d.vec(), d.vec(), {3, -1, 0}};
+  const auto bytes = bytes_of(saved, nullptr);
+  const BlockRecord back = read_block(bytes, 4);
+  expect_same_block(saved.block, back.block);
+  EXPECT_TRUE(same_bits(saved.box_min, back.box_min));
+  EXPECT_TRUE(same_bits(saved.box_max, back.box_max));
+  EXPECT_EQ(back.laws, saved.laws);
   // A face law the scenario does not have is refused, naming the block.
-  StateReader again(w.bytes().data(), w.bytes().size());
-  Loader load_again(again);
   try {
-    block_record(load_again, back, back_min, back_max, back_laws, nullptr, 3);
+    read_block(bytes, 3);
     ADD_FAILURE() << "a face law past the scenario's was read";
   } catch (const StateError& e) {
     EXPECT_NE(std::string(e.what()).find("block seven"), std::string::npos) << e.what();
@@ -141,22 +151,12 @@ TEST(StateRecord, ABlockComesBackWithEveryFieldTheRecordStores) {
 // The merged loads of a resting block (under MPI) are written in place of the block's own.
 TEST(StateRecord, ABlocksLoadsGivenApartAreWrittenInPlaceOfItsOwn) {
   Distinct d;
-  const Block b = block_with_every_field(d);
+  BlockRecord saved{block_with_every_field(d), d.vec(), d.vec(), {}};
   const Eigen::Vector3d loads[3] = {d.vec(), d.vec(), d.vec()};
-  const Eigen::Vector3d box = d.vec();
-  const std::vector<int> laws;
-  StateWriter w;
-  Saver save(w);
-  block_record(save, b, box, box, laws, loads, 0);
-  Block back;
-  Eigen::Vector3d back_min, back_max;
-  std::vector<int> back_laws;
-  StateReader r(w.bytes().data(), w.bytes().size());
-  Loader load(r);
-  block_record(load, back, back_min, back_max, back_laws, nullptr, 0);
-  EXPECT_TRUE(same_bits(back.force, loads[0]));
-  EXPECT_TRUE(same_bits(back.torque, loads[1]));
-  EXPECT_TRUE(same_bits(back.contact_force, loads[2]));
+  const BlockRecord back = read_block(bytes_of(saved, loads), 0);
+  EXPECT_TRUE(same_bits(back.block.force, loads[0]));
+  EXPECT_TRUE(same_bits(back.block.torque, loads[1]));
+  EXPECT_TRUE(same_bits(back.block.contact_force, loads[2]));
 }
 
 Boon2012Cache cache_with_every_field(Distinct& d) {
