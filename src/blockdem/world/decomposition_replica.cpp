@@ -22,15 +22,20 @@ using namespace decomposition_wire;
 
 namespace {
 
-/// A block of a divergence checkpoint's part: index, state (position, velocities, angular
-/// momentum, orientation), motion and energy record.
-struct PartBlock {
-  std::int64_t index = 0;
-  double state[16];
-  std::int64_t motion = 0;
-  double energy[EnergyLedger::kBlockRecordDoubles];
-};
-static_assert(std::is_trivially_copyable_v<PartBlock>);
+/// Bytes of a block of a divergence checkpoint's part (part_block_record).
+constexpr std::size_t kPartBlockBytes =
+    2 * sizeof(std::int64_t) + kMotionRecordBytes + EnergyLedger::kBlockRecordDoubles * 8;
+
+/// A block of a divergence checkpoint's part: its index, motion state (motion_record, as the
+/// restart file and a ghost send it), motion and energy record.
+template <class Ar, class S, class M>
+void part_block_record(Ar& ar, std::int64_t& index, S& state, M& motion,
+                       double (&energy)[EnergyLedger::kBlockRecordDoubles]) {
+  ar(index);
+  motion_record(ar, state);
+  ar.template as<std::int64_t>(motion);
+  for (double& e : energy) ar(e);
+}
 
 }  // namespace
 
@@ -107,20 +112,13 @@ std::vector<char> Decomposition::checkpoint_part(World& world) {
   put(out, static_cast<std::uint64_t>(cp.servos.size()));
   put(out, static_cast<std::uint64_t>(cp.contacts.size()));
   put(out, static_cast<std::uint64_t>(cp.bonds.size()));
+  WireWriter w(out);
+  SaveArchive ar(w);
   for (std::size_t k = 0; k < cp.part_blocks.size(); ++k) {
-    PartBlock p;
-    p.index = cp.part_blocks[k];
-    const World::BlockState& s = cp.blocks[k];
-    for (int c = 0; c < 3; ++c) {
-      p.state[c] = s.position[c];
-      p.state[3 + c] = s.velocity[c];
-      p.state[6 + c] = s.angular_velocity[c];
-      p.state[9 + c] = s.angular_momentum[c];
-    }
-    for (int c = 0; c < 4; ++c) p.state[12 + c] = s.orientation.coeffs()[c];
-    p.motion = static_cast<std::int64_t>(cp.motions[k]);
-    world.checkpoint_.energy.block_record(static_cast<std::size_t>(p.index), p.energy);
-    put(out, p);
+    std::int64_t index = cp.part_blocks[k];
+    double energy[EnergyLedger::kBlockRecordDoubles];
+    world.checkpoint_.energy.block_record(static_cast<std::size_t>(index), energy);
+    part_block_record(ar, index, cp.blocks[k], cp.motions[k], energy);
   }
   for (const auto& [i, servo] : cp.servos) {
     put(out, static_cast<std::uint64_t>(i));
@@ -176,28 +174,27 @@ void Decomposition::gather_checkpoint(World& world) {
     const auto contacts_in = get<std::uint64_t>(all, begin + 16);
     const auto bonds_in = get<std::uint64_t>(all, begin + 24);
     const std::size_t fixed_part =
-        32 + blocks_in * sizeof(PartBlock) + servos_in * (8 + sizeof(Servo)) +
+        32 + blocks_in * kPartBlockBytes + servos_in * (8 + sizeof(Servo)) +
         contacts_in * sizeof(World::ContactHistory) + bonds_in * sizeof(World::BondHistory);
     if (counts[r] < fixed_part + 8 ||
         counts[r] != fixed_part + 8 + get<std::uint64_t>(all, begin + fixed_part) * 96)
       throw std::logic_error("checkpoint gather: a process sent a malformed part");
     std::size_t at = begin + 32;
-    for (std::uint64_t k = 0; k < blocks_in; ++k, at += sizeof(PartBlock)) {
-      const auto p = get<PartBlock>(all, at);
-      const auto i = static_cast<std::size_t>(p.index);
-      if (p.index < 0 || i >= n || seen[i] != 0)
+    WireReader in(all, at, end, "checkpoint gather");
+    LoadArchive ar(in);
+    for (std::uint64_t k = 0; k < blocks_in; ++k) {
+      std::int64_t index = 0;
+      World::BlockState s;
+      Motion motion = Motion::free;
+      double energy[EnergyLedger::kBlockRecordDoubles];
+      part_block_record(ar, index, s, motion, energy);
+      const auto i = static_cast<std::size_t>(index);
+      if (index < 0 || i >= n || seen[i] != 0)
         throw std::logic_error("checkpoint gather: a process sent a malformed block");
       seen[i] = 1;
-      World::BlockState& s = states[i];
-      for (int c = 0; c < 3; ++c) {
-        s.position[c] = p.state[c];
-        s.velocity[c] = p.state[3 + c];
-        s.angular_velocity[c] = p.state[6 + c];
-        s.angular_momentum[c] = p.state[9 + c];
-      }
-      for (int c = 0; c < 4; ++c) s.orientation.coeffs()[c] = p.state[12 + c];
-      motions[i] = static_cast<Motion>(p.motion);
-      if (static_cast<int>(r) != rank) cp.energy.set_block_record(i, p.energy);
+      states[i] = s;
+      motions[i] = motion;
+      if (static_cast<int>(r) != rank) cp.energy.set_block_record(i, energy);
     }
     for (std::uint64_t k = 0; k < servos_in; ++k, at += 8 + sizeof(Servo)) {
       Servo servo;
@@ -593,65 +590,69 @@ void Decomposition::energy_to_root(World& world, RootStream& out, const RestingT
 
 void Decomposition::put_block_state(const World& world, std::vector<char>& out,
                                     std::size_t i) const {
-  static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
+  // A block's whole step state: its index and motion state (as a ghost), its loads and stiffness
+  // sums, its energy record, and the box and world planes of the step's start pose.
   const Block& b = world.blocks_[i];
-  ReplicaBlock r;
-  r.state = ghost_of(b);
-  for (int k = 0; k < 3; ++k) {
-    r.force[k] = b.force[k];
-    r.torque[k] = b.torque[k];
-    r.contact_force[k] = b.contact_force[k];
-  }
-  r.stiffness = i < world.stiffness_.size() ? world.stiffness_[i] : 0.0;
-  r.rotational_stiffness =
-      i < world.rotational_stiffness_.size() ? world.rotational_stiffness_[i] : 0.0;
-  world.energy_.block_record(i, r.energy);
-  for (int k = 0; k < 3; ++k) {
-    r.aabb_min[k] = world.box_min_[i][k];
-    r.aabb_max[k] = world.box_max_[i][k];
-  }
-  r.planes = b.world_planes.size();
-  put(out, r);
+  WireWriter w(out);
+  SaveArchive ar(w);
+  ar.as<std::int64_t>(b.index);
+  motion_record(ar, b);
+  ar(b.force);
+  ar(b.torque);
+  ar(b.contact_force);
+  ar(i < world.stiffness_.size() ? world.stiffness_[i] : 0.0);
+  ar(i < world.rotational_stiffness_.size() ? world.rotational_stiffness_[i] : 0.0);
+  double energy[EnergyLedger::kBlockRecordDoubles];
+  world.energy_.block_record(i, energy);
+  for (const double e : energy) ar(e);
+  ar(world.box_min_[i]);
+  ar(world.box_max_[i]);
+  ar.as<std::uint64_t>(b.world_planes.size());
   for (const Halfspace& h : b.world_planes) {
-    put3(out, h.normal);
-    put(out, h.offset);
+    ar(h.normal);
+    ar(h.offset);
   }
 }
 
 std::size_t Decomposition::take_block_state(World& world, const std::vector<char>& in,
                                             std::size_t at, std::size_t end, bool apply,
                                             std::size_t& i) {
-  // The receiver has sized stiffness_, rotational_stiffness_ and the energy records
-  // (prepare).
-  if (at + sizeof(ReplicaBlock) > end)
-    throw std::logic_error("block state: a process sent a malformed part");
-  const auto rb = get<ReplicaBlock>(in, at);
-  at += sizeof(ReplicaBlock);
-  i = static_cast<std::size_t>(rb.state.index);
-  if (rb.state.index < 0 || i >= world.blocks_.size() ||
-      rb.planes != world.blocks_[i].shape.planes().size() || at + rb.planes * 32 > end)
+  // put_block_state's record, read into the block when `apply` (else past it). The receiver has
+  // sized stiffness_, rotational_stiffness_ and the energy records (prepare).
+  WireReader r(in, at, end, "block state");
+  LoadArchive ar(r);
+  const auto index = r.pod<std::int64_t>();
+  i = static_cast<std::size_t>(index);
+  if (index < 0 || i >= world.blocks_.size())
     throw std::logic_error("block state: a process sent a malformed block");
-  if (!apply) return at + rb.planes * 32;
-  Block& b = world.blocks_[i];
-  b.world_planes.resize(rb.planes);
+  Block passed;  // where a record not applied is read
+  Block& b = apply ? world.blocks_[i] : passed;
+  motion_record(ar, b);
+  ar(b.force);
+  ar(b.torque);
+  ar(b.contact_force);
+  double stiffness = 0.0, rotational_stiffness = 0.0;
+  ar(stiffness);
+  ar(rotational_stiffness);
+  double energy[EnergyLedger::kBlockRecordDoubles];
+  for (double& e : energy) ar(e);
+  Eigen::Vector3d box_min, box_max;
+  ar(box_min);
+  ar(box_max);
+  const auto planes = r.pod<std::uint64_t>();
+  if (planes != world.blocks_[i].shape.planes().size() || planes * 32 > end - at)
+    throw std::logic_error("block state: a process sent a malformed block");
+  if (!apply) return at + planes * 32;
+  b.world_planes.resize(planes);
   for (Halfspace& h : b.world_planes) {
-    h.normal = get3(in, at);
-    h.offset = get<double>(in, at + 24);
-    at += 32;
+    ar(h.normal);
+    ar(h.offset);
   }
-  for (int c = 0; c < 3; ++c) {
-    world.box_min_[i][c] = rb.aabb_min[c];
-    world.box_max_[i][c] = rb.aabb_max[c];
-  }
-  set_ghost(b, rb.state);
-  for (int c = 0; c < 3; ++c) {
-    b.force[c] = rb.force[c];
-    b.torque[c] = rb.torque[c];
-    b.contact_force[c] = rb.contact_force[c];
-  }
-  world.stiffness_[i] = rb.stiffness;
-  world.rotational_stiffness_[i] = rb.rotational_stiffness;
-  world.energy_.set_block_record(i, rb.energy);
+  world.box_min_[i] = box_min;
+  world.box_max_[i] = box_max;
+  world.stiffness_[i] = stiffness;
+  world.rotational_stiffness_[i] = rotational_stiffness;
+  world.energy_.set_block_record(i, energy);
   return at;
 }
 
@@ -661,7 +662,6 @@ void Decomposition::synchronize(World& world) {
   if (world.settings_.distribution) gather_checkpoint(world);
   if (!world.settings_.distribution || replica_complete_) return;
   // A slot travels as raw bytes (put_slot).
-  static_assert(std::is_trivially_copyable_v<ReplicaBlock>);
   PairDistribution& dist = *world.settings_.distribution;
   const int rank = dist.rank();
   const auto t0 = std::chrono::steady_clock::now();

@@ -93,7 +93,7 @@ void Decomposition::exchange_ghosts(World& world) {
   sends.erase(std::unique(sends.begin(), sends.end()), sends.end());
   std::vector<std::vector<char>> to(k);
   for (const auto& [i, r] : sends)
-    put(to[static_cast<std::size_t>(r)], ghost_of(world.blocks_[static_cast<std::size_t>(i)]));
+    put_ghost(to[static_cast<std::size_t>(r)], world.blocks_[static_cast<std::size_t>(i)]);
   const std::vector<std::vector<char>> from = dist.exchange(to);
   // The last step's ghosts are exact here no more (every block, after a refresh).
   if (ghosts_listed_) {
@@ -103,14 +103,16 @@ void Decomposition::exchange_ghosts(World& world) {
   }
   ghosts_.clear();
   for (std::size_t r = 0; r < k; ++r) {
-    if (from[r].size() % sizeof(GhostState) != 0)
+    if (from[r].size() % kGhostBytes != 0)
       throw std::logic_error("ghost exchange: a process sent a malformed part");
-    for (std::size_t at = 0; at < from[r].size(); at += sizeof(GhostState)) {
-      const auto g = get<GhostState>(from[r], at);
-      const auto i = static_cast<std::size_t>(g.index);
+    std::size_t at = 0;
+    WireReader in(from[r], at, from[r].size(), "ghost exchange");
+    LoadArchive ar(in);
+    while (at < from[r].size()) {
+      const auto i = static_cast<std::size_t>(in.pod<std::int64_t>());
       if (i >= n || owner_[i] != static_cast<int>(r))
         throw std::logic_error("ghost exchange: a block came from a process that does not own it");
-      set_ghost(world.blocks_[i], g);
+      motion_record(ar, world.blocks_[i]);
       local_[i] = 1;
       ghosts_.push_back(static_cast<int>(i));
     }

@@ -1,6 +1,7 @@
 // The decomposition's records on the wire (world/decomposition*.cpp): a process's step figures,
-// a block's state as a ghost or a replica needs it, a pair slot with its contact state, and the
-// byte helpers that write and read them. Every process runs the same program, so the records are
+// a block's state as a ghost needs it (through state_record.hpp's motion_record, as the restart
+// file and a replica refresh send it), a pair slot with its contact state, and the byte helpers
+// that write and read them. Every process runs the same program, so the slots and contacts are
 // raw bytes of plain data.
 #pragma once
 
@@ -14,6 +15,7 @@
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/world/contact.hpp"
 #include "blockdem/world/energy_budget.hpp"
+#include "blockdem/world/state_record.hpp"
 
 namespace blockdem::decomposition_wire {
 
@@ -24,29 +26,16 @@ struct StepHeader {
   std::uint64_t failed = 0;  ///< 1: a pair of this process refused a value; 2: another error
 };
 
-/// A block's state as a ghost needs it: the pose and the velocities at the half step.
-struct GhostState {
-  std::int64_t index = 0;
-  double position[3];
-  double orientation[4];
-  double velocity[3];
-  double angular_velocity[3];
-  double angular_momentum[3];
-};
+/// A ghost on the wire: the block's index, then its pose and velocities at the half step
+/// (motion_record, state_record.hpp), all that a ghost needs.
+constexpr std::size_t kGhostBytes = sizeof(std::int64_t) + kMotionRecordBytes;
 
-/// A block's whole step state, for a replica refresh.
-struct ReplicaBlock {
-  GhostState state;
-  double force[3];
-  double torque[3];
-  double contact_force[3];
-  double stiffness = 0.0;
-  double rotational_stiffness = 0.0;
-  double energy[EnergyLedger::kBlockRecordDoubles];
-  double aabb_min[3];  ///< the box and the world planes (which follow) of the step's start pose
-  double aabb_max[3];
-  std::uint64_t planes = 0;
-};
+inline void put_ghost(std::vector<char>& out, const Block& b) {
+  WireWriter w(out);
+  SaveArchive ar(w);
+  ar.as<std::int64_t>(b.index);
+  motion_record(ar, b);
+}
 
 /// Rebalance when the slowest process's pair work exceeds the mean by this factor (-)...
 constexpr double kImbalanceThreshold = 1.25;
@@ -86,29 +75,6 @@ inline void put3(std::vector<char>& out, const Eigen::Vector3d& v) {
 
 inline Eigen::Vector3d get3(const std::vector<char>& in, std::size_t offset) {
   return {get<double>(in, offset), get<double>(in, offset + 8), get<double>(in, offset + 16)};
-}
-
-inline GhostState ghost_of(const Block& b) {
-  GhostState g;
-  g.index = b.index;
-  for (int k = 0; k < 3; ++k) {
-    g.position[k] = b.position[k];
-    g.velocity[k] = b.velocity[k];
-    g.angular_velocity[k] = b.angular_velocity[k];
-    g.angular_momentum[k] = b.angular_momentum[k];
-  }
-  for (int k = 0; k < 4; ++k) g.orientation[k] = b.orientation.coeffs()[k];
-  return g;
-}
-
-inline void set_ghost(Block& b, const GhostState& g) {
-  for (int k = 0; k < 3; ++k) {
-    b.position[k] = g.position[k];
-    b.velocity[k] = g.velocity[k];
-    b.angular_velocity[k] = g.angular_velocity[k];
-    b.angular_momentum[k] = g.angular_momentum[k];
-  }
-  for (int k = 0; k < 4; ++k) b.orientation.coeffs()[k] = g.orientation[k];
 }
 
 /// A pair slot on the wire: its bytes, then its contact's when a force acts (`contact`, non-null
