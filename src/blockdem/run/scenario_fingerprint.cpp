@@ -105,12 +105,13 @@ std::string check_restart_point(const ScenarioFingerprint& f, const std::filesys
                                     " stages); a restart may change only later stages");
   std::string line = "restarting from " + file.string() + ", taken " +
                      (in_stage ? "inside " : "at the start of ") + stage(level) +
-                     ": compared with this file, its settings, blocks, laws and outputs";
-  if (needed == 1) line += " and " + stage(0);
-  if (needed > 1) line += " and stages 1 to " + std::to_string(needed);
-  line += " are the same";
+                     ": compared with this file, its settings, blocks, laws" +
+                     (needed == 0   ? std::string(" and outputs")
+                      : needed == 1 ? ", outputs and " + stage(0)
+                                    : ", outputs and stages 1 to " + std::to_string(needed)) +
+                     " are the same";
   if (needed < static_cast<int>(stage_names.size()))
-    line += "; " + stage(needed) + " on are this file's";
+    line += "; from " + stage(needed) + " on, the stages are this file's";
   return line;
 }
 

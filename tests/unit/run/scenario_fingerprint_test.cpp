@@ -95,7 +95,8 @@ TEST(ScenarioFingerprint, ACheckpointIsAcceptedWhereTheScenarioAgreesUpToItsStag
   // Written by `a` at the start of stage 3 (0-based level 2), continued by `b`.
   const std::string said = check_restart_point(b, "c.bdck", a.at(2, false), 2, false, names);
   EXPECT_NE(said.find("stages 1 to 2 are the same"), std::string::npos) << said;
-  EXPECT_NE(said.find("stage 3 'fos' on are this file's"), std::string::npos) << said;
+  EXPECT_NE(said.find("from stage 3 'fos' on, the stages are this file's"), std::string::npos)
+      << said;
   // Inside stage 3: stage 3 must agree too.
   EXPECT_THROW(check_restart_point(b, "c.bdck", a.at(2, true), 2, true, names), CheckpointError);
   // A hash that says "the start of stage 2" on a point inside stage 3: refused.
