@@ -15,11 +15,21 @@
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/scenario/scenario.hpp"
 #include "blockdem/world/world.hpp"
+#include "simulation.hpp"
 
 namespace py = pybind11;
 
 namespace blockdem::python {
 namespace {
+
+/// A setting of a scenario a Simulation was built from would not reach its world: an error.
+void refuse_if_built(const Scenario& s, const char* key) {
+  if (built_scenarios().count(&s) != 0)
+    throw py::value_error(std::string(key) +
+                          ": this Scenario is a built Simulation's (sim.scenario), and a change "
+                          "would not reach its world: set it on the Scenario before building the "
+                          "Simulation");
+}
 
 // The Python exception types, created once when the module loads (never unloaded).
 PyObject* scenario_error_type = nullptr;
@@ -95,6 +105,7 @@ void bind_scenario(py::module_& m) {
       .def_property(
           "threads", [](const Scenario& s) { return s.settings.threads; },
           [](Scenario& s, int n) {
+            refuse_if_built(s, "threads");
             if (n < 0) throw py::value_error("threads: must be >= 0 (0: OpenMP's default)");
             s.settings.threads = n;
           },
@@ -102,6 +113,7 @@ void bind_scenario(py::module_& m) {
       .def(
           "limit_steps",
           [](Scenario& s, std::int64_t n) {
+            refuse_if_built(s, "limit_steps");
             if (n <= 0) throw py::value_error("limit_steps: must be > 0");
             for (auto& st : s.stages) {
               st.max_steps = std::min(st.max_steps, n);

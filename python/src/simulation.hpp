@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -15,11 +16,22 @@
 
 namespace blockdem::python {
 
+/// The scenarios that simulations were built from (Simulation::scenario): a setting changed on
+/// one would not reach its world, so its setters refuse (an error, not a change ignored).
+inline std::set<const Scenario*>& built_scenarios() {
+  static std::set<const Scenario*> built;
+  return built;
+}
+
 struct Simulation {
   explicit Simulation(std::shared_ptr<const Scenario> sc)
       : scenario(std::move(sc)), world(build_world(*scenario)) {
     check_time_step(*scenario, world);
+    built_scenarios().insert(scenario.get());
   }
+  ~Simulation() { built_scenarios().erase(scenario.get()); }
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
   std::shared_ptr<const Scenario> scenario;
   World world;
   int next_stage = 0;  ///< the stage run_stage() runs when given none

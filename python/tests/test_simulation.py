@@ -299,6 +299,21 @@ def test_simulation_of_none_is_a_type_error():
         bd.Simulation(None)
 
 
+def test_settings_changed_after_building_are_refused(source_dir):
+    # The simulation's scenario is the one its world was built from: a setting changed there
+    # would be ignored, so it is refused, naming the key; a scenario not yet built takes it.
+    sc = bd.load(source_dir / "scenarios/examples/planar_sliding.toml")
+    sc.threads = 1
+    sim = bd.Simulation(sc)
+    for change in (lambda: setattr(sim.scenario, "threads", 2),
+                   lambda: sim.scenario.limit_steps(10)):
+        with pytest.raises(ValueError) as err:
+            change()
+        assert "before building the Simulation" in str(err.value)
+    sc.threads = 2  # the caller's own scenario: a copy was built, this one is free
+    assert sc.threads == 2 and sim.scenario.threads == 1
+
+
 def test_namespace_holds_only_blockdem_names():
     public = {n for n in dir(bd) if not n.startswith("_")}
     assert not public & {"os", "pathlib", "shutil"}
