@@ -517,7 +517,8 @@ void register_run(CLI::App& app) {
                   "Write a checkpoint every S seconds of wall time (and at every stage end)")
       ->check(positive_number("seconds"));
   auto* restart = cmd->add_option("--restart", opt->restart,
-                                  "Continue the run saved in this checkpoint (same scenario and "
+                                  "Continue the run saved in this checkpoint (same scenario up "
+                                  "to the checkpoint's stage, later stages may differ; same "
                                   "--max-steps; any --threads): bit-identical to a run never "
                                   "stopped")
                       ->check(CLI::ExistingFile);
