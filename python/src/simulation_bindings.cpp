@@ -86,6 +86,7 @@ py::dict strength_dict(const Stage& stage, const StabilitySearch& sr, std::int64
   d["factor_of_safety"] = 0.5 * (sr.last_stable + sr.first_failed);
   d["last_stable"] = sr.last_stable;
   d["first_failed"] = sr.first_failed;
+  d["trials"] = sr.trials.size();
   d["steps"] = steps;
   return d;
 }
@@ -214,10 +215,11 @@ void bind_simulation(py::module_& m) {
           "steps) every `every` steps, returning False stops the stage. progress: None prints "
           "a status line (step, unbalanced and kinetic-energy ratios, steps/s; a strength "
           "reduction's trials named with their factor) to sys.stderr at most every 2 s, False "
-          "prints nothing, a callable(line) gets every line. Returns a dict (name, "
+          "prints nothing, a callable(line) gets each line (at the first check of a stage or "
+          "trial, then at most every 250 ms). Returns a dict (name, "
           "converged, stopped, mechanism, steps, time, message, unbalanced_force_ratio, "
           "kinetic_energy_ratio); a strength_reduction stage returns factor_of_safety, "
-          "last_stable, first_failed and leaves the world unchanged; a failed stage with "
+          "last_stable, first_failed, trials and leaves the world unchanged; a failed stage with "
           "find_collapse adds collapse = {last_stable, first_failed, trials} (g).")
       .def(
           "step",

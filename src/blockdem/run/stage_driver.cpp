@@ -16,15 +16,15 @@ StopFn search_stop(const DriveControl& control, int level, bool before_stage) {
 }
 
 /// The status lines of a search's trials: each trial's as a stage's of its own (its steps from
-/// 0, its rate from its start).
+/// 0, its rate from its start, which run_trial marks with a call at step 0).
 ProgressFn trial_progress(const DriveControl& control, int level) {
   if (!control.progress) return {};
   auto current = std::make_shared<ProgressFn>();
-  auto last = std::make_shared<std::int64_t>(-1);
-  return [&control, level, current, last](const Stage& s, std::int64_t k,
-                                          const EquilibriumMeasures& m) {
-    if (k <= *last || !*current) *current = control.progress(level);  // a new trial
-    *last = k;
+  return [&control, level, current](const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
+    if (k == 0) {
+      *current = control.progress(level);  // a new trial: its clock starts now
+      return;
+    }
     if (*current) (*current)(s, k, m);
   };
 }

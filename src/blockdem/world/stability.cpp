@@ -50,6 +50,7 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
   StabilityTrial t;
   t.parameter = parameter;
   std::optional<MotionMonitor> monitor;
+  if (progress) progress(stage, 0, EquilibriumMeasures{});  // the trial begins
   try {
     const StageResult r = run_stage(world, stage, progress, &monitor);
     t.steps = r.steps;

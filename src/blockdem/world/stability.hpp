@@ -47,7 +47,9 @@ using StopFn = std::function<bool()>;
 inline constexpr double kNarrowestRelativeBracket = 1e-12;
 
 /// Runs `stage` (Kind::equilibrium) on a copy of `saved` and says whether it reached
-/// equilibrium without a mechanism. The stage stops as soon as a mechanism forms.
+/// equilibrium without a mechanism. The stage stops as soon as a mechanism forms. `progress` is
+/// told when the trial begins (step 0, no measures: nothing stepped yet) and then of its steps
+/// as a stage's.
 StabilityTrial run_trial(World& world, Stage stage, double parameter,
                          const ProgressFn& progress = {});
 
@@ -77,7 +79,7 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 /// With stage.strength.from_last_stable, a trial at a larger factor starts from the equilibrium
 /// of the last stable trial (the factor's strength replacing that trial's), as the strength is
 /// reduced step by step in a single run; the first trial, and any with none stable before it,
-/// from `saved`. `progress` is told of each trial's steps as a stage's (the trial's stage is
+/// from `saved`. `progress` is told of each trial as run_trial tells it (the trial's stage is
 /// named "NAME F = f").
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,

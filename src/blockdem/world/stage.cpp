@@ -189,6 +189,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   // A dynamic stage's base follows its history (nothing for another stage).
   BaseDrive base(world, stage, t0, resume != nullptr);
   auto last_report = std::chrono::steady_clock::now();
+  bool reported = false;
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
     const bool relaxing = world.relaxing();
     const bool ramping = ((stage.gravity || stage.seismic) && k <= stage.ramp_steps) || relaxing;
@@ -224,9 +225,12 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     }
     if (progress && check) {
       const auto now = std::chrono::steady_clock::now();
-      if (now - last_report > std::chrono::milliseconds(250)) {
+      // The first check's line at once (a short run, such as a search's trial, has one too),
+      // then at most every 250 ms.
+      if (!reported || now - last_report > std::chrono::milliseconds(250)) {
         progress(stage, k, measures);
         last_report = now;
+        reported = true;
       }
     }
     if (stage.kind == Stage::Kind::steps && k >= stage.steps) {

@@ -144,7 +144,8 @@ struct StageResume {
 /// (StageResult::interrupted).
 using AfterStepFn = std::function<bool(const StageResume&)>;
 
-/// Progress reports: called now and then during a stage with (stage, steps taken, measures).
+/// Progress reports: called at a stage's first check and then at most every 250 ms of wall time
+/// (at checks) with (stage, steps taken, measures).
 using ProgressFn = std::function<void(const Stage&, std::int64_t, const EquilibriumMeasures&)>;
 
 /// Called after every step of a stage with (stage, steps taken in it); e.g. a time-history writer.

@@ -112,6 +112,38 @@ TEST(SearchBounds, AStopBetweenTrialsEndsAStrengthReduction) {
   EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
 }
 
+// Each trial has status lines of its own, however fast it runs: a new line function when the
+// trial begins (its rate measured from there), and a line at the trial's first check.
+TEST(SearchBounds, EachTrialOfAStrengthReductionHasItsOwnStatusLines) {
+  const Scenario sc = parse_scenario(strength_reduction_last(), "srm.toml");
+  World world = build_world(sc);
+  DriveControl control;
+  std::vector<std::vector<std::int64_t>> lines;  // the steps of each line, per line function
+  std::vector<std::string> names;
+  control.progress = [&](int level) -> ProgressFn {
+    if (level != 2) return {};
+    lines.emplace_back();
+    const std::size_t mine = lines.size() - 1;
+    return [&lines, &names, mine](const Stage& s, std::int64_t k, const EquilibriumMeasures&) {
+      lines[mine].push_back(k);
+      if (lines[mine].size() == 1) names.push_back(s.name);
+    };
+  };
+  int trials = 0;
+  control.trial_done = [&](const StabilityTrial&) { ++trials; };
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {});
+  EXPECT_EQ(d.status, RunStatus::completed);
+  ASSERT_GE(trials, 3);
+  ASSERT_EQ(static_cast<int>(lines.size()), trials);
+  ASSERT_EQ(static_cast<int>(names.size()), trials);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].front(), sc.stages[2].check_interval) << names[i];
+    EXPECT_EQ(names[i].rfind("srm F = ", 0), 0u) << names[i];
+  }
+  EXPECT_NE(names[0], names[1]);  // the two bounds first
+}
+
 TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSameFactor) {
   const std::string text = strength_reduction_last();
   const Scenario sc = parse_scenario(text, "srm.toml");
