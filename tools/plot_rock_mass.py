@@ -158,10 +158,16 @@ def render_run(vtk, png, title):
     ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=(0, 0, 0, 0.4),
                                          linewidths=0.3))
     lo, hi = points.min(axis=0), points.max(axis=0)
+    # Each axis at least a quarter of the longest (padded about its middle, not stretched), so a
+    # thin model (a slab, a slice) keeps room for its ticks; the scale is the same on all three.
+    middle, span = (lo + hi) / 2, hi - lo
+    span = np.maximum(span, 0.25 * span.max())
+    lo, hi = middle - span / 2, middle + span / 2
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2], hi[2])
     ax.set_box_aspect(hi - lo)
+    ax.locator_params(nbins=4)
     ax.set_xlabel("x east (m)")
     ax.set_ylabel("y north (m)")
     ax.set_zlabel("z up (m)")

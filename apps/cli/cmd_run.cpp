@@ -25,6 +25,7 @@
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/run_files.hpp"
+#include "blockdem/run/run_report.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/voussoir/measures.hpp"
@@ -291,40 +292,47 @@ bool share_restart(const RunOptions& opt, const MpiSession& mpi, RunControl& con
   return true;
 }
 
-/// The run's figures (matplotlib scripts in tools/), listed in summary.json's record.
-void draw_figures(const RunOptions& opt, const RunResult& r, bool beam, bool rock_mass) {
-  const bool draws =
-      opt.figures && ((beam && !voussoir_levels(r).empty()) || rock_mass || r.factor_of_safety);
-  if (beam && opt.figures && !voussoir_levels(r).empty()) {
+/// The run's figures (matplotlib scripts in tools/) and its report.md, listed in summary.json's
+/// record. A figure that cannot be drawn is a warning of one line, and a line in the report.
+void draw_figures(const RunOptions& opt, const RunResult& r, bool beam) {
+  namespace fs = std::filesystem;
+  const fs::path out(opt.out);
+  std::vector<std::string> warnings;
+  auto draw = [&](const char* script, const std::vector<std::string>& args, const char* what) {
     std::string why;
-    if (!run_plot_script("plot_voussoir.py", {"case", opt.out}, why))
-      std::cerr << "blockdem: warning: no figures: " << why << "\n";
-  }
-  if (rock_mass && opt.figures) {
-    // The blocks at the last stage end, coloured by displacement (key blocks stand out).
-    std::filesystem::path last;
-    const std::filesystem::path vtk = std::filesystem::path(opt.out) / "vtk";
-    if (std::filesystem::exists(vtk)) {
-      for (const auto& e : std::filesystem::directory_iterator(vtk)) {
+    if (run_plot_script(script, args, why)) return;
+    std::cerr << "blockdem: warning: no " << what << ": " << why << "\n";
+    warnings.push_back(std::string(what) + ": " + why);
+  };
+  if (opt.figures && beam && !voussoir_levels(r).empty())
+    draw("plot_voussoir.py", {"case", opt.out}, "beam figures");
+  if (opt.figures && !beam) {
+    // The blocks at the last frame, coloured by displacement (key blocks stand out).
+    fs::path last;
+    std::error_code ec;
+    if (fs::is_directory(out / "vtk", ec)) {
+      for (const auto& e : fs::directory_iterator(out / "vtk", ec)) {
         const std::string name = e.path().filename().string();
-        if (name.rfind("blocks_", 0) == 0 && (last.empty() || e.path() > last)) last = e.path();
+        if (name.rfind("blocks_", 0) == 0 && name.ends_with(".vtu") &&
+            (last.empty() || e.path() > last))
+          last = e.path();
       }
     }
-    std::string why;
-    if (!last.empty() &&
-        !run_plot_script("plot_rock_mass.py",
-                         {"--run-vtk", last.string(), "--png",
-                          (std::filesystem::path(opt.out) / "blocks_final.png").string()},
-                         why))
-      std::cerr << "blockdem: warning: no figures: " << why << "\n";
+    if (!last.empty())
+      draw("plot_rock_mass.py",
+           {"--run-vtk", last.string(), "--png", (out / "blocks_final.png").string()},
+           "model view");
+    if (fs::is_regular_file(out / "time_history.csv", ec))
+      draw("plot_time_history.py", {opt.out}, "time history figure");
   }
-  if (r.factor_of_safety && opt.figures) {
-    std::string why;
-    if (!run_plot_script("plot_mechanism.py", {opt.out}, why))
-      std::cerr << "blockdem: warning: no mechanism figure: " << why << "\n";
+  if (opt.figures && r.factor_of_safety) draw("plot_mechanism.py", {opt.out}, "mechanism figure");
+  try {
+    write_run_report(out, warnings);
+  } catch (const std::exception& e) {
+    std::cerr << "blockdem: warning: no report.md: " << e.what() << "\n";
   }
-  // The figures are part of the run: the record, written last, lists them too.
-  if (draws) update_files_record(opt.out, r.foreign_files);
+  // The figures and the report are part of the run: the record, written last, lists them too.
+  update_files_record(opt.out, r.foreign_files);
 }
 
 /// The run's last lines on stderr; returns the exit code.
@@ -488,7 +496,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     if (mpi.rank() == 0) std::cerr << "blockdem: " << r.message << "\n";
     return 128 + (agreed_signal != 0 ? agreed_signal : SIGINT);
   }
-  draw_figures(opt, r, beam, rock_mass);
+  draw_figures(opt, r, beam);
   return report_end(opt, r, mpi, command0);
 }
 

@@ -71,12 +71,27 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
   std::string cmd = python;
   cmd.append(" ").append(quote(path));
   for (const auto& a : args) cmd.append(" ").append(quote(a));
-  if (std::system(cmd.c_str()) != 0) {
-    why = std::string("the plotting script failed: ");
-    why.append(cmd);
+  // The script's own output (a traceback, when it fails) stays out of the run's messages: a
+  // failure is one line, the script and the last line it printed (the error).
+  cmd.append(" 2>&1");
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (pipe == nullptr) {
+    why = "could not start " + python;
     return false;
   }
-  return true;
+  std::string output;
+  std::array<char, 4096> buffer{};
+  std::size_t count = 0;
+  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    output.append(buffer.data(), count);
+  const int status = ::pclose(pipe);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return true;
+  std::istringstream lines(output);
+  std::string line, last;
+  while (std::getline(lines, line))
+    if (!line.empty()) last = line;
+  why = script + " failed" + (last.empty() ? std::string() : ": " + last);
+  return false;
 }
 
 std::string default_python() {

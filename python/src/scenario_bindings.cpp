@@ -10,7 +10,9 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/run/run_files.hpp"
+#include "blockdem/run/run_report.hpp"
 #include "blockdem/run/scenario_runner.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "blockdem/scenario/scenario.hpp"
@@ -145,6 +147,13 @@ void bind_scenario(py::module_& m) {
         {
           py::gil_scoped_release free;
           r = run_scenario(sc, out, cb);
+          // The report of `blockdem run`, without its figures (they are the command's), and the
+          // record of the files with it. An interrupted run has its report when it ends.
+          if (!r.interrupted && std::filesystem::exists(out / "summary.json")) {
+            write_run_report(out, {});
+            update_files_record(out, r.foreign_files);
+            r.summary = nlohmann::json::parse(read_file_bytes(out / "summary.json"));
+          }
         }
         py::dict d;
         d["status"] = to_string(r.status);

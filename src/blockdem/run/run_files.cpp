@@ -20,6 +20,7 @@ const std::vector<std::string>& run_output_names() {
                                                  "mechanism.csv",
                                                  "collapse_search.csv",
                                                  "collapse_mechanism.csv",
+                                                 "report.md",
                                                  "vtk"};
   return names;
 }

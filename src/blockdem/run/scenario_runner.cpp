@@ -370,7 +370,7 @@ void RunOutputs::on_interrupted(const World& world, const Stage& stage, int,
                      {"message", result->message}});
   interrupted_where_ =
       stage.kind == Stage::Kind::strength_reduction
-          ? "in the strength reduction of stage '" + stage.name + "', between two trials"
+          ? "in the strength reduction of stage '" + stage.name + "'"
           : "in stage '" + stage.name + "' after " + std::to_string(result->steps) + " steps";
 }
 
@@ -579,6 +579,9 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
     if (stop && before_stage && can_checkpoint) checkpoints.take(level, nullptr, nullptr, nullptr);
     return stop;
   };
+  // And inside a trial, after each of its steps: the trial is dropped and the run stops as it
+  // would have before it (a trial may take minutes; a signal does not wait for its end).
+  dc.in_trial = dc.between_trials;
   dc.trial_done = [&cb](const StabilityTrial& t) {
     if (cb.stage_done)
       cb.stage_done("  trial " + number_text(t.parameter, "%.4g") + ": " + t.outcome + " after " +

@@ -15,6 +15,12 @@ StopFn search_stop(const DriveControl& control, int level, bool before_stage) {
   return [&control, level, before_stage] { return control.between_trials(level, before_stage); };
 }
 
+/// The caller's stop after each step of a trial of stage `level`'s search.
+StopFn trial_stop(const DriveControl& control, int level, bool before_stage) {
+  if (!control.in_trial) return {};
+  return [&control, level, before_stage] { return control.in_trial(level, before_stage); };
+}
+
 /// The status lines of a search's trials: each trial's as a stage's of its own (its steps from
 /// 0, its rate from its start, which run_trial marks with a call at step 0).
 ProgressFn trial_progress(const DriveControl& control, int level) {
@@ -35,10 +41,11 @@ bool reduce_strength(const World& world, const World& before, const Stage& stage
                      const DriveControl& control, const std::vector<RunObserver*>& observers) {
   StabilitySearch search;
   try {
-    search = strength_reduction(before, stage, laws_named(world, stage.strength.laws),
-                                stage.strength.lower, stage.strength.upper,
-                                stage.strength.tolerance, control.trial_done,
-                                search_stop(control, level, true), trial_progress(control, level));
+    search =
+        strength_reduction(before, stage, laws_named(world, stage.strength.laws),
+                           stage.strength.lower, stage.strength.upper, stage.strength.tolerance,
+                           control.trial_done, search_stop(control, level, true),
+                           trial_progress(control, level), trial_stop(control, level, true));
   } catch (const std::invalid_argument& e) {
     throw StrengthReductionError(level, e.what());
   }
@@ -50,8 +57,9 @@ bool reduce_strength(const World& world, const World& before, const Stage& stage
   result.measures = world.equilibrium();
   if (search.interrupted) {
     result.interrupted = true;
-    result.message = "stopped between the trials of the strength reduction, after " +
-                     std::to_string(search.trials.size()) + " trials";
+    result.message =
+        "stopped in the strength reduction (a trial stopped part way is dropped), after " +
+        std::to_string(search.trials.size()) + " trials";
     for (RunObserver* o : observers) o->on_interrupted(world, stage, level, &result);
     return false;
   }
@@ -108,9 +116,9 @@ std::pair<double, double> search_collapse(const World& before, const Stage& stag
   const bool seismic = !stage.gravity;
   const double g_stable = seismic ? 0.0 : before.settings().gravity.norm() / kOneG;
   const double g_failed = seismic ? stage.seismic->horizontal : stage.gravity->norm() / kOneG;
-  const StabilitySearch cs =
-      find_collapse_load(before, stage, g_stable, g_failed, stage.collapse_tolerance,
-                         control.trial_done, search_stop(control, level, false));
+  const StabilitySearch cs = find_collapse_load(
+      before, stage, g_stable, g_failed, stage.collapse_tolerance, control.trial_done,
+      search_stop(control, level, false), trial_stop(control, level, false));
   for (RunObserver* o : observers) o->on_collapse_search(stage, level, cs);
   stopped = cs.interrupted;
   return {cs.last_stable, cs.first_failed};

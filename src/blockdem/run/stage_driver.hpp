@@ -42,6 +42,9 @@ struct DriveControl {
   /// there. `before_stage`: nothing of the stage is recorded yet (a strength reduction, whose
   /// outputs come at its end), so that the stage may be run again from its start.
   std::function<bool(int level, bool before_stage)> between_trials;
+  /// After every step of a trial of such a search (arguments as between_trials): returns true
+  /// to stop the run there; the trial is dropped, as if the stop had come before it.
+  std::function<bool(int level, bool before_stage)> in_trial;
   /// Handed to run_stage (a world spread over processes); null: run_stage's default.
   const StageSync* sync = nullptr;
   /// Search for the collapse after any failure that World::step did not throw, also one

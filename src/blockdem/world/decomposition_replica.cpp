@@ -41,8 +41,9 @@ void part_block_record(Ar& ar, std::int64_t& index, S& state, M& motion,
 
 void Decomposition::save_checkpoint_part(World& world) {
   // What save_checkpoint takes from a whole world, taken from this process's exact part: its
-  // blocks (own_) and the pairs it owns, each by the same rule (docs/scaling.md, "Checkpoints in
-  // parts"). Every process saves at the same step, so the parts are alike in kind everywhere.
+  // blocks (own_) and the pairs it owns, each by the same rule (bench/scaling-log.md, "The
+  // divergence checkpoint in parts"). Every process saves at the same step, so the parts are alike
+  // in kind everywhere.
   const int rank = world.settings_.distribution->rank();
   const std::size_t n = world.blocks_.size();
   std::vector<int> part;

@@ -44,7 +44,8 @@ bool has_strength(const JointLaw& law) {
   return s.friction_coefficient > 0.0 || s.cohesion > 0.0 || s.tensile_strength > 0.0;
 }
 
-StabilityTrial run_trial(World& world, Stage stage, double parameter, const ProgressFn& progress) {
+StabilityTrial run_trial(World& world, Stage stage, double parameter, const ProgressFn& progress,
+                         const StopFn& stop) {
   stage.kind = Stage::Kind::equilibrium;
   stage.stop_on_mechanism = true;
   StabilityTrial t;
@@ -52,8 +53,11 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
   std::optional<MotionMonitor> monitor;
   if (progress) progress(stage, 0, EquilibriumMeasures{});  // the trial begins
   try {
-    const StageResult r = run_stage(world, stage, progress, &monitor);
+    AfterStepFn after_step;
+    if (stop) after_step = [&stop](const StageResume&) { return stop(); };
+    const StageResult r = run_stage(world, stage, progress, &monitor, after_step);
     t.steps = r.steps;
+    t.interrupted = r.interrupted;
     t.motion = r.motion;
     t.stable = r.converged && !r.motion.mechanism;
     t.outcome = t.stable ? "stable" : to_string(classify_failure(*monitor, false));
@@ -69,7 +73,7 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
 
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
                                    double g_failed, double tolerance, const TrialFn& done,
-                                   const StopFn& stop) {
+                                   const StopFn& stop, const StopFn& in_trial) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("collapse_tolerance: must be positive");
   // The stage raises gravity, or else its seismic coefficient k_h (k_v in proportion).
   const bool seismic = !stage.gravity && stage.seismic && stage.seismic->horizontal > 0.0;
@@ -100,7 +104,11 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
       trial.name = stage.name + " trial " + number_text(g, "%g g");
       trial.gravity = g * kOneG * direction;
     }
-    StabilityTrial t = run_trial(w, trial, g);
+    StabilityTrial t = run_trial(w, trial, g, {}, in_trial);
+    if (t.interrupted) {
+      s.interrupted = true;
+      break;
+    }
     s.trials.push_back(t);
     if (done) done(t);
     if (t.stable) {
@@ -117,7 +125,7 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
                                    double tolerance, const TrialFn& done, const StopFn& stop,
-                                   const ProgressFn& progress) {
+                                   const ProgressFn& progress, const StopFn& in_trial) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("tolerance: must be positive");
   if (!(lower > 0.0 && upper > lower))
     throw std::invalid_argument("factor_bounds: need 0 < lo < hi");
@@ -129,7 +137,11 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     for (int i : laws) w.replace_joint_law(i, divide_strength(saved.joint_laws()[i], factor));
     Stage st = stage;
     st.name = stage.name + " F = " + number_text(factor, "%.4g");
-    StabilityTrial t = run_trial(w, st, factor, progress);
+    StabilityTrial t = run_trial(w, st, factor, progress, in_trial);
+    if (t.interrupted) {
+      s.interrupted = true;  // the trial is dropped: the bracket is the one before it
+      return t;
+    }
     s.trials.push_back(t);
     if (done) done(t);
     if (t.stable) {
@@ -142,11 +154,12 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     return t;
   };
   const StabilityTrial lo = trial(lower);
-  if (stop && stop()) {
+  if (s.interrupted || (stop && stop())) {
     s.interrupted = true;
     return s;
   }
   const StabilityTrial hi = trial(upper);
+  if (s.interrupted) return s;
   if (!lo.stable || hi.stable) {
     // What to do about it. Both failed with F <= 1 at the lower bound: the joints at their full
     // strength (or stronger) do not hold the model, and no bound can bracket a factor of safety.
@@ -176,7 +189,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
       s.interrupted = true;
       break;
     }
-    trial(factor);
+    if (trial(factor).interrupted) break;
   }
   return s;
 }

@@ -23,6 +23,9 @@ struct StabilityTrial {
   std::string outcome;
   std::int64_t steps = 0;
   MotionReport motion;
+  /// Stopped part way by the caller (run_trial's `stop`): neither stable nor failed, and not
+  /// among a search's trials.
+  bool interrupted = false;
 };
 
 struct StabilitySearch {
@@ -49,9 +52,10 @@ inline constexpr double kNarrowestRelativeBracket = 1e-12;
 /// Runs `stage` (Kind::equilibrium) on a copy of `saved` and says whether it reached
 /// equilibrium without a mechanism. The stage stops as soon as a mechanism forms. `progress` is
 /// told when the trial begins (step 0, no measures: nothing stepped yet) and then of its steps
-/// as a stage's.
+/// as a stage's. `stop`, asked after every step, ends the trial there when it says true
+/// (StabilityTrial::interrupted).
 StabilityTrial run_trial(World& world, Stage stage, double parameter,
-                         const ProgressFn& progress = {});
+                         const ProgressFn& progress = {}, const StopFn& stop = {});
 
 /// The collapse load of a gravity that rises to `stage.gravity`: `saved` is the world in
 /// equilibrium at gravity magnitude g_stable (in g), and the stage failed at g_failed. Bisects
@@ -63,7 +67,7 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter,
 /// coefficient k_c, each trial's earthquake applied at once at its start.
 StabilitySearch find_collapse_load(const World& saved, const Stage& stage, double g_stable,
                                    double g_failed, double tolerance, const TrialFn& done = {},
-                                   const StopFn& stop = {});
+                                   const StopFn& stop = {}, const StopFn& in_trial = {});
 
 /// The strength reduction of a stage: divides tan(phi), cohesion and tensile strength of the
 /// joint laws `laws` (indices into saved.joint_laws()) by F and seeks equilibrium with the
@@ -74,7 +78,8 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 ///
 /// Both searches end whatever the tolerance: where the bracket's midpoint equals one of its ends
 /// (the bracket as narrow as doubles go), or where `stop` says so between two trials
-/// (StabilitySearch::interrupted).
+/// (StabilitySearch::interrupted), or where `in_trial`, asked after every step of a trial, says
+/// so: that trial is dropped and the bracket is the one before it.
 ///
 /// With stage.strength.from_last_stable, a trial at a larger factor starts from the equilibrium
 /// of the last stable trial (the factor's strength replacing that trial's), as the strength is
@@ -84,7 +89,8 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 StabilitySearch strength_reduction(const World& saved, const Stage& stage,
                                    const std::vector<int>& laws, double lower, double upper,
                                    double tolerance, const TrialFn& done = {},
-                                   const StopFn& stop = {}, const ProgressFn& progress = {});
+                                   const StopFn& stop = {}, const ProgressFn& progress = {},
+                                   const StopFn& in_trial = {});
 
 /// Indices into world.joint_laws() of the laws named in `names` (every law when it is empty), in
 /// the world's order: the laws a strength reduction divides.

@@ -1,7 +1,7 @@
 // Stability searches end whatever their numbers: a tolerance below the resolution of the bounds is
 // refused at input, a bisection stops where its midpoint equals an end, and a stop asked for
-// between two trials ends the search (status interrupted, a checkpoint before the stage that a
-// restart runs again to the same factor of safety).
+// between two trials or inside one ends the search (status interrupted, a checkpoint before the
+// stage that a restart runs again to the same factor of safety).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
@@ -83,8 +83,11 @@ TEST(SearchBounds, ABisectionEndsWhereItsMidpointEqualsAnEnd) {
 /// What an observer heard of a stop.
 struct Heard final : RunObserver {
   std::vector<std::string> events;
-  void on_interrupted(const World&, const Stage& stage, int level, const StageResult*) override {
+  std::string message;  ///< the interrupted stage's
+  void on_interrupted(const World&, const Stage& stage, int level,
+                      const StageResult* result) override {
     events.push_back("stopped " + std::to_string(level) + " " + stage.name);
+    if (result) message = result->message;
   }
   void on_strength_reduction(const World&, const Stage& stage, int level, const StabilitySearch&,
                              const StageResult&) override {
@@ -144,6 +147,30 @@ TEST(SearchBounds, EachTrialOfAStrengthReductionHasItsOwnStatusLines) {
   EXPECT_NE(names[0], names[1]);  // the two bounds first
 }
 
+// A stop inside a trial (after its 50th step) ends the search there: the trial is dropped, the
+// trials before it stay, and the drive ends interrupted without a factor of safety.
+TEST(SearchBounds, AStopInsideATrialDropsTheTrialAndEndsTheSearch) {
+  const Scenario sc = parse_scenario(strength_reduction_last(), "srm.toml");
+  World world = build_world(sc);
+  DriveControl control;
+  int trials = 0, steps_in_third = 0;
+  control.trial_done = [&](const StabilityTrial&) { ++trials; };
+  control.in_trial = [&](int level, bool before_stage) {
+    EXPECT_EQ(level, 2);
+    EXPECT_TRUE(before_stage);
+    return trials == 2 && ++steps_in_third == 50;
+  };
+  Heard heard;
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
+  EXPECT_EQ(d.status, RunStatus::interrupted);
+  EXPECT_EQ(d.level, 2);
+  EXPECT_EQ(trials, 2);
+  EXPECT_EQ(steps_in_third, 50);
+  EXPECT_NE(heard.message.find("after 2 trials"), std::string::npos) << heard.message;
+  EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
+}
+
 TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSameFactor) {
   const std::string text = strength_reduction_last();
   const Scenario sc = parse_scenario(text, "srm.toml");
@@ -156,7 +183,7 @@ TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSa
 
   // The caller's poll: stop at its second call at the strength reduction's step count (the
   // world's steps stand still during a search): the first is at the stage's boundary, the
-  // second between the first two trials.
+  // second after the first step of the first trial, which is dropped.
   ASSERT_EQ(whole.steps_per_stage.size(), 3u);
   const std::int64_t at_search = whole.steps_per_stage[0] + whole.steps_per_stage[1];
   RunControl control;
@@ -190,7 +217,7 @@ TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSa
 
 // A real SIGINT to `blockdem run` while its strength reduction bisects (the signal is sent once
 // the first trial's line is on stderr; with a bracket of 0.001 about a dozen trials follow):
-// the search stops after the trial that is running, with exit code 130, status interrupted and a
+// the search stops in the trial that is running, with exit code 130, status interrupted and a
 // checkpoint. Before, the signal waited for the search's end and was lost in the last stage.
 TEST(SearchBounds, SigintStopsTheSearchBetweenTrials) {
   const auto dir = test::run_folder("search_sigint");

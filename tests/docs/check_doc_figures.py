@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""The figures the docs quote from the shipped examples are the ones the current build prints.
+
+Usage: check_doc_figures.py BLOCKDEM SOURCE_DIR [WORK_DIR]
+
+Runs each example a check needs once (`blockdem run ... --no-figures`, or `blockdem keyblocks`),
+then finds each quoted sentence in its doc by a pattern whose groups are the quoted numbers, and
+compares each number with the run's to the digits the doc prints (one unit of its last digit, so
+that a rounded and a truncated figure both pass). A sentence reworded so that its pattern no longer
+matches fails too: the check and the doc change together. Standard library only (any python3).
+Under the sanitizers (BLOCKDEM_TEST_SANITIZED=1) it exits 77, skipped: full runs are too slow there.
+"""
+import concurrent.futures
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+NUMBER = r"([0-9][0-9,]*(?:\.[0-9]+)?)"
+
+
+def summary(run):
+    with open(os.path.join(run, "summary.json")) as f:
+        return json.load(f)
+
+
+def fos(run):
+    f = summary(run)["factor_of_safety"]
+    return [f["value"], f["last_stable"], f["first_failed"]]
+
+
+def key_block(run, name):
+    for b in summary(run).get("key_blocks", []):
+        if b["block"] == name:
+            return b
+    raise KeyError(f"{name} is not among the key blocks of {run}")
+
+
+def removable(run, name):
+    with open(os.path.join(run, "key_blocks.json")) as f:
+        for b in json.load(f)["key_blocks"]:
+            if b["block"] == name:
+                return b
+    raise KeyError(f"{name} is not among the removable blocks of {run}")
+
+
+def last_displacement_mm(run, name):
+    """The block's displacement (x, z) at the last stage end, from blocks.csv (in mm)."""
+    with open(os.path.join(run, "blocks.csv"), newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["block"] == name]
+    r = rows[-1]
+    return [float(r["ux_mm"]), -float(r["uz_mm"])]
+
+
+# (doc, pattern, run id, numbers of the run in the pattern's group order)
+CHECKS = [
+    ("docs/stability.md", r"prints `factor of safety " + NUMBER + "`",
+     "run:planar_sliding", lambda d: fos(d)[:1]),
+    ("docs/stability.md",
+     r"\*\*F = " + NUMBER + r"\*\* \(last stable " + NUMBER + ", first failed " + NUMBER,
+     "run:slope_fos", fos),
+    ("docs/stability.md",
+     r"`face_integrated` \(as shipped\) \| F = " + NUMBER + r" \(last stable " + NUMBER +
+     ", first failed " + NUMBER, "run:roof_wedge", fos),
+    ("docs/key-blocks.md",
+     r"\| `roof_wedge.toml` \| rock_6 \| sliding_two \(J2, J3\) \| " + NUMBER + r" \| " + NUMBER +
+     r" \| " + NUMBER + r" \(" + NUMBER + "–" + NUMBER + r"\) \|", "run:roof_wedge",
+     lambda d: [removable(d + "-keyblocks", "rock_6")["volume_m3"],
+                removable(d + "-keyblocks", "rock_6")["factor_of_safety"]] + fos(d)),
+    ("docs/key-blocks.md",
+     r"\| `slope_fos.toml` \| rock_21 \| sliding_two \(J1, J2\) \| " + NUMBER + r" \| " + NUMBER +
+     r" \| " + NUMBER + r" \(" + NUMBER + "–" + NUMBER + r"\) \|", "run:slope_fos",
+     lambda d: [removable(d + "-keyblocks", "rock_21")["volume_m3"],
+                removable(d + "-keyblocks", "rock_21")["factor_of_safety"]] + fos(d)),
+    ("docs/key-blocks.md",
+     r"\| `tunnel.toml` \| rock_49 \| falling \| " + NUMBER + r" \| 0 \|", "run:tunnel",
+     lambda d: [removable(d + "-keyblocks", "rock_49")["volume_m3"]]),
+    ("docs/key-blocks.md",
+     r"\| `tunnel.toml` \| rock_29 \| sliding_two \(J3, roller\) \| " + NUMBER + r" \| " + NUMBER,
+     "run:tunnel", lambda d: [removable(d + "-keyblocks", "rock_29")["volume_m3"],
+                              removable(d + "-keyblocks", "rock_29")["factor_of_safety"]]),
+    ("docs/rock-mass.md", r"into " + NUMBER + r" blocks \(36 cuts merged back", "run:tunnel",
+     lambda d: [summary(d)["blocks"]]),
+    ("docs/rock-mass.md",
+     r"`rock_49` \(centroid at x = " + NUMBER + ", y = " + NUMBER + ", z = " + NUMBER +
+     r" m before excavation, east of the crown\) drops\s+" + NUMBER +
+     r" m in the 0.4 s, still falling at " + NUMBER + " m/s", "run:tunnel",
+     lambda d: key_block(d, "rock_49")["centroid_at_start_m"] +
+     [key_block(d, "rock_49")["displacement_m"], key_block(d, "rock_49")["speed_m_s"]]),
+    ("docs/rock-mass.md",
+     r"`rock_21` moves " + NUMBER + " mm east and " + NUMBER + " mm down", "run:slope",
+     lambda d: last_displacement_mm(d, "rock_21")),
+    ("docs/rock-mass.md",
+     r"`key_blocks` in `summary.json` lists\s+`rock_21` alone \(" + NUMBER + " m³, " + NUMBER +
+     " mm\\)", "run:slope",
+     lambda d: [key_block(d, "rock_21")["volume_m3"],
+                1e3 * key_block(d, "rock_21")["displacement_m"]]),
+    ("docs/rock-mass.md", r"`rock_21`, sliding on J1 and J2,\s+F = " + NUMBER, "run:slope",
+     lambda d: [removable(d + "-keyblocks", "rock_21")["factor_of_safety"]]),
+]
+
+
+# The examples whose block-theory list (`blockdem keyblocks`, in RUN-keyblocks) a check reads.
+WITH_KEYBLOCKS = {"roof_wedge", "slope_fos", "tunnel", "slope"}
+
+
+def run_example(blockdem, source, work, name):
+    scenario = os.path.join(source, "scenarios", "examples", name + ".toml")
+    out = os.path.join(work, name)
+    r = subprocess.run([blockdem, "run", scenario, "--out", out, "--quiet", "--no-figures",
+                        "--threads", "1"], capture_output=True, text=True)
+    if r.returncode not in (0, 3):
+        raise RuntimeError(f"blockdem run {name}: exit {r.returncode}\n{r.stderr}")
+    if name not in WITH_KEYBLOCKS:
+        return out
+    k = subprocess.run([blockdem, "keyblocks", scenario, "--out", out + "-keyblocks", "--quiet"],
+                       capture_output=True, text=True)
+    if k.returncode != 0:
+        raise RuntimeError(f"blockdem keyblocks {name}: exit {k.returncode}\n{k.stderr}")
+    return out
+
+
+def agrees(quoted, actual):
+    """The quoted figure is the actual one to the digits it prints (one unit of the last)."""
+    text = quoted.replace(",", "")
+    decimals = len(text.split(".")[1]) if "." in text else 0
+    return abs(float(text) - actual) <= 10.0 ** -decimals * 1.0000001
+
+
+def main(argv):
+    if os.environ.get("BLOCKDEM_TEST_SANITIZED") == "1":
+        print("skipped under the sanitizers: full runs of the examples")
+        return 77
+    if len(argv) < 3:
+        sys.stderr.write(__doc__)
+        return 2
+    blockdem, source = argv[1], argv[2]
+    work = argv[3] if len(argv) > 3 else tempfile.mkdtemp(prefix="blockdem_doc_figures_")
+    names = sorted({run.split(":", 1)[1] for _, _, run, _ in CHECKS})
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        outs = dict(zip(names, pool.map(lambda n: run_example(blockdem, source, work, n), names)))
+    failures = []
+    for doc, pattern, run, numbers in CHECKS:
+        with open(os.path.join(source, doc), encoding="utf-8") as f:
+            text = f.read()
+        found = re.search(pattern, text)
+        if not found:
+            failures.append(f"{doc}: no text matches /{pattern}/ (reworded? change the check too)")
+            continue
+        actual = numbers(outs[run.split(":", 1)[1]])
+        for quoted, value in zip(found.groups(), actual):
+            if not agrees(quoted, value):
+                failures.append(f"{doc}: quotes {quoted} where the build gives {value:.6g} "
+                                f"({run}; in '{found.group(0)}')")
+    for line in failures:
+        print("stale: " + line)
+    print(f"{len(CHECKS) - len(failures)} of {len(CHECKS)} quoted figures checked against "
+          f"{len(names)} example runs")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
