@@ -13,6 +13,8 @@ void bind_simulation(pybind11::module_& m);
 struct Simulation;
 /// The state of a simulation as NumPy arrays (blocks, contacts), added to its class.
 void bind_state(pybind11::class_<Simulation>& cls);
+/// Simulation.save and Simulation.load, added to its class.
+void bind_save(pybind11::class_<Simulation>& cls);
 /// The study commands: analytic voussoir, lab tests, calibration, the boon2015 reproduction.
 void bind_studies(pybind11::module_& m);
 

@@ -366,6 +366,7 @@ void bind_simulation(py::module_& m) {
       "its law's elastic twin 'NAME (elastic)' (made on first use when the scenario has none). "
       "reset_displacements: displacements count from now on.");
   bind_state(cls);
+  bind_save(cls);
 }
 
 }  // namespace blockdem::python

@@ -622,10 +622,9 @@ std::optional<Scenario> read_listed_blocks_apart(std::string_view text, const st
   return read_scenario(root, file, builders, &listed);
 }
 
-}  // namespace
-
-Scenario parse_scenario(const std::string& text, const std::string& file,
-                        const SceneBuilders& builders) {
+/// parse_scenario's reading (Scenario::text apart).
+Scenario parse_scenario_text(const std::string& text, const std::string& file,
+                             const SceneBuilders& builders) {
   try {
     if (auto sc = read_listed_blocks_apart(text, file, builders)) return std::move(*sc);
   } catch (...) {
@@ -641,6 +640,15 @@ Scenario parse_scenario(const std::string& text, const std::string& file,
         file, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
   }
   return read_scenario(root, file, builders, nullptr);
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file,
+                        const SceneBuilders& builders) {
+  Scenario sc = parse_scenario_text(text, file, builders);
+  if (text.size() <= kKeptScenarioText) sc.text = text;
+  return sc;
 }
 
 Scenario load_scenario(const std::string& path, const SceneBuilders& builders) {

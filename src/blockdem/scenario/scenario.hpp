@@ -57,7 +57,13 @@ struct Scenario {
   /// [settings] initial_overlap = "allow": overlapping blocks at the start are deliberate
   /// (prestressed contacts) and pass the set-up's check.
   bool allow_initial_overlap = false;
+  /// The TOML text it was read from, when at most kKeptScenarioText bytes (empty for a larger
+  /// file): what a saved simulation compares a scenario with (its fingerprint).
+  std::string text;
 };
+
+/// The largest scenario text a Scenario keeps (Scenario::text).
+inline constexpr std::size_t kKeptScenarioText = 8u << 20;
 
 /// Reads and checks a scenario file; `builders` are the scene builders whose tables the file may
 /// hold. Throws ScenarioError ("FILE: KEY: REASON"). run/scene_builders.hpp has the overload
