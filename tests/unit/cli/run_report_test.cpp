@@ -75,8 +75,8 @@ TEST_P(ExampleReport, NamesEveryStageAndShowsItsFigures) {
   const fs::path out = test::temp_path("run_report_" + name);
   fs::remove_all(out);
   const fs::path file = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/examples" / (name + ".toml");
-  const test::CommandOutput r = test::run_cli("run '" + file.string() + "' --out '" +
-                                              out.string() + "' --max-steps 200 --quiet");
+  const test::CommandOutput r = test::run_cli("run '" + file.string() + "' --out '" + out.string() +
+                                              "' --max-steps 200 --quiet");
   // Cut short, a stage is not converged (exit 3), and a strength reduction's bounds may not
   // bracket its failure in 200 steps a trial (an input error, exit 2): both keep the outputs.
   EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2 || r.exit_code == 3) << r.err;
@@ -111,8 +111,7 @@ TEST(RunReport, AFailingFigureIsOneWarningLineAndALineInTheReport) {
                        "RuntimeError: the figure cannot be drawn here\n"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("warning: no model view: the plotting script"), std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("warning: no model view: the plotting script"), std::string::npos) << r.err;
   expect_report_matches_summary(out, r.err);
   const std::string report = read(out / "report.md");
   EXPECT_NE(report.find("- Not drawn: time history figure: plot_time_history.py failed: "
