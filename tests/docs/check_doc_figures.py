@@ -20,6 +20,8 @@ import sys
 import tempfile
 
 NUMBER = r"([0-9][0-9,]*(?:\.[0-9]+)?)"
+# A strength reduction's result as `blockdem run` prints it.
+SR = r"factor of safety " + NUMBER + r" \(stable at " + NUMBER + ", failed at " + NUMBER + r"\)"
 
 
 def summary(run):
@@ -45,6 +47,35 @@ def removable(run, name):
             if b["block"] == name:
                 return b
     raise KeyError(f"{name} is not among the removable blocks of {run}")
+
+
+def printed(run, pattern):
+    """The numbers of the first line of the run's messages (stderr) that `pattern` matches."""
+    with open(run + ".stderr", encoding="utf-8") as f:
+        found = re.search(pattern, f.read())
+    if not found:
+        raise KeyError(f"the run {run} printed no line matching /{pattern}/")
+    return [float(g.replace(",", "")) for g in found.groups()]
+
+
+def stage(run, name):
+    for s in summary(run)["stages"]:
+        if s["name"] == name:
+            return s
+    raise KeyError(f"no stage {name} in {run}")
+
+
+def bolts_csv(run):
+    with open(os.path.join(run, "bolts.csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def displacement_mm(run, name):
+    """The block's displacement (ux, uy, uz) at the last stage end, from blocks.csv (in mm)."""
+    with open(os.path.join(run, "blocks.csv"), newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["block"] == name]
+    r = rows[-1]
+    return [float(r["ux_mm"]), float(r["uy_mm"]), float(r["uz_mm"])]
 
 
 def last_displacement_mm(run, name):
@@ -100,18 +131,68 @@ CHECKS = [
                 1e3 * key_block(d, "rock_21")["displacement_m"]]),
     ("docs/rock-mass.md", r"`rock_21`, sliding on J1 and J2,\s+F = " + NUMBER, "run:slope",
      lambda d: [removable(d + "-keyblocks", "rock_21")["factor_of_safety"]]),
+    # Ground stress: the deep tunnel and the staged slope.
+    ("docs/ground-stress.md", r"On this build it completes in " + NUMBER + " steps",
+     "run:tunnel_deep", lambda d: [summary(d)["steps"]]),
+    ("docs/ground-stress.md", r"\| rock_76 \| " + NUMBER + r" east \(into the tunnel\), " +
+     NUMBER + " down", "run:tunnel_deep",
+     lambda d: [displacement_mm(d, "rock_76")[0], -displacement_mm(d, "rock_76")[2]]),
+    ("docs/ground-stress.md", r"\| rock_65 \| " + NUMBER + r" west \(into the tunnel\), " +
+     NUMBER + " down", "run:tunnel_deep",
+     lambda d: [-displacement_mm(d, "rock_65")[0], -displacement_mm(d, "rock_65")[2]]),
+    ("docs/ground-stress.md", r"\| rock_87 \| " + NUMBER + " down", "run:tunnel_deep",
+     lambda d: [-displacement_mm(d, "rock_87")[2]]),
+    ("docs/ground-stress.md", r"\| rock_37 \| " + NUMBER + " up", "run:tunnel_deep",
+     lambda d: [displacement_mm(d, "rock_37")[2]]),
+    ("docs/ground-stress.md", r"\| rock_67 \| " + NUMBER + " east, " + NUMBER + " down",
+     "run:tunnel_deep",
+     lambda d: [displacement_mm(d, "rock_67")[0], -displacement_mm(d, "rock_67")[2]]),
+    ("docs/ground-stress.md", r"The horizontal convergence of the walls is " + NUMBER + " mm",
+     "run:tunnel_deep",
+     lambda d: [displacement_mm(d, "rock_76")[0] - displacement_mm(d, "rock_65")[0]]),
+    ("docs/ground-stress.md", r"prints `" + SR + r"` after " + NUMBER + r"\s+trials",
+     "run:slope_staged",
+     lambda d: fos(d) + [len(summary(d)["factor_of_safety"]["trials"])]),
+    # Water and earthquakes: the three factors of safety of the slope with water.
+    ("docs/water-and-earthquakes.md", r"'factor of safety, dry': " + SR,
+     "run:slope_water", lambda d: printed(d, r"'factor of safety, dry': " + SR)),
+    ("docs/water-and-earthquakes.md", r"'factor of safety, half full': " + SR,
+     "run:slope_water", lambda d: printed(d, r"'factor of safety, half full': " + SR)),
+    ("docs/water-and-earthquakes.md", r"'factor of safety, half full, k_h = 0.1': " + SR,
+     "run:slope_water",
+     lambda d: printed(d, r"'factor of safety, half full, k_h = 0.1': " + SR)),
+    # Support: the bolted roof wedge and the bolted tunnel.
+    ("docs/support.md", r"reaches equilibrium after " + NUMBER + r" steps\); the wedge\s+"
+     r"\(`rock_6` in `blocks.csv`\) moves " + NUMBER + " mm east and " + NUMBER + " mm down",
+     "run:roof_wedge_bolted",
+     lambda d: [summary(d)["stages"][-1]["steps"], displacement_mm(d, "rock_6")[0],
+                -displacement_mm(d, "rock_6")[2]]),
+    ("docs/support.md", r"wedge F = " + NUMBER + r" by block theory, and " + NUMBER + " kN",
+     "run:roof_wedge_bolted",
+     lambda d: [removable(d + "-keyblocks", "rock_6")["factor_of_safety"],
+                removable(d + "-keyblocks", "rock_6")["support_force_N"] / 1e3]),
+    ("docs/support.md", r"warns that " + NUMBER + " of " + NUMBER + r" bolts cross no joint"
+     r"[^.]*, installs " + NUMBER, "run:tunnel_bolted",
+     lambda d: printed(d, r"(\d+) of (\d+) bolts") + [summary(d)["bolts"]["installed"]]),
+    ("docs/support.md", r"The largest\s+tendon force in `bolts.csv` is " + NUMBER +
+     r" kN \(bolt `tunnel-28`\), the largest dowel shear " + NUMBER + " kN",
+     "run:tunnel_bolted",
+     lambda d: [max(abs(float(r["axial_force_N"])) for r in bolts_csv(d)) / 1e3,
+                max(abs(float(r["shear_force_N"])) for r in bolts_csv(d)) / 1e3]),
 ]
 
 
 # The examples whose block-theory list (`blockdem keyblocks`, in RUN-keyblocks) a check reads.
-WITH_KEYBLOCKS = {"roof_wedge", "slope_fos", "tunnel", "slope"}
+WITH_KEYBLOCKS = {"roof_wedge", "slope_fos", "tunnel", "slope", "roof_wedge_bolted"}
 
 
 def run_example(blockdem, source, work, name):
     scenario = os.path.join(source, "scenarios", "examples", name + ".toml")
     out = os.path.join(work, name)
-    r = subprocess.run([blockdem, "run", scenario, "--out", out, "--quiet", "--no-figures",
-                        "--threads", "1"], capture_output=True, text=True)
+    r = subprocess.run([blockdem, "run", scenario, "--out", out, "--no-figures", "--threads", "1"],
+                       capture_output=True, text=True)
+    with open(out + ".stderr", "w", encoding="utf-8") as f:
+        f.write(r.stderr)
     if r.returncode not in (0, 3):
         raise RuntimeError(f"blockdem run {name}: exit {r.returncode}\n{r.stderr}")
     if name not in WITH_KEYBLOCKS:
