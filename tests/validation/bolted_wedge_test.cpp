@@ -323,6 +323,94 @@ INSTANTIATE_TEST_SUITE_P(BoltedWedge, WedgeBoltModes,
                            return std::string(to_string(mode.param));
                          });
 
+// Where a bolt's couple matters. The example's wedge (friction 40 degrees, F = 0.7531) with two
+// vertical point-anchored bolts, 3 m long, each yielding at 66 kN (together 0.797 W). A vertical
+// bolt force T only lightens the wedge: with c = 0 every normal force, the friction and the
+// driving force scale by (W - T) / W, so F stays 0.7531 for any T < W, and block theory's support
+// force for a vertical bolt and F = 1 is W itself (analysis/block_theory.hpp, support_force).
+// On the vertical line through the centroid, (3.125, +-0.3), the bolts put no couple on the
+// wedge and the run agrees: they yield, rupture, and the wedge slides out. Off to the east, at
+// (4.5, +-0.6) under J1, the same two bolts hold it: their couple (about the north-south axis)
+// turns the wedge by some 0.01 degrees and presses it onto J2 and J3 harder than its weight less
+// the bolts' pull would (block theory's N on each, 0.4014 (W - T), against nearly twice that
+// in the run), and their friction holds the rest. Block theory, a translation only, cannot see
+// this: it is on the safe side.
+TEST(BoltedWedge, OffCentreBoltsHoldTheWedgeByTheirCoupleWhereCentredOnesFail) {
+  if (test::sanitized_run()) GTEST_SKIP() << "minutes under the sanitizers";
+  const auto with_bolts = [](double x, double y) {
+    const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
+                                       "examples" / "roof_wedge_bolted.toml";
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text = text.substr(0, text.find("[[bolts]]"));
+    std::ostringstream bolts;
+    for (int k = 0; k < 2; ++k) {
+      bolts
+          << "[[bolts]]\nname = \"B" << k + 1 << "\"\nstart = [" << x << ", " << (k ? y : -y)
+          << ", 0]\ndirection = [0, 0, 1]\nlength = 3.0\naxial_stiffness = 2.6e7\n"
+          << "yield_force = 6.6e4\nrupture_strain = 0.02\ninstall_stage = \"excavate and bolt\"\n";
+    }
+    return parse_scenario(text + bolts.str(), "roof_wedge_two_vertical_bolts.toml");
+  };
+  // Centred: no couple; they rupture and the wedge moves on (the stage does not converge).
+  {
+    const auto out = test::run_folder("wedge_vertical_centred");
+    std::filesystem::remove_all(out);
+    const RunResult r = run_scenario(with_bolts(3.125, 0.3), out);
+    EXPECT_NE(r.status, RunStatus::completed);
+    EXPECT_EQ(r.summary.at("bolts").at("ruptured").get<int>(), 2);
+  }
+  // Off-centre: held.
+  const auto out = test::run_folder("wedge_vertical_off_centre");
+  std::filesystem::remove_all(out);
+  const RunResult r = run_scenario(with_bolts(4.5, 0.6), out);
+  ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+  const nlohmann::json& stage = r.summary.at("stages").at(1);
+  EXPECT_TRUE(stage.at("key_blocks").empty());
+  EXPECT_EQ(r.summary.at("bolts").at("ruptured").get<int>(), 0);
+  const nlohmann::json* theory = nullptr;
+  for (const auto& b : stage.at("removable_blocks")) {
+    if (std::abs(b.at("volume_m3").get<double>() - 6.25) < 1e-2) theory = &b;
+  }
+  ASSERT_NE(theory, nullptr);
+  const std::string wedge = theory->at("block").get<std::string>();
+  const double w = theory->at("weight_N").get<double>();
+  // The bolts' pull (bolts.csv) and the normal forces on the wedge's contacts (contacts.csv).
+  const auto rows = [](const std::filesystem::path& csv) {
+    std::vector<std::vector<std::string>> table;
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::vector<std::string> cells;
+      std::istringstream row(line);
+      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+      table.push_back(cells);
+    }
+    return table;
+  };
+  double pull = 0.0;
+  for (const auto& row : rows(out / "bolts.csv")) {
+    if (row.at(2) == "1") pull += std::stod(row.at(6));
+  }
+  std::vector<double> normal;
+  for (const auto& row : rows(out / "contacts.csv")) {
+    if (row.at(0) == "1" && (row.at(2) == wedge || row.at(3) == wedge))
+      normal.push_back(std::stod(row.at(13)));
+  }
+  std::sort(normal.rbegin(), normal.rend());
+  ASSERT_GE(normal.size(), 2u);
+  // Block theory's normal force on each of J2 and J3 under the net load W - T.
+  const double mu = theory->at("planes").at(0).at("normal_force_N").get<double>() / w;
+  const double lightened = mu * (w - pull);
+  EXPECT_LT(pull, w);
+  EXPECT_GT(normal[1], 1.5 * lightened);
+  std::printf(
+      "two vertical bolts off the centroid's line: held, the bolts pull %.4g N (%.3f W); normal "
+      "forces on J2 and J3 %.4g and %.4g N against %.4g N each by block theory under W - T\n",
+      pull, pull / w, normal[0], normal[1], lightened);
+}
+
 // Restart files do not hold bolts yet: asking for checkpoints is refused before anything is
 // written, rather than losing the bolts on a restart.
 TEST(BoltedWedge, CheckpointsAreRefusedWithBolts) {
