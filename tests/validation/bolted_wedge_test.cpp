@@ -3,7 +3,9 @@
 // 0.75, tests/validation/stability_key_block_test.cpp's value at 55 degrees scaled by
 // tan 40 / tan 55). Unsupported, the excavation lets it fall (it moves more than the key-block
 // threshold, 0.1 V^(1/3) = 0.18 m); with the example's three grouted bolts, installed by the
-// excavation stage, it is held (no key block) and every bolt stays intact.
+// excavation stage, it is held (no key block) and every bolt stays intact. Below: the wedge at
+// 15 degrees held by three bolts along its line of sliding and falling with two, and where the
+// couple of off-centre bolts holds it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,6 +31,30 @@ Scenario example() {
   const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
                                      "examples" / "roof_wedge_bolted.toml";
   return load_scenario(file.string());
+}
+
+// The example's text up to its [[bolts]]: the scene and stages, no bolts.
+std::string example_without_bolts() {
+  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
+                                     "examples" / "roof_wedge_bolted.toml";
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.substr(0, text.find("[[bolts]]"));
+}
+
+// The rows of a CSV file after its header, split at commas.
+std::vector<std::vector<std::string>> csv_rows(const std::filesystem::path& csv) {
+  std::vector<std::vector<std::string>> table;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    table.push_back(cells);
+  }
+  return table;
 }
 
 // The wedge: the key block whose centroid started at the tetrahedron's, (3.125, 0, 1.25).
@@ -126,11 +152,7 @@ TEST(BoltedWedge, BoltsCsvIsTheSameBytesForOneAndThreeThreads) {
 // into the wedge; they hold it.
 TEST(BoltedWedge, PatternOnTheOpeningPutsBoltsNormalToItsFacesAndHoldsTheWedge) {
   if (test::sanitized_run()) GTEST_SKIP() << "minutes under the sanitizers";
-  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
-                                     "examples" / "roof_wedge_bolted.toml";
-  std::ifstream in(file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text = text.substr(0, text.find("[[bolts]]"));
+  std::string text = example_without_bolts();
   text +=
       "[[bolt_patterns]]\nname = \"roof\"\nexcavation = \"opening\"\nspacing = [1.0, 1.0]\n"
       "length = 3.0\naxial_stiffness = 3.33e7\nyield_force = 2e5\nbond_stiffness = 1.12e8\n"
@@ -224,11 +246,7 @@ WedgeBolts wedge_by_hand() {
 
 // The example with friction 15 degrees and a bolt at each of `ys` (m) on the roof's x = 3.75.
 Scenario wedge_with_bolts(const std::vector<double>& ys) {
-  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
-                                     "examples" / "roof_wedge_bolted.toml";
-  std::ifstream in(file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text = text.substr(0, text.find("[[bolts]]"));
+  std::string text = example_without_bolts();
   const std::string from = "friction_deg = 40";
   text.replace(text.find(from), from.size(), "friction_deg = 15");
   std::ostringstream bolts;
@@ -278,15 +296,9 @@ TEST_P(WedgeBoltModes, BoltsAlongTheSlideHoldTheWedgeAndOneFewerLetItFall) {
     EXPECT_NEAR(theory->at("factor_of_safety").get<double>(), hand.friction / hand.driving, 1e-3);
     EXPECT_NEAR(theory->at("support_force_N").get<double>(), t15, 1e-3 * t15);
     EXPECT_EQ(r.summary.at("bolts").at("ruptured").get<int>(), 0);
-    std::ifstream csv(out / "bolts.csv");
-    std::string line;
     double total = 0.0;
-    std::getline(csv, line);
-    while (std::getline(csv, line)) {
-      std::vector<std::string> cells;
-      std::istringstream row(line);
-      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-      ASSERT_EQ(cells.size(), 9u) << line;
+    for (const auto& cells : csv_rows(out / "bolts.csv")) {
+      ASSERT_EQ(cells.size(), 9u);
       if (cells[2] == "1") total += std::stod(cells[6]);  // each bolt's segment in the wedge
     }
     EXPECT_GE(total, (1.0 - 1e-3) * t1);
@@ -329,7 +341,7 @@ INSTANTIATE_TEST_SUITE_P(BoltedWedge, WedgeBoltModes,
 // driving force scale by (W - T) / W, so F stays 0.7531 for any T < W, and block theory's support
 // force for a vertical bolt and F = 1 is W itself (analysis/block_theory.hpp, support_force).
 // On the vertical line through the centroid, (3.125, +-0.3), the bolts put no couple on the
-// wedge and the run agrees: they yield, rupture, and the wedge slides out. Off to the east, at
+// wedge and the run agrees: they yield, rupture, and the wedge slides on. Off to the east, at
 // (4.5, +-0.6) under J1, the same two bolts hold it: their couple (about the north-south axis)
 // turns the wedge by some 0.01 degrees and presses it onto J2 and J3 harder than its weight less
 // the bolts' pull would (block theory's N on each, 0.4014 (W - T), against nearly twice that
@@ -338,11 +350,6 @@ INSTANTIATE_TEST_SUITE_P(BoltedWedge, WedgeBoltModes,
 TEST(BoltedWedge, OffCentreBoltsHoldTheWedgeByTheirCoupleWhereCentredOnesFail) {
   if (test::sanitized_run()) GTEST_SKIP() << "minutes under the sanitizers";
   const auto with_bolts = [](double x, double y) {
-    const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
-                                       "examples" / "roof_wedge_bolted.toml";
-    std::ifstream in(file);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    text = text.substr(0, text.find("[[bolts]]"));
     std::ostringstream bolts;
     for (int k = 0; k < 2; ++k) {
       bolts
@@ -350,7 +357,8 @@ TEST(BoltedWedge, OffCentreBoltsHoldTheWedgeByTheirCoupleWhereCentredOnesFail) {
           << ", 0]\ndirection = [0, 0, 1]\nlength = 3.0\naxial_stiffness = 2.6e7\n"
           << "yield_force = 6.6e4\nrupture_strain = 0.02\ninstall_stage = \"excavate and bolt\"\n";
     }
-    return parse_scenario(text + bolts.str(), "roof_wedge_two_vertical_bolts.toml");
+    return parse_scenario(example_without_bolts() + bolts.str(),
+                          "roof_wedge_two_vertical_bolts.toml");
   };
   // Centred: no couple; they rupture and the wedge moves on (the stage does not converge).
   {
@@ -376,25 +384,12 @@ TEST(BoltedWedge, OffCentreBoltsHoldTheWedgeByTheirCoupleWhereCentredOnesFail) {
   const std::string wedge = theory->at("block").get<std::string>();
   const double w = theory->at("weight_N").get<double>();
   // The bolts' pull (bolts.csv) and the normal forces on the wedge's contacts (contacts.csv).
-  const auto rows = [](const std::filesystem::path& csv) {
-    std::vector<std::vector<std::string>> table;
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) {
-      std::vector<std::string> cells;
-      std::istringstream row(line);
-      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-      table.push_back(cells);
-    }
-    return table;
-  };
   double pull = 0.0;
-  for (const auto& row : rows(out / "bolts.csv")) {
+  for (const auto& row : csv_rows(out / "bolts.csv")) {
     if (row.at(2) == "1") pull += std::stod(row.at(6));
   }
   std::vector<double> normal;
-  for (const auto& row : rows(out / "contacts.csv")) {
+  for (const auto& row : csv_rows(out / "contacts.csv")) {
     if (row.at(0) == "1" && (row.at(2) == wedge || row.at(3) == wedge))
       normal.push_back(std::stod(row.at(13)));
   }
