@@ -5,21 +5,17 @@
 //   and ends at P - k (P - W) / (k + K_n), K_n the joint's normal stiffness times its area;
 // - a tendon that yields below W is capped at its yield force, ruptures at its rupture strain,
 //   and the block falls;
-// - a block on a plane dipping ψ > φ held by a dowel across the joint (Hudson & Harrison 1997,
-//   Engineering Rock Mechanics, the bolted block on an inclined plane, with the bolt normal to the
-//   plane, β = 90°): the dowel's shear force is W (sin ψ - cos ψ tan φ), reached after a slip of
-//   that force over k_s;
 // - a fully grouted bolt pulled at its head (the shear-lag solution of Farmer 1975, Int. J.
 //   Rock Mech. Min. Sci. 12:347; Li & Stillborg 1999, Int. J. Rock Mech. Min. Sci. 36:1013):
 //   N(x) = F sinh(α(L - x)) / sinh(αL), head stiffness E A α tanh(αL), α = sqrt(k_b / (E A)),
 //   and the grout yields first at the head when F = s_b tanh(αL) / α.
+// Bolts and dowels holding a block on an incline: bolt_incline_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -144,52 +140,6 @@ TEST(BoltSupport, TendonYieldsAtItsYieldForceThenRupturesAndTheBlockFalls) {
   for (int k = 0; k < 1000; ++k) w.step();
   EXPECT_LT(w.blocks()[1].velocity.z(), v0);
   EXPECT_EQ(b.axial_force, 0.0);
-}
-
-// A 0.2 x 0.1 x 0.1 m block on a fixed plate, gravity tilted by ψ = 30° (a plane dipping ψ),
-// joint friction φ = 20°, held by a dowel normal to the joint installed when the tilt starts.
-// The tilt is raised over many of the dowel's natural periods, so that the block creeps to
-// rest still sliding (friction at its limit) rather than overshooting.
-TEST(BoltSupport, DowelOnAnInclineCarriesTheDrivingForceLessFriction) {
-  const double psi = 30.0 * std::numbers::pi / 180.0, phi = 20.0 * std::numbers::pi / 180.0;
-  const double ks = 1e5;
-  std::ostringstream s;
-  s.precision(17);
-  s << "[settings]\ndamping = 0.7\ncontact_mode = \"face_integrated\"\n"
-    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e9 }\n"
-    << "shear = { law = \"linear\", stiffness = 1e8, friction_deg = 20 }\n"
-    << "[[blocks]]\nname = \"base\"\ndensity = 2500\nsize = [1.0, 0.3, 0.05]\n"
-    << "position = [0, 0, -0.025]\nmotion = \"fixed\"\n"
-    << "[[blocks]]\nname = \"block\"\ndensity = 2500\nsize = [0.2, 0.1, 0.1]\n"
-    << "position = [0, 0, 0.05]\n"
-    << "[[stages]]\nname = \"settle\"\ngravity = [0, 0, -9.81]\n"
-    << "[[stages]]\nname = \"tilt\"\ngravity = [" << kG * std::sin(psi) << ", 0, "
-    << -kG * std::cos(psi) << "]\nramp_steps = 200000\nmax_steps = 600000\n"
-    << "unbalanced_tolerance = 1e-7\nkinetic_tolerance = 1e-14\n"
-    << "[[bolts]]\nname = \"dowel\"\nstart = [0, 0, 0.1]\ndirection = [0, 0, -1]\n"
-    << "length = 0.14\naxial_stiffness = 1e3\nshear_stiffness = " << ks
-    << "\ninstall_stage = \"tilt\"\n";
-  const Scenario sc = parse_scenario(s.str(), "dowel.toml");
-  World w = build_world(sc);
-  ASSERT_TRUE(run_stage(w, sc.stages[0]).converged);
-  const double x0 = w.blocks()[1].position.x();
-  ASSERT_TRUE(run_stage(w, sc.stages[1]).converged);
-  const Bolt& b = w.bolts()[0];
-  ASSERT_EQ(b.crossings.size(), 1u);
-  const double weight = kDensity * 0.002 * kG;
-  const double expected = weight * (std::sin(psi) - std::cos(psi) * std::tan(phi));
-  // On the plate (block_b) down the slope; on the block, up it.
-  const double dowel = b.crossings[0].force.x();
-  EXPECT_NEAR(dowel, expected, 0.01 * expected);
-  std::printf("dowel on an incline: shear %.6g N against %.6g N (%.2e)\n", dowel, expected,
-              dowel / expected - 1.0);
-  // The block's slip at the bolt (its material point at the crossing; its centroid moves a
-  // little more, as the block also tilts forward by some 2e-5 rad).
-  const BoltCrossing& c = b.crossings[0];
-  const Eigen::Vector3d installed(0.0, 0.0, 0.1 - c.at);
-  const double slip = (w.blocks()[1].to_world(c.body_a) - installed).x();
-  EXPECT_NEAR(slip, expected / ks, 0.01 * expected / ks);
-  EXPECT_GT(w.blocks()[1].position.x() - x0, 0.0);
 }
 
 // Pull-out: rock A fixed (2 m deep along the bolt), a thin plate B above it pulled up by F; the
