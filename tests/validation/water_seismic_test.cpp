@@ -81,6 +81,18 @@ double critical_coefficient(const Slope& s) {
          (f.w * (f.cp + f.sp * f.tf));
 }
 
+// A stage's water table through the toe and the water level z_w in the crack (a plane
+// containing y), and the water's density.
+std::string water_keys(double water_depth) {
+  const double tp = std::tan(deg_to_rad(kPlaneDeg));
+  const double xk = (kHeight - kCrack) / tp, zb = kHeight - kCrack;
+  std::ostringstream t;
+  t.precision(15);
+  t << "water_table = { point = [0.0, 0.0, 0.0], normal = [" << -(zb + water_depth) / xk
+    << ", 0.0, 1.0] }\nwater_density = " << kWater << "\n";
+  return t.str();
+}
+
 // The slope as a scenario: the sliding block (toe at the origin, the slope face dipping west,
 // x east), a fixed base whose top is the sliding plane, the water table and `stages`.
 std::string slope_scenario(const Slope& s, const std::string& mode, const std::string& stages) {
@@ -112,12 +124,7 @@ std::string slope_scenario(const Slope& s, const std::string& mode, const std::s
   // containing y). Applied in one stage with gravity, the loads' transient broke part of the
   // joint's cohesive bond that the static loads leave intact (the fully filled crack then gave
   // F = 1.05 instead of 1.20).
-  if (s.water_depth > 0.0) {
-    const double slope = (zb + s.water_depth) / xk;
-    t << "[[stages]]\nname = \"flood\"\nwater_table = { point = [0.0, 0.0, 0.0], normal = ["
-      << -slope << ", 0.0, 1.0] }\n"
-      << "water_density = " << kWater << "\n";
-  }
+  if (s.water_depth > 0.0) t << "[[stages]]\nname = \"flood\"\n" << water_keys(s.water_depth);
   t << stages;
   return t.str();
 }
@@ -188,6 +195,34 @@ TEST(PlaneFailureWithWater, CriticalSeismicCoefficientMatchesHoekBray) {
   EXPECT_EQ(r.summary["collapse"]["unit"], "seismic_kh");
   std::printf("k_c = %.4f (bracket %.4f to %.4f; Hoek & Bray %.4f)\n", kc, r.collapse->first,
               r.collapse->second, expected);
+}
+
+// Water that arrives in a strength reduction's trials (the stage sets the table; the model
+// settled dry): with ramp_steps the pressure rises from none to the stage's over the ramp in every
+// trial, and the factor of safety is Hoek & Bray's with the crack full (tolerance 2%, as above).
+// Applied at once, the water is a sudden load whose transient overshoots the static one, so a
+// trial can only fail sooner: without the ramp the factor is lower than with it by more than the
+// bisection's bracket (0.01), the overshoot that the ramp avoids.
+TEST(PlaneFailureWithWater, WaterRampedInTheTrialsMatchesHoekBray) {
+  Slope s;
+  s.water_depth = 10.0;
+  const double expected = closed_form(s);
+  Slope dry = s;
+  dry.water_depth = 0.0;
+  double factor[2] = {0.0, 0.0};
+  for (const int ramp : {5000, 0}) {
+    std::string stages = reduction_stage(0.0) + water_keys(s.water_depth);
+    if (ramp > 0) stages += "ramp_steps = " + std::to_string(ramp) + "\n";
+    const RunResult r = run_text(slope_scenario(dry, "face_integrated", stages),
+                                 "water_hb_trial_ramp_" + std::to_string(ramp));
+    ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+    ASSERT_TRUE(r.factor_of_safety.has_value());
+    factor[ramp > 0 ? 0 : 1] = *r.factor_of_safety;
+    std::printf("water in the trials, ramp_steps %d: F = %.4f (Hoek & Bray %.4f, %+.2f%%)\n", ramp,
+                *r.factor_of_safety, expected, 100.0 * (*r.factor_of_safety / expected - 1.0));
+  }
+  EXPECT_NEAR(factor[0], expected, 0.02 * expected);
+  EXPECT_LT(factor[1], factor[0] - 0.01);
 }
 
 // Archimedes and effective stress: a block 1 × 1 × 0.5 m (2600 kg/m³) resting on a fixed base in
