@@ -225,6 +225,28 @@ TEST(PlaneFailureWithWater, WaterRampedInTheTrialsMatchesHoekBray) {
   EXPECT_LT(factor[1], factor[0] - 0.01);
 }
 
+// The same critical coefficient when the quake stage also brings the water in over its ramp (the
+// model settled dry): the search's first trial ramps the water in from none with its k_h, and
+// the later trials start from the last stable one, which carries it (tolerance 0.01, as above).
+TEST(PlaneFailureWithWater, CriticalSeismicCoefficientWithTheWaterRampedInTheSearch) {
+  Slope s;
+  s.water_depth = 5.0;
+  const double expected = critical_coefficient(s);
+  Slope dry = s;
+  dry.water_depth = 0.0;
+  const std::string stages =
+      "[[stages]]\nname = \"quake\"\nseismic_kh = 0.5\nseismic_direction_deg = 270\n"
+      "ramp_steps = 2000\nfind_collapse = true\ncollapse_tolerance = 0.005\nmax_steps = 60000\n" +
+      water_keys(s.water_depth);
+  const RunResult r = run_text(slope_scenario(dry, "face_integrated", stages), "water_hb_kc_ramp");
+  ASSERT_EQ(r.status, RunStatus::collapsed) << r.message;
+  ASSERT_TRUE(r.collapse.has_value());
+  const double kc = 0.5 * (r.collapse->first + r.collapse->second);
+  EXPECT_NEAR(kc, expected, 0.01);
+  std::printf("water ramped in the search: k_c = %.4f (bracket %.4f to %.4f; Hoek & Bray %.4f)\n",
+              kc, r.collapse->first, r.collapse->second, expected);
+}
+
 // Archimedes and effective stress: a block 1 × 1 × 0.5 m (2600 kg/m³) resting on a fixed base in
 // water whose level table stands 2 m above it (every face below it) feels the water's force
 // ρ_w g V upward, and the joint carries the submerged weight (ρ_r − ρ_w) g V, the effective
