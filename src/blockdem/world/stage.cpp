@@ -308,8 +308,9 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   }
   if (!deferred || sync->end_synchronizes) world.synchronize();
   if (!r.interrupted) base.finish(world);
-  // A stage that ends inside its ramp leaves its water in full (as a restart after it sets it).
-  if (!r.interrupted) world.settings().water_ramp.reset();
+  // A stage that ends (or is stopped) inside its ramp leaves its water in full, as a restart
+  // after it sets it (a checkpoint of a stopped stage was written before this).
+  world.settings().water_ramp.reset();
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.edit_servo().hold = true;
