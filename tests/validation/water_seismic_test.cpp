@@ -18,6 +18,7 @@
 // seismic coefficient k_c (F = 1) within 0.01 of the closed form (bracket 0.005).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -316,6 +317,64 @@ TEST_P(SubmergedBlock, WaterForceIsArchimedesAndTheJointCarriesTheEffectiveWeigh
 
 INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
                          ::testing::Values("face_integrated", "boon2012"));
+
+// A water table that changes over a stage's ramp_steps: the pressure moves linearly from the one
+// before the stage to the stage's, p = (1 - f) p_before + f p_stage at step k, f = k / ramp_steps.
+// The block above, half submerged (table 0.25 m above its base) and settled, then wholly
+// submerged (table at 2 m) over a ramp of 200 steps, then dry ("none") over 100: its water force
+// is Archimedes' rho_w g V_sub under each table (V_sub at the block's pose), so at step k of a
+// ramp it is (1 - f) rho_w g V_sub,before + f rho_w g V_sub,stage. Tolerance 1e-9 of rho_w g V
+// (the integration is exact; round-off).
+const std::string kRiseAndDrain =
+    "[[stages]]\nname = \"rise\"\nkind = \"steps\"\nsteps = 300\nramp_steps = 200\n"
+    "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n"
+    "[[stages]]\nname = \"drain\"\nkind = \"steps\"\nsteps = 150\nramp_steps = 100\n"
+    "water_table = \"none\"\n";
+
+class WaterRamp : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
+  const Scenario sc =
+      parse_scenario(submerged_block(GetParam(), 0.25) + kRiseAndDrain, "ramp.toml");
+  World w = build_world(sc);
+  ASSERT_TRUE(run_stage(w, sc.stages[0]).converged);
+  const int i = w.find_block("block");
+  // rho_w g V_sub for a level table at z_w, the block's base at the level of the forces.
+  const auto buoyancy = [&w, i](double table_z) {
+    const double bottom = w.level_state(i).position.z() - 0.25;
+    return kWater * kG * std::clamp(table_z - bottom, 0.0, 0.5);
+  };
+  // Rise (0.25 m to 2 m), then drain (2 m to none).
+  struct Ramp {
+    double before_z, stage_z;  // none: -inf
+  };
+  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY}};
+  double worst = 0.0;
+  int checked = 0;
+  for (int s = 1; s <= 2; ++s) {
+    const Stage& stage = sc.stages[static_cast<std::size_t>(s)];
+    const Ramp ramp = ramps[s - 1];
+    const StepFn on_step = [&](const World&, const Stage&, std::int64_t k) {
+      const double f =
+          std::min(1.0, static_cast<double>(k) / static_cast<double>(stage.ramp_steps));
+      const double expected = (1.0 - f) * buoyancy(ramp.before_z) + f * buoyancy(ramp.stage_z);
+      const Eigen::Vector3d force = w.blocks()[static_cast<std::size_t>(i)].water_force();
+      const double error = (force - Eigen::Vector3d(0.0, 0.0, expected)).norm();
+      worst = std::max(worst, error / (kWater * kG * 0.5));
+      ++checked;
+      EXPECT_LE(error, 1e-9 * kWater * kG * 0.5) << stage.name << " step " << k;
+    };
+    const StageResult r = run_stage(w, stage, {}, nullptr, {}, nullptr, on_step);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_FALSE(w.settings().water_ramp.has_value());
+  }
+  EXPECT_EQ(checked, 450);
+  // Dry at the end: no water force at all.
+  EXPECT_EQ(w.blocks()[static_cast<std::size_t>(i)].water_force(), Eigen::Vector3d::Zero());
+  std::printf("%s: %d steps, largest error %.2e of rho_w g V\n", GetParam(), checked, worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModes, WaterRamp, ::testing::Values("face_integrated", "boon2012"));
 
 // A box on a plane dipping θ = 25° (friction φ = 35°, no cohesion) under a horizontal seismic
 // coefficient k out of the slope: resolving the weight W and k W normal and parallel to the plane,
