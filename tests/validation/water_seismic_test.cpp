@@ -18,6 +18,7 @@
 // seismic coefficient k_c (F = 1) within 0.01 of the closed form (bracket 0.005).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -81,6 +82,18 @@ double critical_coefficient(const Slope& s) {
          (f.w * (f.cp + f.sp * f.tf));
 }
 
+// A stage's water table through the toe and the water level z_w in the crack (a plane
+// containing y), and the water's density.
+std::string water_keys(double water_depth) {
+  const double tp = std::tan(deg_to_rad(kPlaneDeg));
+  const double xk = (kHeight - kCrack) / tp, zb = kHeight - kCrack;
+  std::ostringstream t;
+  t.precision(15);
+  t << "water_table = { point = [0.0, 0.0, 0.0], normal = [" << -(zb + water_depth) / xk
+    << ", 0.0, 1.0] }\nwater_density = " << kWater << "\n";
+  return t.str();
+}
+
 // The slope as a scenario: the sliding block (toe at the origin, the slope face dipping west,
 // x east), a fixed base whose top is the sliding plane, the water table and `stages`.
 std::string slope_scenario(const Slope& s, const std::string& mode, const std::string& stages) {
@@ -112,12 +125,7 @@ std::string slope_scenario(const Slope& s, const std::string& mode, const std::s
   // containing y). Applied in one stage with gravity, the loads' transient broke part of the
   // joint's cohesive bond that the static loads leave intact (the fully filled crack then gave
   // F = 1.05 instead of 1.20).
-  if (s.water_depth > 0.0) {
-    const double slope = (zb + s.water_depth) / xk;
-    t << "[[stages]]\nname = \"flood\"\nwater_table = { point = [0.0, 0.0, 0.0], normal = ["
-      << -slope << ", 0.0, 1.0] }\n"
-      << "water_density = " << kWater << "\n";
-  }
+  if (s.water_depth > 0.0) t << "[[stages]]\nname = \"flood\"\n" << water_keys(s.water_depth);
   t << stages;
   return t.str();
 }
@@ -190,6 +198,56 @@ TEST(PlaneFailureWithWater, CriticalSeismicCoefficientMatchesHoekBray) {
               r.collapse->second, expected);
 }
 
+// Water that arrives in a strength reduction's trials (the stage sets the table; the model
+// settled dry): with ramp_steps the pressure rises from none to the stage's over the ramp in every
+// trial, and the factor of safety is Hoek & Bray's with the crack full (tolerance 2%, as above).
+// Applied at once, the water is a sudden load whose transient overshoots the static one, so a
+// trial can only fail sooner: without the ramp the factor is lower than with it by more than the
+// bisection's bracket (0.01), the overshoot that the ramp avoids.
+TEST(PlaneFailureWithWater, WaterRampedInTheTrialsMatchesHoekBray) {
+  Slope s;
+  s.water_depth = 10.0;
+  const double expected = closed_form(s);
+  Slope dry = s;
+  dry.water_depth = 0.0;
+  double factor[2] = {0.0, 0.0};
+  for (const int ramp : {5000, 2000, 0}) {
+    std::string stages = reduction_stage(0.0) + water_keys(s.water_depth);
+    if (ramp > 0) stages += "ramp_steps = " + std::to_string(ramp) + "\n";
+    const RunResult r = run_text(slope_scenario(dry, "face_integrated", stages),
+                                 "water_hb_trial_ramp_" + std::to_string(ramp));
+    ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+    ASSERT_TRUE(r.factor_of_safety.has_value());
+    if (ramp != 2000) factor[ramp > 0 ? 0 : 1] = *r.factor_of_safety;
+    std::printf("water in the trials, ramp_steps %d: F = %.4f (Hoek & Bray %.4f, %+.2f%%)\n", ramp,
+                *r.factor_of_safety, expected, 100.0 * (*r.factor_of_safety / expected - 1.0));
+  }
+  EXPECT_NEAR(factor[0], expected, 0.02 * expected);
+  EXPECT_LT(factor[1], factor[0] - 0.01);
+}
+
+// The same critical coefficient when the quake stage also brings the water in over its ramp (the
+// model settled dry): the search's first trial ramps the water in from none with its k_h, and
+// the later trials start from the last stable one, which carries it (tolerance 0.01, as above).
+TEST(PlaneFailureWithWater, CriticalSeismicCoefficientWithTheWaterRampedInTheSearch) {
+  Slope s;
+  s.water_depth = 5.0;
+  const double expected = critical_coefficient(s);
+  Slope dry = s;
+  dry.water_depth = 0.0;
+  const std::string stages =
+      "[[stages]]\nname = \"quake\"\nseismic_kh = 0.5\nseismic_direction_deg = 270\n"
+      "ramp_steps = 2000\nfind_collapse = true\ncollapse_tolerance = 0.005\nmax_steps = 60000\n" +
+      water_keys(s.water_depth);
+  const RunResult r = run_text(slope_scenario(dry, "face_integrated", stages), "water_hb_kc_ramp");
+  ASSERT_EQ(r.status, RunStatus::collapsed) << r.message;
+  ASSERT_TRUE(r.collapse.has_value());
+  const double kc = 0.5 * (r.collapse->first + r.collapse->second);
+  EXPECT_NEAR(kc, expected, 0.01);
+  std::printf("water ramped in the search: k_c = %.4f (bracket %.4f to %.4f; Hoek & Bray %.4f)\n",
+              kc, r.collapse->first, r.collapse->second, expected);
+}
+
 // Archimedes and effective stress: a block 1 × 1 × 0.5 m (2600 kg/m³) resting on a fixed base in
 // water whose level table stands 2 m above it (every face below it) feels the water's force
 // ρ_w g V upward, and the joint carries the submerged weight (ρ_r − ρ_w) g V, the effective
@@ -259,6 +317,64 @@ TEST_P(SubmergedBlock, WaterForceIsArchimedesAndTheJointCarriesTheEffectiveWeigh
 
 INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
                          ::testing::Values("face_integrated", "boon2012"));
+
+// A water table that changes over a stage's ramp_steps: the pressure moves linearly from the one
+// before the stage to the stage's, p = (1 - f) p_before + f p_stage at step k, f = k / ramp_steps.
+// The block above, half submerged (table 0.25 m above its base) and settled, then wholly
+// submerged (table at 2 m) over a ramp of 200 steps, then dry ("none") over 100: its water force
+// is Archimedes' rho_w g V_sub under each table (V_sub at the block's pose), so at step k of a
+// ramp it is (1 - f) rho_w g V_sub,before + f rho_w g V_sub,stage. Tolerance 1e-9 of rho_w g V
+// (the integration is exact; round-off).
+const std::string kRiseAndDrain =
+    "[[stages]]\nname = \"rise\"\nkind = \"steps\"\nsteps = 300\nramp_steps = 200\n"
+    "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n"
+    "[[stages]]\nname = \"drain\"\nkind = \"steps\"\nsteps = 150\nramp_steps = 100\n"
+    "water_table = \"none\"\n";
+
+class WaterRamp : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
+  const Scenario sc =
+      parse_scenario(submerged_block(GetParam(), 0.25) + kRiseAndDrain, "ramp.toml");
+  World w = build_world(sc);
+  ASSERT_TRUE(run_stage(w, sc.stages[0]).converged);
+  const int i = w.find_block("block");
+  // rho_w g V_sub for a level table at z_w, the block's base at the level of the forces.
+  const auto buoyancy = [&w, i](double table_z) {
+    const double bottom = w.level_state(i).position.z() - 0.25;
+    return kWater * kG * std::clamp(table_z - bottom, 0.0, 0.5);
+  };
+  // Rise (0.25 m to 2 m), then drain (2 m to none).
+  struct Ramp {
+    double before_z, stage_z;  // none: -inf
+  };
+  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY}};
+  double worst = 0.0;
+  int checked = 0;
+  for (int s = 1; s <= 2; ++s) {
+    const Stage& stage = sc.stages[static_cast<std::size_t>(s)];
+    const Ramp ramp = ramps[s - 1];
+    const StepFn on_step = [&](const World&, const Stage&, std::int64_t k) {
+      const double f =
+          std::min(1.0, static_cast<double>(k) / static_cast<double>(stage.ramp_steps));
+      const double expected = (1.0 - f) * buoyancy(ramp.before_z) + f * buoyancy(ramp.stage_z);
+      const Eigen::Vector3d force = w.blocks()[static_cast<std::size_t>(i)].water_force();
+      const double error = (force - Eigen::Vector3d(0.0, 0.0, expected)).norm();
+      worst = std::max(worst, error / (kWater * kG * 0.5));
+      ++checked;
+      EXPECT_LE(error, 1e-9 * kWater * kG * 0.5) << stage.name << " step " << k;
+    };
+    const StageResult r = run_stage(w, stage, {}, nullptr, {}, nullptr, on_step);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_FALSE(w.settings().water_ramp.has_value());
+  }
+  EXPECT_EQ(checked, 450);
+  // Dry at the end: no water force at all.
+  EXPECT_EQ(w.blocks()[static_cast<std::size_t>(i)].water_force(), Eigen::Vector3d::Zero());
+  std::printf("%s: %d steps, largest error %.2e of rho_w g V\n", GetParam(), checked, worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothModes, WaterRamp, ::testing::Values("face_integrated", "boon2012"));
 
 // A box on a plane dipping θ = 25° (friction φ = 35°, no cohesion) under a horizontal seismic
 // coefficient k out of the slope: resolving the weight W and k W normal and parallel to the plane,

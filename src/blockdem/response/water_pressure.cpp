@@ -29,6 +29,21 @@ WaterTable WaterTable::plane(const Eigen::Vector3d& point, const Eigen::Vector3d
   return t;
 }
 
+bool WaterTable::operator==(const WaterTable& other) const {
+  const auto same = [](const Halfspace& a, const Halfspace& b) {
+    return a.normal == b.normal && a.offset == b.offset;
+  };
+  if (pieces_.size() != other.pieces_.size() || !(top_ == other.top_)) return false;
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    const Piece &a = pieces_[i], &b = other.pieces_[i];
+    if (!same(a.below, b.below) || a.region.size() != b.region.size()) return false;
+    for (std::size_t k = 0; k < a.region.size(); ++k) {
+      if (!same(a.region[k], b.region[k])) return false;
+    }
+  }
+  return true;
+}
+
 namespace {
 
 // The plan of a point (z dropped), and the twice signed area of the plan triangle (a, b, c).
@@ -258,6 +273,24 @@ WaterLoad block_water_load(const GroundWater& water, double gravity, const Polyh
     const Eigen::Vector3d n = rotation * shape.planes()[static_cast<std::size_t>(f.plane)].normal;
     load += polygon_water_load(water, gravity, polygon, n, position);
   }
+  return load;
+}
+
+WaterLoad block_water_load(const std::optional<GroundWater>& water,
+                           const std::optional<WaterRamp>& ramp, double gravity,
+                           const Polyhedron& shape, const Eigen::Matrix3d& rotation,
+                           const Eigen::Vector3d& position) {
+  WaterLoad to;
+  if (water) to = block_water_load(*water, gravity, shape, rotation, position);
+  if (!ramp) return to;
+  // Linear in the pressure: (1 - f) L_from + f L_to.
+  WaterLoad from;
+  if (ramp->from) from = block_water_load(*ramp->from, gravity, shape, rotation, position);
+  const double f = ramp->fraction;
+  WaterLoad load;
+  load.force = (1.0 - f) * from.force + f * to.force;
+  load.torque = (1.0 - f) * from.torque + f * to.torque;
+  load.wetted_area = (1.0 - f) * from.wetted_area + f * to.wetted_area;
   return load;
 }
 

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,6 +48,8 @@ class WaterTable {
   const std::vector<Piece>& pieces() const { return pieces_; }
   /// The highest point of the table (m): infinite for an inclined plane.
   double top() const { return top_; }
+  /// The same pieces, bit for bit.
+  bool operator==(const WaterTable& other) const;
 
  private:
   std::vector<Piece> pieces_;
@@ -57,6 +60,17 @@ class WaterTable {
 struct GroundWater {
   WaterTable table;
   double density = 1000.0;  ///< ρ_w (kg/m^3)
+
+  bool operator==(const GroundWater& other) const = default;
+};
+
+/// Ground water on its way from one state to another (a stage's ramp, world/stage.hpp): the
+/// pressure is p = (1 - f) p_from + f p_to, p_from that of `from` (empty: dry) and p_to that of
+/// the water it goes to. The pressures are interpolated, not the tables: each is linear in
+/// position below its own table, so the load stays exact and linear in f.
+struct WaterRamp {
+  std::optional<GroundWater> from;  ///< the water before the ramp (empty: dry)
+  double fraction = 0.0;            ///< f in [0, 1) (-)
 };
 
 /// The load of the water's pressure on a body through some of its surface.
@@ -88,5 +102,12 @@ WaterLoad polygon_water_load(const GroundWater& water, double gravity,
 /// below a plane table it is the buoyancy ρ_w g V upward through the centroid (Archimedes).
 WaterLoad block_water_load(const GroundWater& water, double gravity, const Polyhedron& shape,
                            const Eigen::Matrix3d& rotation, const Eigen::Vector3d& position);
+
+/// The water's load on a block under `water` (empty: dry) or, with `ramp`, on its way to it:
+/// (1 - f) L_from + f L_to, each load that of block_water_load (zero where dry).
+WaterLoad block_water_load(const std::optional<GroundWater>& water,
+                           const std::optional<WaterRamp>& ramp, double gravity,
+                           const Polyhedron& shape, const Eigen::Matrix3d& rotation,
+                           const Eigen::Vector3d& position);
 
 }  // namespace blockdem

@@ -79,13 +79,8 @@ void load_restart(Restart& restart, const Scenario& sc, World& world, const RunC
         if (st.kind != Stage::Kind::strength_reduction) apply_stage_loads(settings, st);
       }
     };
+    // This stage's water and seismic load run_stage takes from its ramp (world/stage.hpp).
     apply_up_to(world.settings(), point.level);
-    if (point.in_stage) {
-      // This stage's water; its seismic load run_stage takes from the ramp (world/stage.hpp).
-      Stage water_only = at;
-      water_only.seismic.reset();
-      apply_stage_loads(world.settings(), water_only);
-    }
     if (start.before) apply_up_to(start.before->settings(), point.level);
     // The worlds hold their states now (a large world's state): the bytes go.
     restart.world = restart.before = {};

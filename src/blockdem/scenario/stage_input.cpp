@@ -164,8 +164,9 @@ Stage read_stage(const CheckedTable& t, const std::set<std::string>& block_names
   s.ramp_steps = t.integer("ramp_steps", s.ramp_steps);
   if (s.ramp_steps < 0 || s.ramp_steps > 1000000000000)
     t.fail("ramp_steps", "must be between 0 and 1e12");
-  if (s.ramp_steps > 0 && !s.gravity && !s.seismic)
-    t.fail("ramp_steps", "a ramp needs a new gravity or seismic coefficients in this stage");
+  if (s.ramp_steps > 0 && !s.gravity && !s.seismic && !s.water && !s.dry)
+    t.fail("ramp_steps",
+           "a ramp needs a new gravity, seismic coefficients or water table in this stage");
   s.max_steps = t.integer("max_steps", s.max_steps);
   if (s.max_steps <= 0 || s.max_steps > 1000000000000)
     t.fail("max_steps", "must be between 1 and 1e12");

@@ -82,9 +82,13 @@ void Stage::validate() const {
   }
 }
 
-void apply_stage_loads(WorldSettings& settings, const Stage& stage) {
+void apply_water(WorldSettings& settings, const Stage& stage) {
   if (stage.water) settings.water = stage.water;
   if (stage.dry) settings.water.reset();
+}
+
+void apply_stage_loads(WorldSettings& settings, const Stage& stage) {
+  apply_water(settings, stage);
   if (stage.seismic) settings.seismic = *stage.seismic;
 }
 
@@ -180,6 +184,13 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   const SeismicLoad seismic_before = world.settings().seismic;
   if (resume && stage.seismic && resume->steps_done >= stage.ramp_steps)
     world.settings().seismic = *stage.seismic;
+  // Likewise the water: a ramp moves its pressure from the one before the stage to the stage's
+  // (none when the two are the same water, as in a collapse search's later trials).
+  const std::optional<GroundWater> water_before = world.settings().water;
+  const bool sets_water = stage.water || stage.dry;
+  const bool water_ramp = sets_water && stage.ramp_steps > 0 &&
+                          !(water_before == (stage.dry ? std::nullopt : stage.water));
+  if (resume && sets_water) apply_water(world.settings(), stage);
   std::optional<MotionMonitor> own_monitor;
   std::optional<MotionMonitor>& watch = monitor ? *monitor : own_monitor;
   if (!resume) start_stage(world, stage, watch);
@@ -192,7 +203,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   bool reported = false;
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
     const bool relaxing = world.relaxing();
-    const bool ramping = ((stage.gravity || stage.seismic) && k <= stage.ramp_steps) || relaxing;
+    const bool ramping =
+        ((stage.gravity || stage.seismic || water_ramp) && k <= stage.ramp_steps) || relaxing;
     if (stage.gravity && k <= stage.ramp_steps) {
       const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
       world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
@@ -201,6 +213,15 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     if (stage.seismic && k <= stage.ramp_steps) {
       const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
       world.settings().seismic = seismic_before.toward(*stage.seismic, f);
+    }
+    // The water pressure p = (1 - f) p_before + f p_stage; the stage's alone from f = 1.
+    if (water_ramp && k <= stage.ramp_steps) {
+      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
+      if (k < stage.ramp_steps) {
+        world.settings().water_ramp = WaterRamp{water_before, f};
+      } else {
+        world.settings().water_ramp.reset();
+      }
     }
     // A gradual excavation: the removed blocks' loads down to zero at step relax_steps.
     if (relaxing) {
@@ -287,6 +308,9 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   }
   if (!deferred || sync->end_synchronizes) world.synchronize();
   if (!r.interrupted) base.finish(world);
+  // A stage that ends (or is stopped) inside its ramp leaves its water in full, as a restart
+  // after it sets it (a checkpoint of a stopped stage was written before this).
+  world.settings().water_ramp.reset();
   if (stage.hold_servos_after && !r.interrupted) {
     for (auto& b : world.blocks()) {
       if (b.motion == Motion::servo) b.edit_servo().hold = true;

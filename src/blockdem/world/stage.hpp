@@ -31,9 +31,11 @@ struct Stage {
 
   std::optional<Eigen::Vector3d> gravity;  ///< new gravity from this stage on (m/s^2)
   /// Gravity moves linearly from its previous value to `gravity` over this many steps at the
-  /// start of the stage (0: at once), and the seismic load from its previous value to `seismic`. A
-  /// ramp keeps a loading step quasi-static: a sudden jump sends a transient through the joints
-  /// that can make them slip (and break a cohesive bond the static load would not).
+  /// start of the stage (0: at once), the seismic load from its previous value to `seismic`, and
+  /// the water pressure from the one before to that of `water` (or to none, `dry`):
+  /// p = (1 - f) p_before + f p_stage at step k, f = k / ramp_steps. A ramp keeps a loading step
+  /// quasi-static: a sudden jump sends a transient through the joints that can make them slip
+  /// (and break a cohesive bond the static load would not).
   std::int64_t ramp_steps = 0;
   std::optional<double> damping;  ///< new local damping from this stage on (-)
   /// New ground water from this stage on (a water table and its density); `dry` removes it.
@@ -180,6 +182,8 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
 /// seismic coefficients (a restart, whose saved world holds the gravity but not these, applies
 /// those of the stages it has run).
 void apply_stage_loads(WorldSettings& settings, const Stage& stage);
+/// The ground water alone of those: the stage's water table, or none for `dry`.
+void apply_water(WorldSettings& settings, const Stage& stage);
 
 /// True when every active (not held) servo block's reaction is within its tolerance of target.
 bool servos_settled(const World& world);

@@ -188,9 +188,8 @@ void World::refresh_block(std::size_t i) {
   // this pose (free blocks only: the others' loads are never read).
   if (b.is_dynamic()) {
     const double g = settings_.gravity.norm();
-    WaterLoad water;
-    if (settings_.water)
-      water = block_water_load(*settings_.water, g, b.shape, b.rotation(), b.position);
+    const WaterLoad water = block_water_load(settings_.water, settings_.water_ramp, g, b.shape,
+                                             b.rotation(), b.position);
     b.set_field_loads(water.force, water.torque, b.mass * settings_.seismic.acceleration(g));
   }
   b.force = b.is_dynamic() ? Eigen::Vector3d(b.mass * settings_.gravity + b.applied_force())

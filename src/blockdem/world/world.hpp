@@ -103,6 +103,9 @@ struct WorldSettings {
   /// Ground water: every free block's faces below the water table carry its hydrostatic
   /// pressure (joints and exposed faces alike); empty: dry.
   std::optional<GroundWater> water;
+  /// While a stage's ramp brings `water` in (world/stage.hpp): the pressure is
+  /// (1 - f) p_from + f p_water; empty: `water` in full.
+  std::optional<WaterRamp> water_ramp;
   /// The pseudo-static earthquake's coefficients (zero: none).
   SeismicLoad seismic;
   double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
