@@ -89,11 +89,16 @@ TEST_P(ContactDampingInput, IsRefusedWithExitTwoAndNothingWritten) {
 INSTANTIATE_TEST_SUITE_P(
     Catalogue, ContactDampingInput,
     ::testing::Values(
-        BadCase{"negative", "contact_damping = -0.05\n", "", {"contact_damping", "[0, 1)"}},
-        BadCase{"critical", "contact_damping = 1.0\n", "", {"contact_damping", "[0, 1)"}},
-        BadCase{"not_a_number", "contact_damping = nan\n", "", {"contact_damping", "[0, 1)"}},
-        BadCase{"infinite", "contact_damping = inf\n", "", {"contact_damping", "[0, 1)"}},
-        BadCase{"in_a_stage", "", "contact_damping = 0.05\n", {"contact_damping", "unknown key"}}),
+        BadCase{
+            "negative", "contact_damping = -0.05\n", "", {"settings.contact_damping", "[0, 1)"}},
+        BadCase{"critical", "contact_damping = 1.0\n", "", {"settings.contact_damping", "[0, 1)"}},
+        BadCase{
+            "not_a_number", "contact_damping = nan\n", "", {"settings.contact_damping", "finite"}},
+        BadCase{"infinite", "contact_damping = inf\n", "", {"settings.contact_damping", "finite"}},
+        BadCase{"in_a_stage",
+                "",
+                "contact_damping = 0.05\n",
+                {"stages[2].contact_damping", "unknown key"}}),
     [](const ::testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
 // With ζ = 0.05 the outputs carry the dashpot's energy (time_history.csv's contact_damping_J,

@@ -120,6 +120,14 @@ std::string records_read(const ScenarioFingerprint& f, int stages) {
 
 }  // namespace
 
+std::string records_note(const ScenarioFingerprint& f) {
+  if (f.records.empty()) return {};
+  std::string list;
+  for (const auto& [stage, name] : f.records) list += (list.empty() ? "" : ", ") + name;
+  return "; the acceleration records of its dynamic stages count with their bytes (" + list +
+         "): an edited record is another scenario";
+}
+
 std::string check_restart_point(const ScenarioFingerprint& f, const std::filesystem::path& file,
                                 std::uint64_t hash, int level, bool in_stage,
                                 const std::vector<std::string>& stage_names) {

@@ -46,6 +46,10 @@ std::string check_restart_point(const ScenarioFingerprint& f, const std::filesys
                                 std::uint64_t hash, int level, bool in_stage,
                                 const std::vector<std::string>& stage_names);
 
+/// "; the acceleration records ... count with their bytes" naming the records `f` hashed, or
+/// empty without any: a note for a refused restart.
+std::string records_note(const ScenarioFingerprint& f);
+
 /// Files larger than this are fingerprinted by their bytes only (no branching): parsing a large
 /// listed-block file a second time would double the reading's peak memory.
 inline constexpr std::size_t kMaxFingerprintBytes = 8u << 20;
