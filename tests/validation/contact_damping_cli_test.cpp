@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "shaken_block.hpp"
 #include "support/cli_runner.hpp"
 #include "support/input_error.hpp"
 #include "support/temp_path.hpp"
@@ -31,21 +32,10 @@ std::string file_bytes(const fs::path& p) {
 // A block on a fixed plate (group "base"), settled, then shaken by `motion` for 0.15 s, then 300
 // steps of rest; `settings`: extra [settings] lines.
 std::string shaken_block(const std::string& settings, const std::string& motion) {
-  std::ostringstream s;
-  s << "[settings]\ndamping = 0.7\n"
-    << settings << "[[materials]]\nname = \"rock\"\ndensity = 2500.0\n"
-    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
-    << "shear = { law = \"linear\", stiffness = 1e10, friction_deg = 30 }\n"
-    << "[[blocks]]\nname = \"plate\"\ngroup = \"base\"\nmaterial = \"rock\"\n"
-    << "size = [3.0, 1.0, 0.1]\nposition = [0.0, 0.0, -0.05]\nmotion = \"fixed\"\n"
-    << "[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [0.4, 0.4, 0.2]\n"
-    << "position = [0.0, 0.0, 0.1]\n"
-    << "[output]\nhistory_interval = 7\nhistory_blocks = [\"block\"]\n"
-    << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\n"
-    << "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\nduration = 0.15\n"
-    << "base_motion = " << motion << "\n"
-    << "[[stages]]\nname = \"rest\"\nmax_steps = 300\n";
-  return s.str();
+  return shaken_block_scenario(settings, "history_interval = 7\nhistory_blocks = [\"block\"]\n",
+                               "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\n"
+                               "duration = 0.15\nbase_motion = " +
+                                   motion + "\n[[stages]]\nname = \"rest\"\nmax_steps = 300\n");
 }
 
 const char* const kSine =

@@ -17,6 +17,7 @@
 #include "blockdem/world/stage.hpp"
 #include "brick_pile.hpp"
 #include "scenes.hpp"
+#include "shaken_block.hpp"
 
 // A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
 // with other test files that define helpers of the same names.
@@ -185,20 +186,14 @@ TEST(ContactDamping, BitIdenticalForOneAndTwoThreads) {
 // the block slips). Its energy budget's residual over the shaking, relative to the base's work.
 // `zeta`: contact damping.
 double shaken_residual_ratio(const std::string& mode, double zeta) {
-  std::ostringstream s;
-  s << "[settings]\ndamping = 0.7\ncontact_damping = " << zeta << "\ncontact_mode = \"" << mode
-    << "\"\n[[materials]]\nname = \"rock\"\ndensity = 2500.0\n"
-    << "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
-    << "shear = { law = \"linear\", stiffness = 1e10, friction_deg = 30 }\n"
-    << "[[blocks]]\nname = \"plate\"\ngroup = \"base\"\nmaterial = \"rock\"\n"
-    << "size = [3.0, 1.0, 0.1]\nposition = [0.0, 0.0, -0.05]\nmotion = \"fixed\"\n"
-    << "[[blocks]]\nname = \"block\"\nmaterial = \"rock\"\nsize = [0.4, 0.4, 0.2]\n"
-    << "position = [0.0, 0.0, 0.1]\n"
-    << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\n"
-    << "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\nduration = 0.4\n"
-    << "base_motion = { group = \"base\", pulse = \"sine\", amplitude_m_s2 = 6.0, period = 0.2, "
-       "cycles = 2, direction = [1, 0, 0] }\n";
-  const Scenario sc = parse_scenario(s.str(), "shaken.toml");
+  std::ostringstream settings;
+  settings << "contact_damping = " << zeta << "\ncontact_mode = \"" << mode << "\"\n";
+  const std::string text = shaken_block_scenario(
+      settings.str(), "",
+      "[[stages]]\nname = \"shake\"\nkind = \"dynamic\"\nduration = 0.4\n"
+      "base_motion = { group = \"base\", pulse = \"sine\", amplitude_m_s2 = 6.0, period = 0.2, "
+      "cycles = 2, direction = [1, 0, 0] }\n");
+  const Scenario sc = parse_scenario(text, "shaken.toml");
   World world = build_world(sc);
   double before = 0.0, boundary_before = 0.0, worst = 0.0;
   for (const Stage& st : sc.stages) {
