@@ -447,8 +447,8 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     if (!opt.restart.empty()) control.restart = opt.restart;
     if (opt.resume) control.restart = std::filesystem::path(opt.out) / kCheckpointName;
     // The scenario up to each stage and the options that change results (not --threads).
-    control.fingerprint = scenario_fingerprint(read_file_bytes(opt.scenario),
-                                               "max_steps=" + std::to_string(opt.max_steps));
+    control.fingerprint = scenario_fingerprint(
+        read_file_bytes(opt.scenario), "max_steps=" + std::to_string(opt.max_steps), opt.scenario);
     beam = voussoir_scene(sc) != nullptr;
     for (const auto& w : mpi.rank() == 0 ? sc.warnings : std::vector<std::string>{})
       std::cerr << "blockdem: warning: " << opt.scenario << ": " << w << "\n";

@@ -214,11 +214,12 @@ std::size_t check_envelope(const std::filesystem::path& file, std::string_view b
   if (get_at(std::uint64_t{}, body) != hash)
     throw CheckpointError(file, "corrupt (checksum mismatch)");
   if (std::find(accepted.begin(), accepted.end(), get_at(std::uint64_t{}, 16)) == accepted.end())
-    throw CheckpointError(file,
-                          "written for another scenario or other run options (--max-steps): the "
-                          "settings, blocks, laws and outputs, and the stages up to the "
-                          "checkpoint's, must be those of the run that wrote it (later stages "
-                          "may differ)");
+    throw CheckpointScenarioError(
+        file,
+        "written for another scenario or other run options (--max-steps): the "
+        "settings, blocks, laws and outputs, and the stages up to the "
+        "checkpoint's, must be those of the run that wrote it (later stages "
+        "may differ)");
   return static_cast<std::size_t>(size);
 }
 

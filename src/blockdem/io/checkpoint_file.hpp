@@ -15,7 +15,18 @@ namespace blockdem {
 class CheckpointError : public std::runtime_error {
  public:
   CheckpointError(const std::filesystem::path& file, const std::string& reason)
-      : std::runtime_error(file.string() + ": " + reason) {}
+      : std::runtime_error(file.string() + ": " + reason), reason_(reason) {}
+  /// The reason alone, without the file.
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string reason_;
+};
+
+/// A checkpoint written for another scenario (its hash is not one this scenario accepts).
+class CheckpointScenarioError : public CheckpointError {
+ public:
+  using CheckpointError::CheckpointError;
 };
 
 /// The format version this program writes and reads.

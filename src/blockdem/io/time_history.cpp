@@ -40,6 +40,9 @@ TimeHistoryWriter::TimeHistoryWriter(const std::filesystem::path& path, const Wo
                                       "broken_bonds",
                                       "water_work_J",
                                       "seismic_work_J"};
+  // With contact damping, its dissipation after the local damping's.
+  dashpots_ = world.settings().contact_damping > 0.0;
+  if (dashpots_) columns.insert(columns.begin() + 11, "contact_damping_J");
   for (const auto& name : options_.blocks) {
     const int i = world.find_block(name);
     if (i < 0) throw std::invalid_argument("history_blocks: no block named '" + name + "'");
@@ -177,8 +180,9 @@ void TimeHistoryWriter::write(const World& world, const std::string& stage) {
       .cell(e.load_work)
       .cell(e.boundary_work)
       .cell(e.friction_dissipation)
-      .cell(e.damping_dissipation)
-      .cell(e.residual())
+      .cell(e.damping_dissipation);
+  if (dashpots_) csv_->cell(e.contact_damping);
+  csv_->cell(e.residual())
       .cell(scale > 0.0 ? e.residual() / scale : 0.0)
       .cell(world.equilibrium().unbalanced_force_ratio)
       .cell(normal_energy > 0.0 ? e.kinetic / normal_energy : 0.0)

@@ -72,6 +72,7 @@ class TimeHistoryWriter {
   std::int64_t last_step_ = -1;       ///< level step of the last row
   double next_time_ = 0.0;            ///< model time of the next row (s)
   BaseKinematics base_;               ///< the base columns' values
+  bool dashpots_ = false;  ///< the contact_damping_J column (the world has contact damping)
 };
 
 }  // namespace blockdem

@@ -36,6 +36,9 @@ void read_restart(const RunControl& control, const std::vector<std::string>& sta
     }
   } catch (const StateError& e) {
     throw CheckpointError(control.restart, e.what());
+  } catch (const CheckpointScenarioError& e) {
+    // A dynamic stage's record counts with its bytes: an edited record is a reason to name.
+    throw CheckpointScenarioError(control.restart, e.reason() + records_note(control.fingerprint));
   }
   if (r.point->level < 0) throw CheckpointError(control.restart, "saved stage index is corrupt");
   r.compared = check_restart_point(

@@ -91,6 +91,8 @@ void finish_summary(nlohmann::json& summary, const nlohmann::json& stages, const
                          {"friction_dissipation", energy.friction_dissipation},
                          {"damping_dissipation", energy.damping_dissipation},
                          {"residual", energy.residual()}};
+  if (world.settings().contact_damping > 0.0)
+    summary["energy_J"]["contact_damping"] = energy.contact_damping;
   if (scene) scene->add_to_summary(summary, res.status);
 }
 

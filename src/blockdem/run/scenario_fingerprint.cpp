@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "blockdem/io/atomic_file.hpp"
@@ -64,6 +65,25 @@ std::uint64_t hash_node(const toml::node& node, std::uint64_t h) {
   return h;
 }
 
+// The bytes' hash of a stage's acceleration record (base_motion.file), if it has one: the record
+// is data the stage's results depend on as much as on the text.
+std::optional<std::uint64_t> record_hash(const toml::node& stage,
+                                         const std::filesystem::path& scenario_file,
+                                         std::string* name) {
+  const auto* table = stage.as_table();
+  const auto* motion = table != nullptr ? table->get_as<toml::table>("base_motion") : nullptr;
+  const auto* file = motion != nullptr ? motion->get_as<std::string>("file") : nullptr;
+  if (file == nullptr) return std::nullopt;
+  *name = file->get();
+  std::filesystem::path path = file->get();
+  if (path.is_relative()) path = scenario_file.parent_path() / path;
+  try {
+    return fnv1a64(read_file_bytes(path), fnv1a64("blockdem acceleration record"));
+  } catch (const std::exception&) {
+    return fnv1a64("blockdem acceleration record: unreadable");
+  }
+}
+
 }  // namespace
 
 std::uint64_t ScenarioFingerprint::at(int level, bool in_stage) const {
@@ -85,6 +105,29 @@ int ScenarioFingerprint::stages_shared(std::uint64_t hash) const {
   return -1;
 }
 
+namespace {
+
+// ", or the acceleration records they read: a.csv, b.csv" for the records of the first `stages`
+// stages, if any.
+std::string records_read(const ScenarioFingerprint& f, int stages) {
+  std::string list;
+  for (const auto& [stage, name] : f.records) {
+    if (stage >= stages) continue;
+    list += (list.empty() ? "" : ", ") + name;
+  }
+  return list.empty() ? list : ", or the acceleration records they read: " + list;
+}
+
+}  // namespace
+
+std::string records_note(const ScenarioFingerprint& f) {
+  if (f.records.empty()) return {};
+  std::string list;
+  for (const auto& [stage, name] : f.records) list += (list.empty() ? "" : ", ") + name;
+  return "; the acceleration records of its dynamic stages count with their bytes (" + list +
+         "): an edited record is another scenario";
+}
+
 std::string check_restart_point(const ScenarioFingerprint& f, const std::filesystem::path& file,
                                 std::uint64_t hash, int level, bool in_stage,
                                 const std::vector<std::string>& stage_names) {
@@ -101,8 +144,8 @@ std::string check_restart_point(const ScenarioFingerprint& f, const std::filesys
                                     " stage " + std::to_string(level + 1) +
                                     " of a run whose scenario differs from this one before "
                                     "there (in its settings, blocks, laws, outputs or first " +
-                                    std::to_string(needed) +
-                                    " stages); a restart may change only later stages");
+                                    std::to_string(needed) + " stages" + records_read(f, needed) +
+                                    "); a restart may change only later stages");
   std::string line = "restarting from " + file.string() + ", taken " +
                      (in_stage ? "inside " : "at the start of ") + stage(level) +
                      ": compared with this file, its settings, blocks, laws" +
@@ -115,7 +158,8 @@ std::string check_restart_point(const ScenarioFingerprint& f, const std::filesys
   return line;
 }
 
-ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::string& options) {
+ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::string& options,
+                                         const std::filesystem::path& scenario_file) {
   ScenarioFingerprint f;
   const std::uint64_t opts = fnv1a64(options);
   f.whole = fnv1a64(options, fnv1a64(text));  // the hash of every earlier version's files
@@ -134,6 +178,14 @@ ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::strin
   f.by_stage.push_back(h);
   for (const auto& stage : stages) {
     h = hash_node(stage, h);
+    std::string name;
+    if (const auto record = record_hash(stage, scenario_file, &name)) {
+      // The record's bytes count in this stage's entry (and so every later one's) and in whole.
+      h = fnv1a64(std::string_view(reinterpret_cast<const char*>(&*record), sizeof *record), h);
+      f.whole = fnv1a64(std::string_view(reinterpret_cast<const char*>(&*record), sizeof *record),
+                        f.whole);
+      f.records.emplace_back(static_cast<int>(f.by_stage.size()) - 1, name);
+    }
     f.by_stage.push_back(h);
   }
   return f;

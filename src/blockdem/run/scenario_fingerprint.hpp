@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace blockdem {
@@ -20,9 +21,14 @@ namespace blockdem {
 ///
 /// `whole` hashes the file's bytes and the options: what checkpoints of earlier versions carry,
 /// and what a file too large to parse twice (listed blocks over kMaxFingerprintBytes) carries.
+///
+/// A dynamic stage's acceleration record (`base_motion.file`) counts with its bytes: its hash
+/// is folded into that stage's entry and every later one, and into `whole`.
 struct ScenarioFingerprint {
   std::uint64_t whole = 0;
   std::vector<std::uint64_t> by_stage;  ///< stages + 1 entries; empty: `whole` only
+  /// The acceleration records hashed: (0-based stage index, the path as the scenario gives it).
+  std::vector<std::pair<int, std::string>> records;
 
   /// The hash a checkpoint at stage `level` carries (`in_stage`: taken inside it).
   std::uint64_t at(int level, bool in_stage) const;
@@ -40,12 +46,19 @@ std::string check_restart_point(const ScenarioFingerprint& f, const std::filesys
                                 std::uint64_t hash, int level, bool in_stage,
                                 const std::vector<std::string>& stage_names);
 
+/// "; the acceleration records ... count with their bytes" naming the records `f` hashed, or
+/// empty without any: a note for a refused restart.
+std::string records_note(const ScenarioFingerprint& f);
+
 /// Files larger than this are fingerprinted by their bytes only (no branching): parsing a large
 /// listed-block file a second time would double the reading's peak memory.
 inline constexpr std::size_t kMaxFingerprintBytes = 8u << 20;
 
 /// The fingerprint of scenario text `text` run with `options` (the command-line options that
-/// change results, as text). A text that does not parse gets `whole` only.
-ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::string& options);
+/// change results, as text). A text that does not parse gets `whole` only. `scenario_file`, the
+/// file the text was read from, places the acceleration records (relative paths are relative to
+/// its folder); a record that cannot be read counts as a fixed tag.
+ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::string& options,
+                                         const std::filesystem::path& scenario_file = {});
 
 }  // namespace blockdem

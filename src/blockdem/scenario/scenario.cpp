@@ -37,6 +37,10 @@ void read_settings(const CheckedTable& t, WorldSettings& s, bool& allow_initial_
   s.gravity = t.vec3("gravity", s.gravity);
   s.damping = t.number("damping", s.damping);
   if (!(s.damping >= 0.0 && s.damping < 1.0)) t.fail("damping", "must be in [0, 1)");
+  // Viscous contact damping: the fraction of critical damping of each contact's dashpot.
+  s.contact_damping = t.number("contact_damping", s.contact_damping);
+  if (!(s.contact_damping >= 0.0 && s.contact_damping < 1.0))
+    t.fail("contact_damping", "must be a fraction of critical damping in [0, 1)");
   // "auto" (the default) or a positive number of seconds.
   if (t.is_string("time_step")) {
     if (t.string("time_step") != "auto")

@@ -55,6 +55,7 @@ void BaseDrive::after_step(World& world) {
     b.velocity = du / dt;
     b.angular_velocity.setZero();
     b.angular_momentum.setZero();
+    world.note_boundary_velocity(base_[k]);
   }
 }
 

@@ -32,16 +32,26 @@ struct ContactGeometryRecord {
 
 /// What a contact holds beyond the values a point contact takes from its geometry: the force
 /// point, compressed area, peak stress and peak closure of a face-integrated contact (a point
-/// contact's are x_c, A_c, σ_n and δ), and the previous step's normal where it is not this
-/// step's (after a restore re-derived the geometry without a shear update).
+/// contact's are x_c, A_c, σ_n and δ), the previous step's normal where it is not this step's
+/// (after a restore re-derived the geometry without a shear update), and the dashpot's force and
+/// work of a contact with viscous damping.
 struct ContactDetail {
-  Eigen::Vector3d force_point = Eigen::Vector3d::Zero();       ///< (m)
+  Eigen::Vector3d force_point = Eigen::Vector3d::Zero();  ///< (m)
+  /// The viscous dashpot's normal force of the last step (N), compression positive, on b along
+  /// +normal at the force point (response/contact_damping.hpp); zero without contact damping.
+  /// Beside the force point: the loads' scatter reads both.
+  double damping_force = 0.0;
   Eigen::Vector3d previous_normal = Eigen::Vector3d::UnitZ();  ///< (-)
   double compressed_area = 0.0;                                ///< (m^2)
   double peak_stress = 0.0;                                    ///< (Pa)
   double peak_closure = 0.0;                                   ///< (m)
-  double normal_energy = 0.0;        ///< ∫ e(g) dA, the normal springs' energy (J)
-  bool has_force_values = false;     ///< the five values above are the contact's own
+  double normal_energy = 0.0;  ///< ∫ e(g) dA, the normal springs' energy (J)
+  /// The energy the dashpot dissipated in the last step (J): this step's half of the
+  /// trapezoidal work of its force (the other half follows with the next step's velocities).
+  double damping_work = 0.0;
+  /// The five force values (force point, area, peak stress, peak closure, normal energy) are the
+  /// contact's own.
+  bool has_force_values = false;
   bool has_previous_normal = false;  ///< previous_normal is the contact's own
 };
 
@@ -156,8 +166,23 @@ struct Contact : ContactValues {
   /// The record kept apart, or null (a point contact in the common case).
   const ContactDetail* detail_record() const { return detail_.get(); }
 
-  /// Total force on b (N); the force on a is its negative.
-  Eigen::Vector3d force_on_b() const { return normal_force * geometry.normal + shear.force; }
+  /// The dashpot's normal force (N) and the energy it dissipated in the step (J); zero without
+  /// contact damping (ContactDetail).
+  double damping_force() const { return detail_ ? detail_->damping_force : 0.0; }
+  double damping_work() const { return detail_ ? detail_->damping_work : 0.0; }
+  /// Sets the dashpot's values; zeros on a contact without a record leave it without one.
+  void set_damping(double force, double work) {
+    if (!detail_ && force == 0.0 && work == 0.0) return;
+    ContactDetail& d = detail();
+    d.damping_force = force;
+    d.damping_work = work;
+    drop_empty_detail();
+  }
+
+  /// Total force on b (N), springs and dashpot; the force on a is its negative.
+  Eigen::Vector3d force_on_b() const {
+    return (normal_force + damping_force()) * geometry.normal + shear.force;
+  }
 
  private:
   bool force_values() const { return detail_ && detail_->has_force_values; }
@@ -166,7 +191,9 @@ struct Contact : ContactValues {
     return *detail_;
   }
   void drop_empty_detail() {
-    if (!detail_->has_force_values && !detail_->has_previous_normal) detail_.reset();
+    if (!detail_->has_force_values && !detail_->has_previous_normal &&
+        detail_->damping_force == 0.0 && detail_->damping_work == 0.0)
+      detail_.reset();
   }
   /// The values as one block of bytes: the defaulted copy copies the shear state without its
   /// tail (the flags and the law live there) and then those field by field, which the settle,
@@ -195,7 +222,7 @@ struct Contact : ContactValues {
 static_assert(std::is_trivially_destructible_v<ContactValues> && sizeof(ContactValues) == 200,
               "ContactValues changed size");
 static_assert(sizeof(Contact) == 208, "Contact changed size");
-static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 88,
+static_assert(std::is_trivially_destructible_v<ContactDetail> && sizeof(ContactDetail) == 104,
               "ContactDetail changed size");
 
 /// A contact as bytes between processes of the same program: its values, then its detail (all

@@ -11,14 +11,14 @@
 namespace blockdem {
 
 double EnergyBudget::residual() const {
-  return kinetic + elastic + friction_dissipation + damping_dissipation -
+  return kinetic + elastic + friction_dissipation + damping_dissipation + contact_damping -
          (initial + gravity_work + load_work + boundary_work);
 }
 
 double EnergyBudget::scale() const {
   double s = 0.0;
-  for (double v : {kinetic, elastic, friction_dissipation, damping_dissipation, initial,
-                   gravity_work, load_work, boundary_work})
+  for (double v : {kinetic, elastic, friction_dissipation, damping_dissipation, contact_damping,
+                   initial, gravity_work, load_work, boundary_work})
     s = std::max(s, std::abs(v));
   return s;
 }
@@ -46,6 +46,7 @@ void EnergyStepSums::add_contact(const Contact& contact, double twist_stiffness,
   elastic.add(joint_elastic_energy(contact));
   elastic.add(twist_elastic_energy(contact.twist.moment, twist_stiffness));
   slip_work.add(slip);
+  if (const double d = contact.damping_work(); d != 0.0) contact_damping.add(d);
 }
 
 EnergyStepSums& EnergyStepSums::operator+=(const EnergyStepSums& other) {
@@ -60,6 +61,7 @@ EnergyStepSums& EnergyStepSums::operator+=(const EnergyStepSums& other) {
   water_next += other.water_next;
   seismic += other.seismic;
   seismic_next += other.seismic_next;
+  contact_damping += other.contact_damping;
   return *this;
 }
 
@@ -67,7 +69,7 @@ std::vector<std::int64_t> EnergyStepSums::limbs() const {
   std::vector<std::int64_t> out;
   out.reserve(kLimbs);
   for (const ExactSum* s : {&gravity, &load, &damping, &kinetic, &boundary, &elastic, &slip_work,
-                            &water, &water_next, &seismic, &seismic_next}) {
+                            &water, &water_next, &seismic, &seismic_next, &contact_damping}) {
     const auto l = s->limbs();
     out.insert(out.end(), l.begin(), l.end());
   }
@@ -77,9 +79,9 @@ std::vector<std::int64_t> EnergyStepSums::limbs() const {
 EnergyStepSums EnergyStepSums::from_limbs(std::span<const std::int64_t> limbs) {
   EnergyStepSums sums;
   std::size_t at = 0;
-  for (ExactSum* s :
-       {&sums.gravity, &sums.load, &sums.damping, &sums.kinetic, &sums.boundary, &sums.elastic,
-        &sums.slip_work, &sums.water, &sums.water_next, &sums.seismic, &sums.seismic_next}) {
+  for (ExactSum* s : {&sums.gravity, &sums.load, &sums.damping, &sums.kinetic, &sums.boundary,
+                      &sums.elastic, &sums.slip_work, &sums.water, &sums.water_next, &sums.seismic,
+                      &sums.seismic_next, &sums.contact_damping}) {
     *s = ExactSum::from_limbs(limbs.subspan(at, ExactSum::kLimbs));
     at += ExactSum::kLimbs;
   }
@@ -313,6 +315,7 @@ void EnergyLedger::add_step(const EnergyStepSums& sums) {
     e.water_work += sums.water.value() + water_pending_;
     e.seismic_work += sums.seismic.value() + seismic_pending_;
     e.damping_dissipation += sums.damping.value();
+    e.contact_damping += sums.contact_damping.value();
     e.boundary_work -= sums.boundary.value();
   }
   water_pending_ = sums.water_next.value();
@@ -361,7 +364,7 @@ Eigen::Vector3d EnergyLedger::level_angular_velocity(int i, const Block& b) cons
   return k < level_angular_velocity_.size() ? level_angular_velocity_[k] : b.angular_velocity;
 }
 
-void EnergyLedger::save_state(StateWriter& w) const {
+void EnergyLedger::save_state(StateWriter& w, bool dashpots) const {
   const EnergyBudget& e = budget_;
   for (double v : {e.kinetic, e.elastic, e.gravity_work, e.load_work, e.boundary_work,
                    e.friction_dissipation, e.damping_dissipation, e.initial})
@@ -378,9 +381,10 @@ void EnergyLedger::save_state(StateWriter& w) const {
   }
   w.pod(static_cast<std::uint8_t>(started_));
   for (double v : {e.water_work, e.seismic_work, water_pending_, seismic_pending_}) w.pod(v);
+  if (dashpots) w.pod(e.contact_damping);
 }
 
-void EnergyLedger::load_state(StateReader& r) {
+void EnergyLedger::load_state(StateReader& r, bool dashpots) {
   EnergyBudget& e = budget_;
   for (double* v : {&e.kinetic, &e.elastic, &e.gravity_work, &e.load_work, &e.boundary_work,
                     &e.friction_dissipation, &e.damping_dissipation, &e.initial})
@@ -402,6 +406,8 @@ void EnergyLedger::load_state(StateReader& r) {
   }
   started_ = r.pod<std::uint8_t>() != 0;
   for (double* v : {&e.water_work, &e.seismic_work, &water_pending_, &seismic_pending_}) r.pod(*v);
+  e.contact_damping = 0.0;
+  if (dashpots) r.pod(e.contact_damping);
 }
 
 }  // namespace blockdem

@@ -18,7 +18,8 @@ namespace blockdem {
 
 /// Energies at time level n (the positions at which the last step evaluated its forces) and the
 /// works and dissipations accumulated since the world was built. The balance
-///   kinetic + elastic + friction + damping = initial + gravity + loads + boundary
+///   kinetic + elastic + friction + damping + contact damping = initial + gravity + loads +
+///   boundary
 /// holds to the integration error; residual() is the difference.
 struct EnergyBudget {
   /// Free blocks: Σ ½ m v_{n-1/2}·v_{n+1/2} + ¼ (ω_{n-1/2}·L_{n+1/2} + ω_{n+1/2}·L_{n-1/2}), the
@@ -41,9 +42,13 @@ struct EnergyBudget {
   double boundary_work = 0.0;
   double friction_dissipation = 0.0;  ///< Σ -F_s·du_p over joint slip (J), positive
   double damping_dissipation = 0.0;   ///< work removed by local damping (J), positive
-  double initial = 0.0;               ///< kinetic + elastic when the accounting started (J)
+  /// Work removed by the contacts' viscous dashpots (settings contact_damping) (J), positive:
+  /// the trapezoidal work of their forces, the rule of the other works.
+  double contact_damping = 0.0;
+  double initial = 0.0;  ///< kinetic + elastic when the accounting started (J)
 
-  /// kinetic + elastic + friction + damping − (initial + gravity + loads + boundary) (J).
+  /// kinetic + elastic + friction + damping + contact damping − (initial + gravity + loads +
+  /// boundary) (J).
   double residual() const;
   /// The largest magnitude among the terms, the scale for a relative residual (J).
   double scale() const;
@@ -72,14 +77,15 @@ struct EnergyStepSums {
   ExactSum gravity, load, damping, kinetic;           ///< over free blocks
   ExactSum boundary;                                  ///< over the other blocks
   ExactSum elastic, slip_work;                        ///< over active contacts
+  ExactSum contact_damping;                           ///< over contacts with a dashpot
   ExactSum water, water_next, seismic, seismic_next;  ///< over free blocks
   void add_block(const BlockEnergyTerms& terms);
-  /// A contact's springs (normal, shear and, with `twist_stiffness` k_s J > 0, the twist spring)
-  /// and the work its slip dissipated in the step (J).
+  /// A contact's springs (normal, shear and, with `twist_stiffness` k_s J > 0, the twist spring),
+  /// the work its slip dissipated in the step and its dashpot's half of this step (J).
   void add_contact(const Contact& contact, double twist_stiffness, double slip_work);
   /// Adds another part's sums (exact: the same bits for any split of the terms).
   EnergyStepSums& operator+=(const EnergyStepSums& other);
-  static constexpr std::size_t kLimbs = 11 * ExactSum::kLimbs;
+  static constexpr std::size_t kLimbs = 12 * ExactSum::kLimbs;
   /// Every sum's limbs (ExactSum::limbs), for an integer-sum reduction over processes.
   std::vector<std::int64_t> limbs() const;
   static EnergyStepSums from_limbs(std::span<const std::int64_t> limbs);
@@ -135,10 +141,16 @@ class EnergyLedger {
   std::size_t records() const { return previous_.size(); }
 
   const EnergyBudget& budget() const { return budget_; }
-  /// The whole ledger (budget, previous step, level velocities), for a bit-identical restart.
-  void save_state(StateWriter& w) const;
+  /// The whole ledger (budget, previous step, level velocities), for a bit-identical restart;
+  /// with `dashpots` (the scenario has contact damping), the contact damping term last.
+  void save_state(StateWriter& w, bool dashpots) const;
   /// Throws StateError for bytes that are not a ledger.
-  void load_state(StateReader& r);
+  void load_state(StateReader& r, bool dashpots);
+  /// A boundary block's velocity over the next step, set after the step (a dynamic stage's
+  /// base): the velocity its next work term pairs with its contact impulses (m/s).
+  void set_boundary_velocity(std::size_t i, const Eigen::Vector3d& v) {
+    if (started_ && i < previous_.size()) previous_[i].velocity = v;
+  }
   /// Velocity of block i at level n, (v_{n-1/2} + v_{n+1/2}) / 2 (m/s); before the first step,
   /// the block's own.
   Eigen::Vector3d level_velocity(int i, const Block& b) const;

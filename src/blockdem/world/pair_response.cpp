@@ -12,6 +12,7 @@
 #include "blockdem/collision/small_vector.hpp"
 #include "blockdem/contact/twist.hpp"
 #include "blockdem/geometry/polygon_moments.hpp"
+#include "blockdem/response/contact_damping.hpp"
 #include "blockdem/response/contact_twist.hpp"
 #include "blockdem/response/face_laws.hpp"
 #include "blockdem/response/normal_response.hpp"
@@ -253,6 +254,12 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   }
   ct.shear_couple =
       shear_couple(normal->shear_point, ct.force_point(), ct.shear.force, ct.geometry.normal);
+  // The viscous dashpot beside the normal spring (settings contact_damping), at the force point.
+  if (advance_shear && settings_.contact_damping > 0.0) {
+    const Dashpot d = contact_dashpot(settings_.contact_damping, a, b, ct.force_point(),
+                                      ct.geometry.normal, normal->stiffness, normal->force, dt);
+    ct.set_damping(d.force, -d.half_work);
+  }
 }
 
 }  // namespace blockdem

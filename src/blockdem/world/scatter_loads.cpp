@@ -224,6 +224,7 @@ void World::scatter_loads(const std::vector<char>* counted) {
     contact_energy_ = EnergyStepSums{};
     for (const RunTotals& r : totals) contact_energy_ += r.energy;
   }
+  contact_energy_.contact_damping += dashpot_carried_;
   contact_dt_ = 0.0;
   if (std::isfinite(dt_min)) contact_dt_ = settings_.safety_factor * dt_min;
 }

@@ -271,8 +271,8 @@ void block_record(Ar& ar, B& b, V& box_min, V& box_max, L& laws, const Eigen::Ve
 // A contact's values and the record kept apart (contact.hpp): a field added to either must go in
 // contact_record (or in slot_record, for the step's terms of a pair). The record leaves out
 // shear_couple, as every version-5 file does: it comes back zero, and the next per-pair pass sets
-// it.
-static_assert(sizeof(ContactValues) == 200 && sizeof(ContactDetail) == 88,
+// it; and the dashpot's force and work of the last step (contact damping): they come back zero.
+static_assert(sizeof(ContactValues) == 200 && sizeof(ContactDetail) == 104,
               "the contact changed: update contact_record (world_state.cpp)");
 
 /// A slot's contact and warm start, as one record (the layout of a pair before its state was kept

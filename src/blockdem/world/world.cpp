@@ -51,6 +51,10 @@ void WorldSettings::validate() const {
   if (!(boon2012.rounding_distance > 0.0)) fail("rounding_distance must be positive");
   if (!(max_speed > 0.0)) fail("max_speed must be positive");
   if (!(max_overlap_fraction > 0.0)) fail("max_overlap_fraction must be positive");
+  if (!(contact_damping >= 0.0 && contact_damping < 1.0))
+    fail("contact_damping must be in [0, 1), got " + number_text(contact_damping));
+  if (contact_damping > 0.0 && distribution)
+    fail("contact_damping runs on one process (run without mpirun)");
   if (threads < 0) fail("threads must be >= 0 (0: every core)");
   seismic.validate();
   if (water && !(water->density > 0.0 && std::isfinite(water->density)))

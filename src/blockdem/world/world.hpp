@@ -108,7 +108,10 @@ struct WorldSettings {
   std::optional<WaterRamp> water_ramp;
   /// The pseudo-static earthquake's coefficients (zero: none).
   SeismicLoad seismic;
-  double damping = 0.0;        ///< Cundall local damping coefficient α in [0, 1) (-)
+  double damping = 0.0;  ///< Cundall local damping coefficient α in [0, 1) (-)
+  /// Viscous contact damping: a dashpot beside each closed contact's normal spring at this
+  /// fraction ζ of critical damping, in [0, 1) (-); 0: none (response/contact_damping.hpp).
+  double contact_damping = 0.0;
   double time_step = 0.0;      ///< fixed time step (s); 0 = automatic
   double safety_factor = 0.3;  ///< automatic step = factor · sqrt(m / K) (-)
   ContactMode contact_mode = ContactMode::face_integrated;
@@ -314,6 +317,12 @@ class World {
   double level_time() const { return time_ - last_dt_; }
   /// The energy budget at level n since the world was built (world/energy_budget.hpp).
   const EnergyBudget& energy_budget() const { return energy_.budget(); }
+  /// Block i's velocity was set after the step (a dynamic stage's base): the energy ledger pairs
+  /// the block's next work term with it, the velocity that moved it over the step.
+  void note_boundary_velocity(int i) {
+    energy_.set_boundary_velocity(static_cast<std::size_t>(i),
+                                  blocks_[static_cast<std::size_t>(i)].velocity);
+  }
 
   /// The ground water's force on the free blocks at level n, summed (N): with a level water
   /// table and every block below it, ρ_w g times their volume, upward. Collective like
@@ -602,6 +611,16 @@ class World {
   std::vector<std::size_t> scatter_first_, scatter_begin_;
   std::vector<std::vector<std::size_t>> scatter_cross_;
   EnergyStepSums contact_energy_;
+  // Contact damping: whether the last step's contacts had dashpots, and the second halves of
+  // their trapezoidal work this step's velocities give (evaluate_slots, for scatter_loads).
+  // After a restart, the halves its checkpoint kept, for the first step.
+  bool dashpots_last_step_ = false;
+  ExactSum dashpot_carried_, dashpot_restored_;
+  /// The energy (J) a contact's dashpot of the last step dissipates with the velocities now: the
+  /// second half of its trapezoidal work (response/contact_damping.hpp); and its sum over the
+  /// contacts, which a checkpoint keeps.
+  double dashpot_carried(const Contact& ct) const;
+  ExactSum dashpot_pending() const;
 
   /// The world's spread over processes (settings_.distribution); empty on one process.
   Decomposition decomposition_;

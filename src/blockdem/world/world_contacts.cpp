@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "blockdem/response/contact_damping.hpp"
 #include "blockdem/world/pass_support.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -363,6 +364,15 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
   // returned after it, as a serial loop would.
   std::size_t failed = n;
   std::exception_ptr error;
+  // Contact damping: the last step's dashpots' second halves of work, with the velocities that
+  // step gave the blocks (one exact sum per run: the same bits for any thread count). Nothing
+  // is read per slot when no contact had a dashpot.
+  const bool dashpots = advance_shear && (settings_.contact_damping > 0.0 || dashpots_last_step_);
+  std::vector<ExactSum> carried(dashpots ? runs : 0);
+  const auto carry_dashpot = [&](Contact& ct, ExactSum& sum) {
+    if (ct.damping_force() != 0.0) sum.add(dashpot_carried(ct));
+    ct.set_damping(0.0, 0.0);
+  };
   for (std::size_t first = 0; first < runs; first += wave) {
     const std::int64_t wave_end = static_cast<std::int64_t>(std::min(runs, first + wave));
     const auto evaluate_run = [&](std::int64_t r) {
@@ -384,6 +394,8 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
         }
         if (only != nullptr && (*only)[i] == 0) continue;
         PairSlot& slot = slots_[i];
+        if (dashpots && slot.contact >= 0)
+          carry_dashpot(contact_of(slot), carried[static_cast<std::size_t>(r)]);
         try {
           if (slot.contact >= 0) {
             Contact& ct = contact_of(slot);
@@ -432,7 +444,28 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
       std::vector<PendingContact>().swap(pending_[r]);
     }
   }
+  // After a restart, the halves the checkpoint kept (its contacts have no dashpot values).
+  dashpot_carried_ = ExactSum{};
+  if (advance_shear) std::swap(dashpot_carried_, dashpot_restored_);
+  for (const ExactSum& sum : carried) dashpot_carried_ += sum;
+  if (advance_shear) dashpots_last_step_ = settings_.contact_damping > 0.0;
   return error;
+}
+
+double World::dashpot_carried(const Contact& ct) const {
+  return -dashpot_carried_work(ct.damping_force(), blocks_[static_cast<std::size_t>(ct.a)],
+                               blocks_[static_cast<std::size_t>(ct.b)], ct.force_point(),
+                               ct.geometry.normal, last_dt_);
+}
+
+ExactSum World::dashpot_pending() const {
+  ExactSum sum;
+  for (const PairSlot& s : slots_) {
+    if (s.contact < 0) continue;
+    const Contact& ct = contact_of(s);
+    if (ct.damping_force() != 0.0) sum.add(dashpot_carried(ct));
+  }
+  return sum;
 }
 
 void World::evaluate_pairs(double dt, bool advance_shear, int threads) {

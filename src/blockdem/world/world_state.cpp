@@ -2,6 +2,7 @@
 // the scenario does not give, so that a world built from the scenario and loaded with this state
 // continues bit-identically. Unlike the compact divergence checkpoint, nothing is re-derived.
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -54,8 +55,12 @@ void World::save_state(StateWriter& w) const {
   w.size(slots_.size());
   for (const PairSlot& s : slots_) save_slot(w, s, s.contact >= 0 ? &contact_of(s) : nullptr);
   save_divergence_checkpoint(w);
+  // Contact damping: the last step's dashpots' halves of work the next step adds.
+  if (settings_.contact_damping > 0.0) {
+    for (const std::int64_t limb : dashpot_pending().limbs()) w.pod(limb);
+  }
   // The energy ledger last: level_state() and energy_budget() read it.
-  energy_.save_state(w);
+  energy_.save_state(w, settings_.contact_damping > 0.0);
 }
 
 void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loads) const {
@@ -110,7 +115,7 @@ void World::save_divergence_checkpoint(StateWriter& w) const {
   }
   w.size(checkpoint_.kept_slots());
   checkpoint_.for_each_kept_slot([&](const ContactHistory& h) { history_record(ar, h); });
-  checkpoint_.energy.save_state(w);
+  checkpoint_.energy.save_state(w, settings_.contact_damping > 0.0);
 }
 
 void World::load_state(StateReader& r) {
@@ -125,8 +130,15 @@ void World::load_state(StateReader& r) {
   load_counters(r);
   load_slots(r);
   load_divergence_checkpoint(r);
-  checkpoint_.energy.load_state(r);
-  energy_.load_state(r);  // after remove_blocks above, which starts the accounting again
+  checkpoint_.energy.load_state(r, settings_.contact_damping > 0.0);
+  dashpot_restored_ = ExactSum{};
+  if (settings_.contact_damping > 0.0) {
+    std::array<std::int64_t, ExactSum::kLimbs> limbs{};
+    for (std::int64_t& limb : limbs) r.pod(limb);
+    dashpot_restored_ = ExactSum::from_limbs(limbs);
+  }
+  // After remove_blocks above, which starts the accounting again.
+  energy_.load_state(r, settings_.contact_damping > 0.0);
 }
 
 void World::load_blocks(StateReader& r) {
