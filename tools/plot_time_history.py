@@ -26,6 +26,7 @@ ENERGY = [
     ("boundary_work_J", "work of the boundaries", True),
     ("friction_dissipation_J", "friction dissipation", False),
     ("damping_dissipation_J", "damping dissipation", True),
+    ("contact_damping_J", "contact dashpots", True),
     ("energy_residual_J", "residual", False),
 ]
 RATIOS = [("unbalanced_force_ratio", "unbalanced-force ratio"),
