@@ -11,13 +11,12 @@
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/collision/face_contact.hpp"
 #include "blockdem/contact/normal_integral.hpp"
+#include "blockdem/numerics/units.hpp"
 #include "blockdem/world/stage.hpp"
 #include "scenes.hpp"
 
 namespace blockdem {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Resultant {
   double force = 0.0;
