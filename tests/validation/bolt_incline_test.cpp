@@ -203,6 +203,56 @@ TEST_P(BoltOnAnIncline, DowelYieldsAtItsCapacityAndTheTendonRupturesAsTheBlockSl
       1e3 * expected, slip_at_rupture / expected - 1.0);
 }
 
+// The same yielding dowel with a shear rupture displacement δ_r = 5 mm (and a tendon that does
+// not rupture): the bolt breaks in shear once the dowel's shear across it reaches δ_r, is
+// removed and counted as ruptured, and the block slides on unheld. The slip at the crossing when
+// it breaks is δ_r, within 1 % (the block's travel in a step is far below).
+TEST_P(BoltOnAnIncline, DowelBreaksInShearAtItsRuptureDisplacement) {
+  const double ks = 1e5, capacity = 0.95 * unbalanced(), rupture = 0.005;
+  std::ostringstream bolt;
+  bolt.precision(17);
+  bolt << "start = [0, 0, 0.1]\ndirection = [0, 0, -1]\nlength = 0.14\naxial_stiffness = 1e-3"
+       << "\nshear_stiffness = " << ks << "\nshear_capacity = " << capacity
+       << "\nshear_rupture_displacement = " << rupture << "\n";
+  World w = settled(incline(bolt.str(), "steps", 200000));
+  // The shear at the positions of the step in which the bolt broke (its forces are computed
+  // there), and at those of the step before.
+  double slip = 0.0, slip_before = 0.0;
+  // The shear across the bolt: the crossing's relative displacement less its part along the
+  // head-anchor line (docs/support.md, "Dowel action").
+  const auto crossing_slip = [](const World& world) {
+    const Bolt& b = world.bolts()[0];
+    const BoltCrossing& c = b.crossings[0];
+    const auto at = [&](int block, const Eigen::Vector3d& body) {
+      return world.blocks()[static_cast<std::size_t>(block)].to_world(body);
+    };
+    const Eigen::Vector3d line =
+        (at(b.ties[1].block, b.ties[1].body_point) - at(b.ties[0].block, b.ties[0].body_point))
+            .normalized();
+    const Eigen::Vector3d d = at(c.block_b, c.body_b) - at(c.block_a, c.body_a);
+    return (d - d.dot(line) * line).norm();
+  };
+  EXPECT_TRUE(run_stage(w, stages_[1]).converged);
+  ASSERT_TRUE(w.bolts()[0].active()) << "the bolt broke during the ramp";
+  for (int k = 0; k < 2000000 && w.bolts()[0].active(); ++k) {
+    slip_before = slip;
+    slip = crossing_slip(w);
+    w.step();
+  }
+  ASSERT_EQ(w.bolts()[0].state, Bolt::State::ruptured);
+  EXPECT_EQ(w.bolt_count(Bolt::State::ruptured), 1);
+  // It broke at the first positions whose shear reached δ_r.
+  EXPECT_LT(slip_before, rupture);
+  EXPECT_GE(slip, rupture);
+  EXPECT_NEAR(slip, rupture, 0.01 * rupture);
+  // Unheld, the block slides on: its speed grows.
+  const double v0 = w.blocks()[1].velocity.norm();
+  for (int k = 0; k < 2000; ++k) w.step();
+  EXPECT_GT(w.blocks()[1].velocity.norm(), v0);
+  std::printf("dowel breaks in shear (%s): at %.6g mm of shear against %.6g mm (%.2e)\n",
+              to_string(GetParam()), 1e3 * slip, 1e3 * rupture, slip / rupture - 1.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(BoltSupport, BoltOnAnIncline,
                          ::testing::Values(ContactMode::face_integrated, ContactMode::boon2012),
                          [](const ::testing::TestParamInfo<ContactMode>& mode) {

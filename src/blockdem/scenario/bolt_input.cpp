@@ -42,6 +42,7 @@ void read_element(const CheckedTable& t, BoltSpec& b) {
   }
   b.shear_stiffness = t.positive("shear_stiffness", 0.0, true);
   b.shear_capacity = t.positive("shear_capacity", inf);
+  b.shear_rupture_displacement = t.positive("shear_rupture_displacement", inf);
   b.pretension = t.positive("pretension", 0.0, true);
   try {
     b.validate();

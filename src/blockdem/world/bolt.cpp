@@ -29,6 +29,10 @@ void BoltSpec::validate() const {
   if (!(shear_stiffness >= 0.0) || !std::isfinite(shear_stiffness))
     fail("shear_stiffness", "must be zero or positive (N/m)");
   if (!(shear_capacity > 0.0)) fail("shear_capacity", "must be positive (N)");
+  if (!(shear_rupture_displacement > 0.0))
+    fail("shear_rupture_displacement", "must be positive (m)");
+  if (std::isfinite(shear_rupture_displacement) && !(shear_stiffness > 0.0))
+    fail("shear_rupture_displacement", "needs a dowel (shear_stiffness)");
   if (!(pretension >= 0.0) || !std::isfinite(pretension))
     fail("pretension", "must be zero or positive (N)");
   if (pretension >= yield_force) fail("pretension", "must be below yield_force");
@@ -319,6 +323,22 @@ void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& sti
   const auto world = [&](const BoltTie& t) -> Eigen::Vector3d {
     return blocks[static_cast<std::size_t>(t.block)].to_world(t.body_point);
   };
+  // A dowel sheared to its rupture displacement at any crossing breaks the bolt, before any of
+  // its forces of this step (as a tendon that ruptures): the shear across the bolt's axis (the
+  // head-anchor line of a point-anchored bolt, the installed direction of a grouted one).
+  if (std::isfinite(spec.shear_rupture_displacement)) {
+    Eigen::Vector3d line = spec.direction;
+    if (!spec.grouted()) line = (world(bolt.ties[1]) - world(bolt.ties[0])).normalized();
+    for (const BoltCrossing& c : bolt.crossings) {
+      const Eigen::Vector3d d = blocks[static_cast<std::size_t>(c.block_b)].to_world(c.body_b) -
+                                blocks[static_cast<std::size_t>(c.block_a)].to_world(c.body_a);
+      if ((d - d.dot(line) * line).norm() >= spec.shear_rupture_displacement) {
+        bolt.state = Bolt::State::ruptured;
+        bolt.axial_force = 0.0;
+        return;
+      }
+    }
+  }
   bool yielded = false;
   Eigen::Vector3d axis = spec.direction;
   if (!spec.grouted()) {

@@ -29,6 +29,9 @@ struct BoltSpec {
   double bond_strength = std::numeric_limits<double>::infinity();  ///< per unit length (N/m)
   double shear_stiffness = 0.0;  ///< dowel at each joint crossing (N/m); 0: none
   double shear_capacity = std::numeric_limits<double>::infinity();  ///< dowel (N)
+  /// The dowel's shear displacement across the bolt at which it breaks in shear (m): the bolt
+  /// ruptures and is removed. Infinite: it never breaks in shear.
+  double shear_rupture_displacement = std::numeric_limits<double>::infinity();
   double pretension = 0.0;  ///< tendon force at installation, point-anchored bolts (N)
 
   /// The tendon's E A (N): axial_stiffness · length.

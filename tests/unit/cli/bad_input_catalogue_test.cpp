@@ -255,6 +255,13 @@ INSTANTIATE_TEST_SUITE_P(
         ScenarioCase{"bolt_stiffness_negative", "",
                      kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nshear_stiffness = -1e8",
                      "bolts[1].shear_stiffness", "positive"},
+        ScenarioCase{"bolt_shear_rupture_without_dowel", "",
+                     kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nshear_rupture_displacement = 0.01",
+                     "bolts[1].shear_rupture_displacement", "needs a dowel"},
+        ScenarioCase{"bolt_shear_rupture_negative", "",
+                     kBolt + "start = [0, 0, 0.2]\nlength = 0.3\nshear_stiffness = 1e8\n"
+                             "shear_rupture_displacement = -0.01",
+                     "bolts[1].shear_rupture_displacement", "positive"},
         ScenarioCase{"bolt_stage_unknown", "",
                      "[[bolts]]\nname = \"B1\"\ndirection = [0, 0, -1]\naxial_stiffness = 1e7\n"
                      "start = [0, 0, 0.2]\nlength = 0.3\ninstall_stage = \"support\"",
