@@ -179,6 +179,18 @@ CHECKS = [
      "run:tunnel_bolted",
      lambda d: [max(abs(float(r["axial_force_N"])) for r in bolts_csv(d)) / 1e3,
                 max(abs(float(r["shear_force_N"])) for r in bolts_csv(d)) / 1e3]),
+    ("docs/support.md", r"Unbolted, `rock_21` slides " + NUMBER + " mm east and " + NUMBER +
+     " mm down", "run:slope", lambda d: last_displacement_mm(d, "rock_21")),
+    ("docs/support.md", r"Bolted, the run warns that " + NUMBER + " of " + NUMBER +
+     r" pattern bolts[^.]*, installs " + NUMBER + r" bolts, and completes\s+with every bolt "
+     r"intact and no key block: `rock_21` moves " + NUMBER + " mm east and " + NUMBER +
+     " mm down", "run:slope_bolted",
+     lambda d: printed(d, r"(\d+) of (\d+) bolts") + [summary(d)["bolts"]["intact"]] +
+     last_displacement_mm(d, "rock_21")),
+    ("docs/support.md", r"The\s+largest tendon force in `bolts.csv` is " + NUMBER +
+     " kN and the largest dowel shear " + NUMBER + " kN", "run:slope_bolted",
+     lambda d: [max(abs(float(r["axial_force_N"])) for r in bolts_csv(d)) / 1e3,
+                max(abs(float(r["shear_force_N"])) for r in bolts_csv(d)) / 1e3]),
 ]
 
 
