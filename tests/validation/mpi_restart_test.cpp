@@ -269,6 +269,28 @@ TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
   EXPECT_EQ(read_file_bytes(out / "checkpoint.bdck"), garbage);
 }
 
+// A voussoir beam (Boon et al. 2015, Table 2 case 1), stopped inside its 15 g level on 2
+// processes and resumed on 1 and on 3: the beam's tables and summary.json (the recorder's levels
+// travel in the checkpoint) and every other output byte-identical to the one-process run never
+// stopped, its VTK frames equal through VTK's reader. Tolerance: none.
+TEST(MpiRestartVoussoir, StoppedOnTwoProcessesResumesOnOneAndThreeBitIdentically) {
+  if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
+  const fs::path beam = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/boon2015/T2-1.toml";
+  const fs::path reference = fresh_dir("mpi_voussoir_reference");
+  ASSERT_EQ(run(0, beam, reference, ""), 0);
+  const fs::path stopped = fresh_dir("mpi_voussoir_stopped");
+  ASSERT_EQ(run(2, beam, stopped, "", "BLOCKDEM_TEST_KILL_RANK", "1:20000:TERM"), 143);
+  for (int ranks : {0, 3}) {
+    SCOPED_TRACE("resumed on " + std::to_string(ranks) + " (0: no launcher)");
+    const fs::path out = fresh_dir("mpi_voussoir_after" + std::to_string(ranks));
+    fs::copy(stopped, out, fs::copy_options::recursive);
+    ASSERT_EQ(run(ranks, beam, out, "--resume"), 0);
+    EXPECT_EQ(outputs(out), outputs(reference));
+    EXPECT_TRUE(outputs(out).count("joints.csv")) << "the beam's own tables compared";
+    expect_same_frames(reference, out);
+  }
+}
+
 /// Runs the restart scenario with a last stage of `steps` steps on 2 processes and, once they
 /// are inside that stage, sends SIGTERM from outside to process 1 alone (its process id from a
 /// wrapper shell that execs the program) or to mpirun (which passes it on to both after

@@ -170,8 +170,11 @@ ScenarioFingerprint scenario_fingerprint(std::string_view text, const std::strin
   } catch (const toml::parse_error&) {
     return f;
   }
-  toml::array stages;
-  if (auto* s = root.get_as<toml::array>("stages")) stages = std::move(*s);
+  // A file whose stages a table builds (e.g. [voussoir]) has no [[stages]] list to branch from:
+  // its checkpoints carry `whole` and restart only the same file.
+  auto* listed = root.get_as<toml::array>("stages");
+  if (listed == nullptr) return f;
+  toml::array stages = std::move(*listed);
   root.erase("stages");
   // Distinct from any `whole`: a leading tag.
   std::uint64_t h = hash_node(root, fnv1a64("blockdem scenario prefix", opts));

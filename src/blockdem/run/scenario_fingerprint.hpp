@@ -20,7 +20,9 @@ namespace blockdem {
 /// a scenario that agrees up to there may continue it, whatever its later stages are.
 ///
 /// `whole` hashes the file's bytes and the options: what checkpoints of earlier versions carry,
-/// and what a file too large to parse twice (listed blocks over kMaxFingerprintBytes) carries.
+/// what a file too large to parse twice (listed blocks over kMaxFingerprintBytes) carries, and
+/// what a file without a [[stages]] list carries (its stages built by a table such as
+/// [voussoir], they cannot be branched from one by one).
 ///
 /// A dynamic stage's acceleration record (`base_motion.file`) counts with its bytes: its hash
 /// is folded into that stage's entry and every later one, and into `whole`.

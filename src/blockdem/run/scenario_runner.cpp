@@ -132,9 +132,9 @@ class RunOutputs final : public RunObserver {
                            sc_.output.history_bolts, moves_base(sc_.stages)},
         resumed);
   }
-  /// A restart: the writers continue their files, and the summary, stages and counters go on
-  /// from the checkpoint's.
-  void resume(const RunPoint& point, const std::filesystem::path& restart) {
+  /// A restart: the writers continue their files, the scene's observer (if any) takes up what it
+  /// measured, and the summary, stages and counters go on from the checkpoint's.
+  void resume(const RunPoint& point, const std::filesystem::path& restart, RunObserver* scene) {
     try {
       StateReader r(reinterpret_cast<const std::uint8_t*>(point.outputs.data()),
                     point.outputs.size());
@@ -148,6 +148,7 @@ class RunOutputs final : public RunObserver {
         std::string name = r.str();
         start_positions_[std::move(name)] = r.vec();
       }
+      if (scene) scene->load_state(r);
       if (!r.done()) throw StateError("saved output state is corrupt (bytes left over)");
     } catch (const StateError& e) {
       throw CheckpointError(restart, e.what());
@@ -380,8 +381,8 @@ void RunOutputs::on_interrupted(const World& world, const Stage& stage, int,
 class Checkpoints {
  public:
   Checkpoints(World& world, const std::filesystem::path& out, const RunControl& control,
-              RunOutputs& outputs, const RunResult& res)
-      : world_(world), out_(out), control_(control), outputs_(outputs), res_(res) {}
+              RunOutputs& outputs, const RunObserver* scene, const RunResult& res)
+      : world_(world), out_(out), control_(control), outputs_(outputs), scene_(scene), res_(res) {}
 
   /// What the caller's poll says now, with whether the local clock says a checkpoint is due.
   RunPoll poll() const {
@@ -407,6 +408,7 @@ class Checkpoints {
   const std::filesystem::path out_;
   const RunControl& control_;
   RunOutputs& outputs_;
+  const RunObserver* scene_;  ///< the scene's observer (its state follows the outputs'), or null
   const RunResult& res_;
   Clock::time_point last_ = Clock::now();
 };
@@ -432,6 +434,7 @@ void Checkpoints::write(int level, const StageResume* at, const MotionMonitor* m
     outputs_.history().save_state(w);
     outputs_.recorder().save_state(w);
     outputs_.save_stage_start(w);
+    if (scene_) scene_->save_state(w);
     p.outputs.assign(w.bytes().begin(), w.bytes().end());
   }
   outputs_.history().flush();  // the rows so far are in the file saved below
@@ -495,7 +498,7 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
 }
 
 /// The result's status, message and exit code from how the drive ended. `no_checkpoints`: what
-/// the scene's runs are called when they take no checkpoints (BuiltScene::without_checkpoints).
+/// the runs are called when they take no checkpoints (empty when they do).
 void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& outputs,
                    const RunObserver* scene, const std::string& no_checkpoints,
                    const std::filesystem::path& out, RunResult& res) {
@@ -645,9 +648,7 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   const BuiltScene* scene = sc.built.get();
   const bool bolted = std::any_of(sc.stages.begin(), sc.stages.end(),
                                   [](const Stage& st) { return !st.bolts.empty(); });
-  const std::string no_checkpoints = scene    ? scene->without_checkpoints()
-                                     : bolted ? std::string("scenarios with bolts")
-                                              : std::string();
+  const std::string no_checkpoints = bolted ? std::string("scenarios with bolts") : std::string();
   if (!no_checkpoints.empty() && (control.checkpoint_every > 0 ||
                                   control.checkpoint_seconds > 0.0 || !control.restart.empty()))
     throw std::invalid_argument("checkpoints and restarts are not available for " + no_checkpoints +
@@ -691,15 +692,16 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   // Every process writes its VTK pieces into the shared folder: not before process 0 has
   // cleared it of an earlier run and put back a restarted run's files (one collective).
   if (ranks > 1 && sc.output.vtk) distribution->sum({0});
-  std::shared_ptr<RunObserver> scene_observer = scene ? scene->observer(out, world) : nullptr;
+  std::shared_ptr<RunObserver> scene_observer =
+      scene ? scene->observer(out, world, resume != nullptr) : nullptr;
   outputs.open_history(world, resume != nullptr);
   res.summary = fresh_summary(sc, world);
   report_time_step(world, cb, res.summary);
   if (resume) {
-    outputs.resume(*resume, control.restart);
+    outputs.resume(*resume, control.restart, scene_observer.get());
     res.summary["scenario"] = sc.file;  // a branch may continue under another file's name
   }
-  Checkpoints checkpoints(world, out, control, outputs, res);
+  Checkpoints checkpoints(world, out, control, outputs, scene_observer.get(), res);
   DriveControl dc = run_control(sc, world, cb, control, no_checkpoints.empty(), outputs,
                                 checkpoints, start.level, start.resume, resume != nullptr);
   const StageSync sync = run_sync();

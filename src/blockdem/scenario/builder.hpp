@@ -20,17 +20,15 @@ struct Scenario;
 struct BuiltScene {
   virtual ~BuiltScene() = default;
   /// The observer that writes this scene's outputs of a run into `out` (null: none), made once the
-  /// world is built.
+  /// world is built. `resumed`: the run continues a checkpoint, whose files are back in `out`
+  /// (the observer appends to them, and its state is loaded next: RunObserver::load_state).
   virtual std::unique_ptr<RunObserver> observer(const std::filesystem::path& /*out*/,
-                                                const World& /*world*/) const {
+                                                const World& /*world*/, bool /*resumed*/) const {
     return nullptr;
   }
   /// Whether the observer writes history.csv and blocks.csv itself (the run then writes neither
   /// those nor contacts.csv).
   virtual bool writes_own_tables() const { return false; }
-  /// Empty when runs of this scene can take checkpoints and restart; otherwise what the scenes
-  /// are called in the message that says they cannot (e.g. "voussoir beam scenarios").
-  virtual std::string without_checkpoints() const { return {}; }
 };
 
 class SceneBuilder {

@@ -11,6 +11,7 @@
 #include "blockdem/scenario/run_status.hpp"
 #include "blockdem/world/stability.hpp"
 #include "blockdem/world/stage.hpp"
+#include "blockdem/world/state_stream.hpp"
 
 namespace blockdem {
 
@@ -63,6 +64,10 @@ class RunObserver {
   virtual void add_to_summary(nlohmann::json&, RunStatus) const {}
   /// The run has written its last file: the observer closes its files (what it measured stays).
   virtual void on_run_end() {}
+  /// What the observer has measured so far, for a checkpoint (its files are saved with the run's).
+  virtual void save_state(StateWriter&) const {}
+  /// A restart: what save_state wrote (throws StateError for bytes it cannot read).
+  virtual void load_state(StateReader&) {}
 };
 
 }  // namespace blockdem

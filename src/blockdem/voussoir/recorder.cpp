@@ -2,14 +2,16 @@
 #include "blockdem/voussoir/recorder.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <type_traits>
 
 #include "blockdem/numerics/units.hpp"
 
 namespace blockdem {
 
 VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, VoussoirSpec spec,
-                                   VoussoirLayout layout)
+                                   VoussoirLayout layout, bool resumed)
     : spec_(std::move(spec)), layout_(std::move(layout)) {
   history_ = std::make_unique<CsvWriter>(
       dir / "history.csv",
@@ -17,17 +19,21 @@ VoussoirRecorder::VoussoirRecorder(const std::filesystem::path& dir, VoussoirSpe
           "level", "stage", "converged", "steps", "g_level", "thrust_N", "thrust_other_abutment_N",
           "midspan_deflection_mm", "abutment_slip_mm", "max_normal_stress_MPa",
           "equilibrium_residual", "lever_arm_mm", "beam_weight_N", "parabola_rms_mm",
-          "parabola_thrust_N", "catenary_rms_mm", "catenary_thrust_N", "time_s"});
+          "parabola_thrust_N", "catenary_rms_mm", "catenary_thrust_N", "time_s"},
+      resumed);
   blocks_ = std::make_unique<CsvWriter>(
       dir / "blocks.csv",
       std::vector<std::string>{"level", "g_level", "block", "x_m", "z_m", "ux_mm", "uz_mm",
-                               "deflection_mm", "rotation_deg"});
+                               "deflection_mm", "rotation_deg"},
+      resumed);
   joints_ = std::make_unique<CsvWriter>(
-      dir / "joints.csv", std::vector<std::string>{
-                              "level", "g_level", "joint", "left_block", "right_block",
-                              "in_contact", "x_mm", "z_mm", "normal_force_N", "horizontal_force_N",
-                              "shear_force_N", "normal_stress_MPa", "peak_stress_MPa", "closure_mm",
-                              "area_mm2", "compressed_depth_mm", "plastic_slip_mm", "sliding"});
+      dir / "joints.csv",
+      std::vector<std::string>{"level", "g_level", "joint", "left_block", "right_block",
+                               "in_contact", "x_mm", "z_mm", "normal_force_N", "horizontal_force_N",
+                               "shear_force_N", "normal_stress_MPa", "peak_stress_MPa",
+                               "closure_mm", "area_mm2", "compressed_depth_mm", "plastic_slip_mm",
+                               "sliding"},
+      resumed);
 }
 
 void VoussoirRecorder::record(const World& world, const VoussoirLevel& lv, const std::string& stage,
@@ -108,6 +114,100 @@ void VoussoirRecorder::on_run_end() {
   history_.reset();
   blocks_.reset();
   joints_.reset();
+}
+
+namespace {
+
+// One function for both directions: a StateWriter takes each field, a StateReader fills it.
+template <class Stream, class T>
+void field(Stream& s, T& value) {
+  s.pod(value);
+}
+template <class Stream>
+void flag(Stream& s, bool& value) {
+  std::uint8_t byte = value ? 1 : 0;
+  s.pod(byte);
+  if (byte > 1) throw StateError("saved voussoir levels are corrupt (a flag is not 0 or 1)");
+  value = byte == 1;
+}
+template <class Stream>
+void text(Stream& s, std::string& value) {
+  if constexpr (std::is_same_v<Stream, StateWriter>)
+    s.str(value);
+  else
+    value = s.str();
+}
+template <class Stream, class T, class Each>
+void list(Stream& s, std::vector<T>& items, Each each) {
+  if constexpr (std::is_same_v<Stream, StateWriter>)
+    s.size(items.size());
+  else
+    items.resize(s.size());
+  for (T& item : items) each(s, item);
+}
+
+template <class Stream>
+void level_fields(Stream& s, VoussoirLevel& lv) {
+  for (double* v :
+       {&lv.g_level, &lv.thrust, &lv.thrust_left, &lv.midspan_deflection, &lv.abutment_slip,
+        &lv.max_normal_stress, &lv.beam_weight, &lv.equilibrium_residual, &lv.lever_arm})
+    field(s, *v);
+  list(s, lv.joints, [](Stream& st, VoussoirJoint& j) {
+    field(st, j.left);
+    field(st, j.right);
+    flag(st, j.in_contact);
+    for (double* v :
+         {&j.x, &j.z, &j.normal_force, &j.horizontal_force, &j.shear_force, &j.normal_stress,
+          &j.closure, &j.area, &j.peak_stress, &j.compressed_depth, &j.plastic_slip})
+      field(st, *v);
+    flag(st, j.sliding);
+  });
+  list(s, lv.blocks, [](Stream& st, VoussoirBlockState& b) {
+    field(st, b.index);
+    for (double* v : {&b.ux, &b.uz, &b.deflection, &b.rotation}) field(st, *v);
+  });
+  bool fitted = lv.fit.has_value();
+  flag(s, fitted);
+  if (fitted) {
+    if (!lv.fit) lv.fit.emplace();
+    ThrustLineFit& f = *lv.fit;
+    for (double* v : {&f.parabola.c0, &f.parabola.c1, &f.parabola.c2, &f.parabola.rms_residual})
+      field(s, *v);
+    flag(s, f.parabola.curvature_resolved);
+    for (double* v : {&f.catenary.y0, &f.catenary.x0, &f.catenary.a, &f.catenary.rms_residual})
+      field(s, *v);
+    field(s, f.catenary.iterations);
+    for (double* v : {&f.load_per_unit_span, &f.parabola_thrust, &f.catenary_thrust}) field(s, *v);
+  } else {
+    lv.fit.reset();
+  }
+  text(s, lv.fit_error);
+}
+
+}  // namespace
+
+void VoussoirRecorder::save_state(StateWriter& w) const {
+  w.size(reference_.positions.size());
+  for (std::size_t i = 0; i < reference_.positions.size(); ++i) {
+    w.vec(reference_.positions[i]);
+    w.quat(reference_.orientations[i]);
+  }
+  // The shared function takes its lists by reference (a few levels of a few joints: copies).
+  std::vector<VoussoirLevel> levels = levels_, stable = stable_;
+  list(w, levels, level_fields<StateWriter>);
+  list(w, stable, level_fields<StateWriter>);
+}
+
+void VoussoirRecorder::load_state(StateReader& r) {
+  const std::size_t n = r.size();
+  reference_.positions.resize(n);
+  reference_.orientations.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    reference_.positions[i] = r.vec();
+    reference_.orientations[i] = r.quat();
+  }
+  list(r, levels_, level_fields<StateReader>);
+  list(r, stable_, level_fields<StateReader>);
 }
 
 std::string VoussoirRecorder::failure_note() const {

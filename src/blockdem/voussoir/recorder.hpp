@@ -15,7 +15,10 @@ namespace blockdem {
 
 class VoussoirRecorder final : public RunObserver {
  public:
-  VoussoirRecorder(const std::filesystem::path& dir, VoussoirSpec spec, VoussoirLayout layout);
+  /// `resumed`: the run continues a checkpoint; the files are back in `dir` and the recorder
+  /// appends to them (load_state then gives it the levels measured before).
+  VoussoirRecorder(const std::filesystem::path& dir, VoussoirSpec spec, VoussoirLayout layout,
+                   bool resumed = false);
   /// Records one level; `converged` and `steps` come from the stage.
   void record(const World& world, const VoussoirLevel& level, const std::string& stage,
               bool converged, std::int64_t steps, int index);
@@ -34,6 +37,9 @@ class VoussoirRecorder final : public RunObserver {
   void add_to_summary(nlohmann::json& summary, RunStatus status) const override;
   /// Closes the CSV files (the levels stay).
   void on_run_end() override;
+  /// The reference pose and every level measured so far (the CSV rows are in the run's files).
+  void save_state(StateWriter& w) const override;
+  void load_state(StateReader& r) override;
 
  private:
   VoussoirSpec spec_;

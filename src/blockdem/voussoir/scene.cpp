@@ -72,9 +72,9 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
 
 }  // namespace
 
-std::unique_ptr<RunObserver> VoussoirScene::observer(const std::filesystem::path& out,
-                                                     const World&) const {
-  return std::make_unique<VoussoirRecorder>(out, spec, layout);
+std::unique_ptr<RunObserver> VoussoirScene::observer(const std::filesystem::path& out, const World&,
+                                                     bool resumed) const {
+  return std::make_unique<VoussoirRecorder>(out, spec, layout, resumed);
 }
 
 const VoussoirScene* voussoir_scene(const Scenario& scenario) {

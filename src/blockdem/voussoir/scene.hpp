@@ -13,10 +13,9 @@ struct VoussoirScene : BuiltScene {
   VoussoirLayout layout;
 
   /// A VoussoirRecorder.
-  std::unique_ptr<RunObserver> observer(const std::filesystem::path& out,
-                                        const World& world) const override;
+  std::unique_ptr<RunObserver> observer(const std::filesystem::path& out, const World& world,
+                                        bool resumed) const override;
   bool writes_own_tables() const override { return true; }
-  std::string without_checkpoints() const override { return "voussoir beam scenarios"; }
 };
 
 /// The voussoir scene of a scenario, or nullptr when it was not built by [voussoir].
