@@ -4,11 +4,22 @@
 
 #include "blockdem/voussoir/recorder.hpp"
 
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace blockdem {
 namespace {
+
+// The beams the builder makes: up to a thousand blocks (the studies have 6), each length from a
+// millimetre to a kilometre (a laboratory beam's are 23-100 mm).
+constexpr std::int64_t kMaxBeamBlocks = 1000;
+constexpr double kMinBeamLength = 1e-3;  // (m)
+constexpr double kMaxBeamLength = 1e3;   // (m)
+// And a span of at most 10 km: blocks farther out are not resolved (a 0.05 m deep block 500 km
+// from the middle has no volume in double precision).
+constexpr double kMaxBeamSpan = 1e4;  // (m)
 
 VoussoirSpec read_voussoir(const CheckedTable& t) {
   VoussoirSpec v;
@@ -17,13 +28,33 @@ VoussoirSpec read_voussoir(const CheckedTable& t) {
     v.block_depth = 0.023;
     v.g_levels = {2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90};
   }
-  v.blocks = static_cast<int>(t.integer("blocks", v.blocks));
-  if (v.blocks < 1) t.fail("blocks", "a beam needs at least one block");
-  v.block_length = t.positive("block_length", v.block_length);
-  v.block_width = t.positive("block_width", v.block_width);
-  v.block_depth = t.positive("block_depth", v.block_depth);
-  v.abutment_length = t.positive("abutment_length", v.abutment_length);
-  v.abutment_height = t.positive("abutment_height", v.abutment_height);
+  const std::int64_t blocks = t.integer("blocks", v.blocks);
+  if (blocks < 1) t.fail("blocks", "a beam needs at least one block");
+  if (blocks > kMaxBeamBlocks)
+    t.fail("blocks",
+           "must be at most " + std::to_string(kMaxBeamBlocks) + ", got " + std::to_string(blocks));
+  v.blocks = static_cast<int>(blocks);
+  // Lengths a beam's blocks can be built from: a millimetre to a kilometre.
+  const auto length = [&t](const char* key, double fallback) {
+    const double x = t.positive(key, fallback);
+    if (!(x >= kMinBeamLength && x <= kMaxBeamLength)) {
+      std::ostringstream msg;
+      msg << "must be between " << kMinBeamLength << " and " << kMaxBeamLength << " m, got " << x;
+      t.fail(key, msg.str());
+    }
+    return x;
+  };
+  v.block_length = length("block_length", v.block_length);
+  v.block_width = length("block_width", v.block_width);
+  v.block_depth = length("block_depth", v.block_depth);
+  v.abutment_length = length("abutment_length", v.abutment_length);
+  v.abutment_height = length("abutment_height", v.abutment_height);
+  if (!(v.span() <= kMaxBeamSpan)) {
+    std::ostringstream msg;
+    msg << "the span blocks x block_length (" << v.span() << " m) must be at most " << kMaxBeamSpan
+        << " m";
+    t.fail("block_length", msg.str());
+  }
   v.density = t.positive("density", v.density);
   v.preload_force = t.positive("preload_force", v.preload_force);
   v.preload_tolerance = t.positive("preload_tolerance", v.preload_tolerance);

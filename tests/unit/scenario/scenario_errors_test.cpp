@@ -159,7 +159,24 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"voussoir_unreachable_preload",
                 "[voussoir]\npreload_force = 1e12\nnormal = {law=\"linear\"}\nshear = "
                 "{law=\"linear\"}\n",
-                "voussoir.preload_force", "cannot be reached"}),
+                "voussoir.preload_force", "cannot be reached"},
+        // Beams too large to build (a billion blocks; a span of 1e308 m) or too small to resolve.
+        BadCase{"voussoir_a_billion_blocks",
+                "[voussoir]\nblocks = 1000000000\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
+                "voussoir.blocks", "at most 1000"},
+        BadCase{"voussoir_huge_block",
+                "[voussoir]\nblock_length = 1e308\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
+                "voussoir.block_length", "between 0.001 and 1000 m"},
+        BadCase{"voussoir_tiny_block",
+                "[voussoir]\nblock_depth = 1e-300\nnormal = {law=\"linear\"}\nshear = "
+                "{law=\"linear\"}\n",
+                "voussoir.block_depth", "between 0.001 and 1000 m"},
+        BadCase{"voussoir_long_span",
+                "[voussoir]\nblocks = 1000\nblock_length = 1000.0\nnormal = {law=\"linear\"}\n"
+                "shear = {law=\"linear\"}\n",
+                "voussoir.block_length", "at most 10000 m"}),
     [](const ::testing::TestParamInfo<BadCase>& p) { return std::string(p.param.name); });
 
 // The CLI: non-zero exit, the message on stderr, and no output folder.
