@@ -22,6 +22,11 @@ def main():
     p.add_argument("--blocks", type=int, required=True, help="about this many blocks")
     p.add_argument("--steps", type=int, default=11)
     p.add_argument("--mode", choices=["boon2012", "face_integrated"], default="boon2012")
+    p.add_argument("--excavate", type=int, default=0, metavar="STEPS",
+                   help="after settling, a stage of STEPS steps that excavates a horseshoe "
+                        "tunnel (radius 0.1 L) along y through the cube's middle")
+    p.add_argument("--max-blocks", type=int, default=0,
+                   help="[rock_mass] max_blocks (0: the builder's default, 2e6 estimated)")
     a = p.parse_args()
     side = round((a.blocks / 1.42) ** (1.0 / 3.0), 1)
     out = sys.stdout
@@ -36,6 +41,8 @@ def main():
               # Slivers at the region's faces are merged into their neighbours (a sliver's
               # half-thickness below the rounding distance is an input error).
               'min_block_volume = 0.0002\n')
+    if a.max_blocks > 0:
+        out.write(f'max_blocks = {a.max_blocks}\n')
     # The sets pass 0.37 m, 0.61 m and 0.23 m off the region's corner, so no joint runs along a
     # region face.
     for name, dip, direction, origin in (("J1", 80, 10, 0.37), ("J2", 75, 100, 0.61),
@@ -46,8 +53,16 @@ def main():
     out.write('[[boundaries]]\nfaces = ["z_min"]\ncondition = "fixed"\n')
     out.write('[[boundaries]]\nfaces = ["x_min", "x_max", "y_min", "y_max"]\n'
               'condition = "roller"\n')
+    if a.excavate > 0:
+        r = round(0.1 * side, 2)
+        out.write(f'[[excavations]]\nname = "tunnel"\nshape = "tunnel"\nprofile = "horseshoe"\n'
+                  f'centre = [{side / 2:.2f}, {side / 2:.2f}, {side / 2:.2f}]\nradius = {r}\n'
+                  f'wall_height = {r}\ntrend_deg = 0\nplunge_deg = 0\n')
     out.write(f'[[stages]]\nname = "settle"\ngravity = [0.0, 0.0, -9.81]\nkind = "steps"\n'
               f'steps = {a.steps}\n')
+    if a.excavate > 0:
+        out.write(f'[[stages]]\nname = "excavate"\nkind = "steps"\nexcavation = "tunnel"\n'
+                  f'steps = {a.excavate}\n')
 
 
 if __name__ == "__main__":

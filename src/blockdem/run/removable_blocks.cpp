@@ -8,9 +8,12 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "blockdem/analysis/block_theory.hpp"
+#include "blockdem/collision/broad_phase.hpp"
 #include "blockdem/collision/shared_face.hpp"
 #include "blockdem/contact/joint_strength.hpp"
 #include "blockdem/contact/shear_laws.hpp"
@@ -87,17 +90,53 @@ Eigen::Vector3d gravity_at(const Scenario& sc, std::size_t stage) {
   return g;
 }
 
-/// A block's contact planes: the faces it shares with blocks that stay (their joint strengths
-/// area-weighted over its neighbours on one plane), and two frictionless planes across each axis
-/// along which a roller boundary blocks its translation.
-std::vector<FoundPlane> contact_planes(const Scenario& sc,
-                                       const std::vector<PosedBlock>& posed_blocks,
-                                       const std::vector<std::size_t>& left, std::size_t k) {
+/// The blocks' poses, formed when first asked for (a rock mass of a million blocks needs those
+/// near the opening only).
+class Poses {
+ public:
+  explicit Poses(const Scenario& sc) : sc_(sc) {}
+  const PosedBlock& operator[](std::size_t k) {
+    auto it = posed_.find(k);
+    if (it == posed_.end()) it = posed_.emplace(k, posed_block(sc_.blocks[k])).first;
+    return it->second;
+  }
+
+ private:
+  const Scenario& sc_;
+  std::unordered_map<std::size_t, PosedBlock> posed_;  // references stay valid as it grows
+};
+
+/// Pairs of blocks (i < j) whose bounding spheres' boxes overlap (a superset of the pairs that
+/// touching() can find: it needs the centres within the sum of the radii), for which `want`
+/// holds, sorted by (i, j).
+template <class Want>
+std::vector<std::pair<int, int>> near_pairs(const Scenario& sc, Want&& want) {
+  const std::size_t n = sc.blocks.size();
+  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Block& b = sc.blocks[k];
+    // A little wider than the sphere, so that rounding never drops a pair at the limit.
+    const double r = b.shape.bounding_radius() * (1.0 + 1e-9);
+    lo[k] = b.position.array() - r;
+    hi[k] = b.position.array() + r;
+  }
+  std::vector<std::pair<int, int>> pairs;
+  SweepAndPrune().find_pairs(lo, hi, want, pairs);
+  return pairs;
+}
+
+/// A block's contact planes: the faces it shares with blocks that stay (`neighbours`: the
+/// candidates among them, in increasing index; their joint strengths area-weighted over its
+/// neighbours on one plane), and two frictionless planes across each axis along which a roller
+/// boundary blocks its translation.
+std::vector<FoundPlane> contact_planes(const Scenario& sc, Poses& poses,
+                                       const std::vector<int>& neighbours, std::size_t k) {
   const Block& b = sc.blocks[k];
   std::map<int, FoundPlane> by_plane;
-  for (std::size_t j : left) {
+  for (const int jj : neighbours) {
+    const auto j = static_cast<std::size_t>(jj);
     if (j == k) continue;
-    const auto face = touching(b, posed_blocks[k], sc.blocks[j], posed_blocks[j]);
+    const auto face = touching(b, poses[k], sc.blocks[j], poses[j]);
     if (!face) continue;
     FoundPlane& f = by_plane[face->plane_a];
     f.plane = face->plane_a;
@@ -176,26 +215,42 @@ nlohmann::json removable_blocks(const Scenario& sc, std::size_t stage, double re
   const Eigen::Vector3d gravity = gravity_at(sc, stage);
   if (gravity.norm() == 0.0) return out;
   // Blocks removed by this stage, and by it and the stages before (the opening so far).
-  const std::set<std::string> now(sc.stages[stage].remove.begin(), sc.stages[stage].remove.end());
-  std::set<std::string> removed;
+  const std::set<std::string> now_names(sc.stages[stage].remove.begin(),
+                                        sc.stages[stage].remove.end());
+  std::set<std::string> removed_names;
   for (std::size_t s = 0; s <= stage; ++s)
-    removed.insert(sc.stages[s].remove.begin(), sc.stages[s].remove.end());
-  std::vector<std::size_t> gone, left;
-  std::vector<PosedBlock> posed_blocks;
-  for (std::size_t k = 0; k < sc.blocks.size(); ++k) {
-    (removed.count(sc.blocks[k].name) ? gone : left).push_back(k);
-    posed_blocks.push_back(posed_block(sc.blocks[k]));
+    removed_names.insert(sc.stages[s].remove.begin(), sc.stages[s].remove.end());
+  const std::size_t n = sc.blocks.size();
+  std::vector<char> now(n, 0), removed(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    now[k] = now_names.count(sc.blocks[k].name) > 0 ? 1 : 0;
+    removed[k] = removed_names.count(sc.blocks[k].name) > 0 ? 1 : 0;
   }
-  for (std::size_t k : left) {
-    const Block& b = sc.blocks[k];
-    if (!b.is_dynamic()) continue;
-    // Exposed by this stage: it shares a face with a block this stage removes.
-    const bool opened_now = std::any_of(gone.begin(), gone.end(), [&](std::size_t r) {
-      return now.count(sc.blocks[r].name) > 0 &&
-             touching(b, posed_blocks[k], sc.blocks[r], posed_blocks[r]).has_value();
-    });
-    if (!opened_now) continue;
-    nlohmann::json entry = block_entry(sc, k, contact_planes(sc, posed_blocks, left, k), gravity,
+  Poses poses(sc);
+  // Exposed by this stage: a free block that stays and shares a face with a block this stage
+  // removes (the candidates from a sweep over the blocks' boxes, not every pair).
+  std::vector<char> exposed(n, 0);
+  const auto opened = [&](int i, int j) { return now[i] && !removed[j]; };
+  for (const auto& [i, j] :
+       near_pairs(sc, [&](int i, int j) { return opened(i, j) || opened(j, i); })) {
+    const auto [r, k] = now[i] ? std::pair{i, j} : std::pair{j, i};
+    const auto uk = static_cast<std::size_t>(k), ur = static_cast<std::size_t>(r);
+    if (exposed[uk] || !sc.blocks[uk].is_dynamic()) continue;
+    if (touching(sc.blocks[uk], poses[uk], sc.blocks[ur], poses[ur])) exposed[uk] = 1;
+  }
+  // The exposed blocks' neighbours that stay, each list in increasing index.
+  std::map<std::size_t, std::vector<int>> neighbours;
+  for (std::size_t k = 0; k < n; ++k)
+    if (exposed[k]) neighbours[k];
+  const auto beside = [&](int i, int j) { return exposed[i] && !removed[j]; };
+  for (const auto& [i, j] :
+       near_pairs(sc, [&](int i, int j) { return beside(i, j) || beside(j, i); })) {
+    if (beside(i, j)) neighbours[static_cast<std::size_t>(i)].push_back(j);
+    if (beside(j, i)) neighbours[static_cast<std::size_t>(j)].push_back(i);
+  }
+  for (auto& [k, list] : neighbours) {
+    std::sort(list.begin(), list.end());
+    nlohmann::json entry = block_entry(sc, k, contact_planes(sc, poses, list, k), gravity,
                                        required_factor, sc.stages[stage].name);
     if (!entry.is_null()) out.push_back(std::move(entry));
   }
