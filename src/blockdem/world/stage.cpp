@@ -134,12 +134,11 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
   if (!stage.set_laws.empty()) world.change_laws(stage.set_laws);
   if (stage.reset_displacements) world.reset_displacements();
   if (!stage.remove.empty()) {
-    std::vector<int> gone;
-    for (const auto& name : stage.remove) {
-      const int i = world.find_block(name);
-      if (i < 0)
-        throw std::invalid_argument("stage '" + stage.name + "': no block named '" + name + "'");
-      gone.push_back(i);
+    const std::vector<int> gone = world.find_blocks(stage.remove);
+    for (std::size_t k = 0; k < gone.size(); ++k) {
+      if (gone[k] < 0)
+        throw std::invalid_argument("stage '" + stage.name + "': no block named '" +
+                                    stage.remove[k] + "'");
     }
     if (stage.relax_steps > 0) {
       world.remove_blocks_gradually(gone);

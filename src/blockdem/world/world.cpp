@@ -8,7 +8,9 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <string_view>
 #include <thread>
+#include <unordered_map>
 
 #include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/numerics/number_text.hpp"
@@ -148,6 +150,21 @@ int World::find_block(const std::string& name) const {
     if (b.name == name) return b.index;
   }
   return -1;
+}
+
+std::vector<int> World::find_blocks(const std::vector<std::string>& names) const {
+  std::unordered_map<std::string_view, std::vector<std::size_t>> wanted;
+  wanted.reserve(names.size());
+  for (std::size_t k = 0; k < names.size(); ++k) wanted[names[k]].push_back(k);
+  std::vector<int> found(names.size(), -1);
+  for (const auto& b : blocks_) {
+    const auto it = wanted.find(b.name);
+    if (it == wanted.end()) continue;
+    // The first block of a name, as find_block.
+    for (const std::size_t k : it->second)
+      if (found[k] < 0) found[k] = b.index;
+  }
+  return found;
 }
 
 int World::law_for(int a, int b) const {

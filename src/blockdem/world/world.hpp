@@ -194,6 +194,8 @@ class World {
   const std::vector<JointLaw>& joint_laws() const { return laws_; }
   /// Index of the block with this name, or -1.
   int find_block(const std::string& name) const;
+  /// find_block of each name, in one walk over the blocks (an excavation lists thousands).
+  std::vector<int> find_blocks(const std::vector<std::string>& names) const;
   /// Joint law index for a pair of blocks, or -1 when no rule covers their groups.
   int law_for(int a, int b) const;
   /// Gives a block's planes their own joint laws (one index per plane of its shape, -1 for a
