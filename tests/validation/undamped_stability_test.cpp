@@ -371,6 +371,35 @@ TEST(UndampedSpinFlutter, FaceIntegratedRockingGrowsAtTheLinearisedRate) {
     ASSERT_GT(f.model, 500.0) << "the window lies where the model grows";
     EXPECT_NEAR(f.measured / f.model, 1.0, 0.02) << "torque " << r.factor << " T_lim";
   }
+  // The fast-spin limit (C = 0), for comparison: ω0 sqrt((sqrt(1 + ε²) - 1)/2).
+  const double a = kSide, inertia = kDensity * std::pow(a, 5) / 6.0;
+  const double k = kNormal * std::pow(a, 4) / 12.0 - weight() * a / 2;
+  const double epsilon = a / 2 * std::tan(radians(kFriction)) * kNormal * a * a * a *
+                         (std::sqrt(2.0) + std::log(1.0 + std::sqrt(2.0))) / 12.0 / k;
+  std::printf("[ flutter  ] fast-spin limit (C = 0) at phi 40: %.1f /s\n",
+              std::sqrt(k / inertia) * std::sqrt((std::sqrt(1.0 + epsilon * epsilon) - 1.0) / 2.0));
+}
+
+// Seeded at round-off (a rocking rate of 1e-15 rad/s, so that the start does not hang on the
+// round-off of one build), the cube of UndampedSpin at 1.1 T_lim on a face contact with twist
+// lifts off its base by 1e-9 m before it has turned by 1°: a growth of over 1000 /s takes the
+// tilt from round-off to the joint's opening within tens of milliseconds of spin.
+TEST(UndampedSpinFlutter, CubeSeededAtRoundOffLiftsBeforeItTurnsOneDegree) {
+  World w = settled_cube({ContactMode::face_integrated, true}, 0.0);
+  const double limit = 0.3826 * std::tan(radians(kFriction)) * weight() * kSide;
+  const double z0 = w.blocks()[1].position.z();
+  w.blocks()[1].angular_velocity.x() += 1e-15;
+  w.blocks()[1].set_external_torque(Eigen::Vector3d(0, 0, 1.1 * limit));
+  const double start = w.time();
+  while (w.blocks()[1].rotation_since_start().z() < radians(5.0) &&
+         std::abs(w.blocks()[1].position.z() - z0) < 1e-9)
+    w.step();
+  const double turn = w.blocks()[1].rotation_since_start().z();
+  std::printf(
+      "[ flutter  ] seeded at 1e-15 rad/s, 1.1 T_lim: lifts by 1e-9 m after %.3f s, turned %.2f "
+      "deg\n",
+      w.time() - start, turn * 180.0 / std::numbers::pi);
+  EXPECT_LT(turn, radians(1.0));
 }
 
 // Local damping that outweighs the flutter holds the spinning cube: at 1.1 T_lim with local
