@@ -11,6 +11,12 @@
 // coupling grows, undamped, into creep downhill (0.44-1.29 mm in 2 s at a factor of safety of
 // 2.3 before the shear spring acted at the contact area's centroid); a spinning block rocked and
 // bounced off its base in the same way.
+//
+// Two motions remain that are the model's physics, and are asserted against closed forms
+// instead: a block spun past its twisting limit on a face contact with twist rocks at the growth
+// rate of its linearised equations (friction-induced flutter of the full-slip traction,
+// UndampedSpinFlutter), and without twist a block on a partly open joint turns about the shear
+// spring's point as an inverted pendulum (UndampedTurnWithoutTwist).
 #include <gtest/gtest.h>
 
 #include <algorithm>
