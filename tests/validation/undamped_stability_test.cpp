@@ -410,8 +410,8 @@ TEST(UndampedSpinFlutter, CubeSeededAtRoundOffLiftsBeforeItTurnsOneDegree) {
 
 // Local damping that outweighs the flutter holds the spinning cube: at 1.1 T_lim with local
 // damping 0.9 the cube turns by 5° seated to round-off (1e-12 m) against the twisting limit
-// (its moment within 1%). (With 0.7 the rocking still grows, at about 250 /s, into a chatter of
-// the partly opening joint; with 0.8 at about 135 /s: docs/joint-laws.md.)
+// (its moment within 1%). (With 0.7 and 0.8 the rocking still grows, with 0.7 into a chatter of
+// the partly opening joint: docs/joint-laws.md.)
 TEST(UndampedSpinFlutter, LocalDampingOfNineTenthsHoldsTheSpinningCubeSeated) {
   World w = settled_cube({ContactMode::face_integrated, true}, 0.0);
   w.settings().damping = 0.9;
