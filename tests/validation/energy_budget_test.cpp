@@ -56,7 +56,9 @@ TEST_P(EnergyBudgetTest, DropOnLinearJointConservesEnergy) {
   }
   EXPECT_GT(max_elastic, 0.9 * mgh) << "the joint must take the impact";
   EXPECT_LT(worst, 2e-4 * mgh);
-  EXPECT_EQ(w.energy_budget().friction_dissipation, 0.0);
+  // No slip: the joint's dissipation holds only the round-off of the work its forces do that
+  // their springs do not hold (response/contact_energy.hpp), 2e-12 of m g h measured.
+  EXPECT_LT(std::abs(w.energy_budget().friction_dissipation), 1e-9 * mgh);
   EXPECT_EQ(w.energy_budget().damping_dissipation, 0.0);
 }
 

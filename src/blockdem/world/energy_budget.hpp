@@ -26,8 +26,10 @@ struct EnergyBudget {
   /// kinetic energy that central differences conserve exactly (J). It differs from ½ m v_n² with
   /// v_n = (v_{n-1/2} + v_{n+1/2})/2 by m |Δv|²/8, Δv the velocity change of one step.
   double kinetic = 0.0;
-  /// Joints at level n: Σ ½ F_n δ + |F_s|² / (2 k_s A) (J). Exact for linear laws at a uniform
-  /// closure; an estimate for the others (their difference then shows in the residual).
+  /// Joints at level n: Σ of the normal springs' ∫ e(g) dA (face contacts) or ½ F_n δ (point
+  /// contacts), the shear springs' |F_s|² / (2 k_s A) and the twist springs' M² / (2 k_s J) (J).
+  /// The work the joints' forces do beyond these is in friction_dissipation
+  /// (response/contact_energy.hpp).
   double elastic = 0.0;
   double gravity_work = 0.0;  ///< work of gravity on the free blocks (J)
   /// Work of the applied forces and torques on free blocks: the constant loads, the ground
@@ -40,8 +42,11 @@ struct EnergyBudget {
   double seismic_work = 0.0;
   /// Work done on the model by prescribed and servo blocks through their contacts (J).
   double boundary_work = 0.0;
-  double friction_dissipation = 0.0;  ///< Σ -F_s·du_p over joint slip (J), positive
-  double damping_dissipation = 0.0;   ///< work removed by local damping (J), positive
+  /// The joints' dissipation (J): the work their forces do on the blocks that their springs do
+  /// not hold, slip's -F_s·du_p and the twist's slip, and the work of forces without a potential
+  /// (a shear stiffness that changes under a held force: negative when the area shrinks).
+  double friction_dissipation = 0.0;
+  double damping_dissipation = 0.0;  ///< work removed by local damping (J), positive
   /// Work removed by the contacts' viscous dashpots (settings contact_damping) (J), positive:
   /// the trapezoidal work of their forces, the rule of the other works.
   double contact_damping = 0.0;
@@ -54,7 +59,8 @@ struct EnergyBudget {
   double scale() const;
 };
 
-/// Elastic energy of one joint, ½ F_n δ + |F_s|² / (2 k_s A) (J).
+/// Elastic energy of one joint's normal and shear springs (J): Contact::normal_energy() and the
+/// shear spring's ShearState::elastic_energy.
 double joint_elastic_energy(const Contact& contact);
 
 /// One block's part of a step's budget sums (J).
