@@ -25,6 +25,8 @@ def main():
     p.add_argument("--excavate", type=int, default=0, metavar="STEPS",
                    help="after settling, a stage of STEPS steps that excavates a horseshoe "
                         "tunnel (radius 0.1 L) along y through the cube's middle")
+    p.add_argument("--density-scaling", action="store_true",
+                   help="density_scaling = true in the stages (quasi-static settling)")
     p.add_argument("--max-blocks", type=int, default=0,
                    help="[rock_mass] max_blocks (0: the builder's default, 2e6 estimated)")
     a = p.parse_args()
@@ -60,9 +62,11 @@ def main():
                   f'wall_height = {r}\ntrend_deg = 0\nplunge_deg = 0\n')
     out.write(f'[[stages]]\nname = "settle"\ngravity = [0.0, 0.0, -9.81]\nkind = "steps"\n'
               f'steps = {a.steps}\n')
+    scaling = "density_scaling = true\n" if a.density_scaling else ""
+    out.write(scaling)
     if a.excavate > 0:
         out.write(f'[[stages]]\nname = "excavate"\nkind = "steps"\nexcavation = "tunnel"\n'
-                  f'steps = {a.excavate}\n')
+                  f'steps = {a.excavate}\n{scaling}')
 
 
 if __name__ == "__main__":

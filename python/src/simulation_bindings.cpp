@@ -130,9 +130,12 @@ std::function<ProgressFn(int)> stage_lines(const Simulation& s, const LineFn& li
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
       char rate[64];
-      std::snprintf(rate, sizeof rate, "%.2e, KE ratio %.2e, %.0f steps/s",
-                    m.unbalanced_force_ratio, m.kinetic_energy_ratio,
-                    wall > 0.0 ? static_cast<double>(k) / wall : 0.0);
+      const double per_second = wall > 0.0 ? static_cast<double>(k) / wall : 0.0;
+      // Three digits below 100 steps per second (a step of a million blocks takes seconds).
+      std::snprintf(rate, sizeof rate,
+                    per_second >= 100.0 ? "%.2e, KE ratio %.2e, %.0f steps/s"
+                                        : "%.2e, KE ratio %.2e, %.3g steps/s",
+                    m.unbalanced_force_ratio, m.kinetic_energy_ratio, per_second);
       line("[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + st.name + ": step " +
            std::to_string(k) + ", unbalanced " + rate);
     };

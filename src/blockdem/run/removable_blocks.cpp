@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "blockdem/analysis/block_theory.hpp"
-#include "blockdem/collision/broad_phase.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/collision/shared_face.hpp"
 #include "blockdem/contact/joint_strength.hpp"
 #include "blockdem/contact/shear_laws.hpp"
@@ -121,7 +121,7 @@ std::vector<std::pair<int, int>> near_pairs(const Scenario& sc, Want&& want) {
     hi[k] = b.position.array() + r;
   }
   std::vector<std::pair<int, int>> pairs;
-  SweepAndPrune().find_pairs(lo, hi, want, pairs);
+  UniformGrid().find_pairs(lo, hi, want, pairs);
   return pairs;
 }
 
@@ -228,7 +228,7 @@ nlohmann::json removable_blocks(const Scenario& sc, std::size_t stage, double re
   }
   Poses poses(sc);
   // Exposed by this stage: a free block that stays and shares a face with a block this stage
-  // removes (the candidates from a sweep over the blocks' boxes, not every pair).
+  // removes (the candidates from a grid over the blocks' boxes, not every pair).
   std::vector<char> exposed(n, 0);
   const auto opened = [&](int i, int j) { return now[i] && !removed[j]; };
   for (const auto& [i, j] :

@@ -456,6 +456,12 @@ void Checkpoints::write(int level, const StageResume* at, const MotionMonitor* m
   file.finish();
 }
 
+/// "1234 steps/s", or three digits below 100 steps per second ("0.412 steps/s": a step of a
+/// million blocks takes seconds).
+std::string steps_per_second_text(double rate) {
+  return number_text(rate, rate >= 100.0 ? "%.0f steps/s" : "%.3g steps/s");
+}
+
 /// The status line of stage `level` while it runs: steps per second of this stage and, where
 /// the stage's end is known, the time left (measured from where this process took it up).
 ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallbacks& cb, int level,
@@ -477,13 +483,13 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
   return [&world, &cb, level, n, stage_wall0, stage_time0, stage_steps0, done0, trials](
              const Stage& s, std::int64_t k, const EquilibriumMeasures& m) {
     const double wall = seconds_since(stage_wall0);
-    std::string line = "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name +
-                       ": step " + std::to_string(k) +
-                       (trials ? std::string() : ", t = " + number_text(world.time(), "%.4g s")) +
-                       ", unbalanced " + number_text(m.unbalanced_force_ratio, "%.2e") +
-                       ", KE ratio " + number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
-                       number_text(wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0,
-                                   "%.0f steps/s");
+    std::string line =
+        "[" + std::to_string(level + 1) + "/" + std::to_string(n) + "] " + s.name + ": step " +
+        std::to_string(k) +
+        (trials ? std::string() : ", t = " + number_text(world.time(), "%.4g s")) +
+        ", unbalanced " + number_text(m.unbalanced_force_ratio, "%.2e") + ", KE ratio " +
+        number_text(m.kinetic_energy_ratio, "%.2e") + ", " +
+        steps_per_second_text(wall > 0.0 ? static_cast<double>(k - stage_steps0) / wall : 0.0);
     double done = -1.0;
     if (s.kind == Stage::Kind::steps) done = static_cast<double>(k) / static_cast<double>(s.steps);
     if (s.kind == Stage::Kind::duration || s.kind == Stage::Kind::dynamic)
