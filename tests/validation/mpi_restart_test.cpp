@@ -31,6 +31,7 @@
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/scenario_fingerprint.hpp"
 #include "support/mpi_launcher.hpp"
+#include "support/sanitized_run.hpp"
 #include "unit/run/restart_support.hpp"
 
 namespace blockdem::test {
@@ -269,18 +270,26 @@ TEST_F(MpiRestart, UnusableCheckpointStopsEveryRankWithOneMessage) {
   EXPECT_EQ(read_file_bytes(out / "checkpoint.bdck"), garbage);
 }
 
-// A voussoir beam (Boon et al. 2015, Table 2 case 1), stopped inside its 15 g level on 2
-// processes and resumed on 1 and on 3: the beam's tables and summary.json (the recorder's levels
-// travel in the checkpoint) and every other output byte-identical to the one-process run never
-// stopped, its VTK frames equal through VTK's reader. Tolerance: none.
+// A voussoir beam (Boon et al. 2015, Table 2 case 1, its levels up to 5 g), stopped inside its
+// 2 g level on 2 processes and resumed on 1 and on 3: the beam's tables and summary.json (the
+// recorder's levels travel in the checkpoint) and every other output byte-identical to the
+// one-process run never stopped, its VTK frames equal through VTK's reader. Tolerance: none.
+// Under the sanitizers the resume on 3 processes is left out (a step of 3 oversubscribed
+// processes is slow there; the same code runs on 1).
 TEST(MpiRestartVoussoir, StoppedOnTwoProcessesResumesOnOneAndThreeBitIdentically) {
   if (kMpiexec == nullptr) GTEST_SKIP() << "built without MPI (BLOCKDEM_MPI=OFF)";
-  const fs::path beam = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/boon2015/T2-1.toml";
+  std::string text =
+      read_file_bytes(fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/boon2015/T2-1.toml");
+  const auto table = text.find("[voussoir]\n");
+  ASSERT_NE(table, std::string::npos);
+  text.insert(table + 11, "g_max = 5.0\n");  // preload (6,040 steps), 2 g and 5 g
+  const fs::path beam = temp_path("mpi_voussoir.toml");
+  std::ofstream(beam) << text;
   const fs::path reference = fresh_dir("mpi_voussoir_reference");
   ASSERT_EQ(run(0, beam, reference, ""), 0);
   const fs::path stopped = fresh_dir("mpi_voussoir_stopped");
-  ASSERT_EQ(run(2, beam, stopped, "", "BLOCKDEM_TEST_KILL_RANK", "1:20000:TERM"), 143);
-  for (int ranks : {0, 3}) {
+  ASSERT_EQ(run(2, beam, stopped, "", "BLOCKDEM_TEST_KILL_RANK", "1:7000:TERM"), 143);
+  for (int ranks : sanitized_run() ? std::vector<int>{0} : std::vector<int>{0, 3}) {
     SCOPED_TRACE("resumed on " + std::to_string(ranks) + " (0: no launcher)");
     const fs::path out = fresh_dir("mpi_voussoir_after" + std::to_string(ranks));
     fs::copy(stopped, out, fs::copy_options::recursive);
