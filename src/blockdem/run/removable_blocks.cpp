@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "blockdem/analysis/block_theory.hpp"
-#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/collision/shared_face.hpp"
+#include "blockdem/collision/uniform_grid.hpp"
 #include "blockdem/contact/joint_strength.hpp"
 #include "blockdem/contact/shear_laws.hpp"
 #include "blockdem/numerics/number_text.hpp"
