@@ -30,7 +30,7 @@ class CheckpointScenarioError : public CheckpointError {
 };
 
 /// The format version this program writes and reads.
-inline constexpr std::uint32_t kCheckpointVersion = 5;
+inline constexpr std::uint32_t kCheckpointVersion = 6;
 
 /// Writes `payload` as a checkpoint file, atomically (temporary name, fsync, rename). A previous
 /// file of that name is first renamed to NAME.prev, so the last two checkpoints are kept.

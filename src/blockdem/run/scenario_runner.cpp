@@ -148,6 +148,7 @@ class RunOutputs final : public RunObserver {
         std::string name = r.str();
         start_positions_[std::move(name)] = r.vec();
       }
+      load_bolt_outputs(r);
       if (scene) scene->load_state(r);
       if (!r.done()) throw StateError("saved output state is corrupt (bytes left over)");
     } catch (const StateError& e) {
@@ -159,12 +160,21 @@ class RunOutputs final : public RunObserver {
     res_.factor_of_safety = point.factor_of_safety;
   }
   RunRecorder& recorder() { return *recorder_; }
-  /// The excavation stage's blocks at its start (resume reads them back).
+  /// The excavation stage's blocks at its start, and the bolts' outputs so far (resume reads
+  /// them back).
   void save_stage_start(StateWriter& w) const {
     w.size(start_positions_.size());
     for (const auto& [name, x] : start_positions_) {
       w.str(name);
       w.vec(x);
+    }
+    w.str(bolt_rows_);
+    w.pod(static_cast<std::int32_t>(bolt_frames_));
+    const std::size_t n = bolts_pvd_ ? bolts_pvd_->frames().size() : 0;
+    w.size(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      w.pod(bolts_pvd_->frames()[i].first);
+      w.str(bolts_pvd_->frames()[i].second);
     }
   }
   TimeHistoryWriter& history() { return *history_; }
@@ -240,6 +250,22 @@ class RunOutputs final : public RunObserver {
   std::unique_ptr<PvdCollection> bolts_pvd_;
   std::map<int, nlohmann::json> removable_;  ///< set_removable's lists
 
+  /// save_stage_start's bolt part: bolts.csv's rows and the bolt frames so far.
+  void load_bolt_outputs(StateReader& r) {
+    bolt_rows_ = r.str();
+    bolt_frames_ = r.pod<std::int32_t>();
+    std::vector<std::pair<double, std::string>> frames(r.size());
+    for (auto& [t, file] : frames) {
+      r.pod(t);
+      file = r.str();
+    }
+    if (bolt_frames_ < 0 || frames.size() != static_cast<std::size_t>(bolt_frames_))
+      throw StateError("saved bolt frame list is corrupt");
+    if (!frames.empty()) {
+      bolts_pvd_ = std::make_unique<PvdCollection>(out_ / "vtk" / "bolts.pvd");
+      bolts_pvd_->set_frames(std::move(frames));
+    }
+  }
   /// A stage end's bolts: bolts.csv's rows, a VTK frame of their lines, their counts.
   void write_bolts(const World& world, const std::string& stage) {
     bolt_rows_ += bolt_rows(world, stage);
@@ -503,18 +529,16 @@ ProgressFn stage_progress(const Scenario& sc, const World& world, const RunCallb
   };
 }
 
-/// The result's status, message and exit code from how the drive ended. `no_checkpoints`: what
-/// the runs are called when they take no checkpoints (empty when they do).
+/// The result's status, message and exit code from how the drive ended.
 void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& outputs,
-                   const RunObserver* scene, const std::string& no_checkpoints,
-                   const std::filesystem::path& out, RunResult& res) {
+                   const RunObserver* scene, const std::filesystem::path& out, RunResult& res) {
   res.status = d.status;
   if (d.status == RunStatus::completed) return;
   if (d.status == RunStatus::input_error) {
     res.exit_code = 2;
     std::error_code ec;
     res.message = d.stage.message;
-    if (no_checkpoints.empty() && std::filesystem::exists(out / kCheckpointName, ec))
+    if (std::filesystem::exists(out / kCheckpointName, ec))
       res.message += "\nthe state before stage '" + d.stage.name + "' is saved in " +
                      (out / kCheckpointName).string() +
                      ": correct the stage and continue from there with --restart " +
@@ -526,11 +550,9 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
     res.exit_code = 130;
     std::error_code ec;
     const bool checkpoint = std::filesystem::exists(out / kCheckpointName, ec);
-    res.message =
-        "interrupted " + outputs.interrupted_where() +
-        (!no_checkpoints.empty() ? "; no checkpoint (" + no_checkpoints + " have none yet)"
-         : checkpoint            ? "; continue with --restart " + (out / kCheckpointName).string()
-                                 : "; no checkpoint was written (--checkpoint-every keeps one)");
+    res.message = "interrupted " + outputs.interrupted_where() +
+                  (checkpoint ? "; continue with --restart " + (out / kCheckpointName).string()
+                              : "; no checkpoint was written (--checkpoint-every keeps one)");
     return;
   }
   const std::string& name = sc.stages[d.level].name;
@@ -552,15 +574,14 @@ void settle_result(const DriveResult& d, const Scenario& sc, const RunOutputs& o
 /// What the run does between steps and stages: checkpoints, the caller's stop, time-history rows
 /// and VTK frames, status lines. `first`/`resumed`: where a restart takes the run up.
 DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& cb,
-                         const RunControl& control, bool can_checkpoint, RunOutputs& outputs,
-                         Checkpoints& checkpoints, int first, const StageResume* resumed,
-                         bool restarted) {
+                         const RunControl& control, RunOutputs& outputs, Checkpoints& checkpoints,
+                         int first, const StageResume* resumed, bool restarted) {
   const bool periodic = control.checkpoint_every > 0 || control.checkpoint_seconds > 0.0;
   DriveControl dc;
   // A stage boundary (the end of the previous stage): checkpoint, and stop if asked.
   dc.at_boundary = [=, &checkpoints](int level) {
     const bool stop = checkpoints.poll().stop;
-    if ((periodic || stop) && can_checkpoint && !(restarted && level == first))
+    if ((periodic || stop) && !(restarted && level == first))
       checkpoints.take(level, nullptr, nullptr, nullptr);
     return stop;
   };
@@ -572,7 +593,7 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
     const bool due =
         now.stop || now.checkpoint ||
         (control.checkpoint_every > 0 && world.step_count() % control.checkpoint_every == 0);
-    if (due && can_checkpoint) checkpoints.take(level, &at, &monitor, before);
+    if (due) checkpoints.take(level, &at, &monitor, before);
     return now.stop;
   };
   dc.on_step = [&outputs](const World& w, const Stage& s, int level) {
@@ -585,7 +606,7 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
   // yet: the checkpoint before it continues the run by running it again.
   dc.between_trials = [=, &checkpoints](int level, bool before_stage) {
     const bool stop = checkpoints.poll().stop;
-    if (stop && before_stage && can_checkpoint) checkpoints.take(level, nullptr, nullptr, nullptr);
+    if (stop && before_stage) checkpoints.take(level, nullptr, nullptr, nullptr);
     return stop;
   };
   // And inside a trial, after each of its steps: the trial is dropped and the run stops as it
@@ -652,13 +673,6 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
                    const RunControl& control) {
   const auto wall0 = Clock::now();
   const BuiltScene* scene = sc.built.get();
-  const bool bolted = std::any_of(sc.stages.begin(), sc.stages.end(),
-                                  [](const Stage& st) { return !st.bolts.empty(); });
-  const std::string no_checkpoints = bolted ? std::string("scenarios with bolts") : std::string();
-  if (!no_checkpoints.empty() && (control.checkpoint_every > 0 ||
-                                  control.checkpoint_seconds > 0.0 || !control.restart.empty()))
-    throw std::invalid_argument("checkpoints and restarts are not available for " + no_checkpoints +
-                                " yet");
   Restart restart;
   std::vector<std::string> stage_names;
   for (const Stage& st : sc.stages) stage_names.push_back(st.name);
@@ -708,16 +722,16 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
     res.summary["scenario"] = sc.file;  // a branch may continue under another file's name
   }
   Checkpoints checkpoints(world, out, control, outputs, scene_observer.get(), res);
-  DriveControl dc = run_control(sc, world, cb, control, no_checkpoints.empty(), outputs,
-                                checkpoints, start.level, start.resume, resume != nullptr);
+  DriveControl dc = run_control(sc, world, cb, control, outputs, checkpoints, start.level,
+                                start.resume, resume != nullptr);
   const StageSync sync = run_sync();
   dc.sync = &sync;
   std::vector<RunObserver*> observers{&outputs};
   if (scene_observer) observers.push_back(scene_observer.get());
   const DriveResult d = drive(sc, world, std::move(start), dc, observers, [&](int level) {
-    if (no_checkpoints.empty()) checkpoints.take(level, nullptr, nullptr, nullptr);
+    checkpoints.take(level, nullptr, nullptr, nullptr);
   });
-  settle_result(d, sc, outputs, scene_observer.get(), no_checkpoints, out, res);
+  settle_result(d, sc, outputs, scene_observer.get(), out, res);
   res.steps = world.step_count();
   res.wall_time = seconds_since(wall0);
   finish_summary(res.summary, outputs.stages(), res, world, scene_observer.get(), sc.joint_sets);

@@ -11,6 +11,7 @@
 #include <string>
 #include <type_traits>
 
+#include "blockdem/world/bolt_state.hpp"
 #include "blockdem/world/decomposition.hpp"
 #include "blockdem/world/decomposition_wire.hpp"
 #include "blockdem/world/pair_owner.hpp"
@@ -531,7 +532,13 @@ void Decomposition::slots_to_root(World& world, RootStream& out) {
         text.append(reinterpret_cast<const char*>(b.bytes().data()), b.bytes().size());
       },
       out.emit);
-  if (out.root) world.save_divergence_checkpoint(out.w);
+  if (out.root) {
+    // save_state's layout: the bolts (none on a distributed world, which refuses them) before
+    // the divergence checkpoint.
+    save_bolts(out.w, world.bolts_);
+    save_bolts(out.w, world.checkpoint_.bolts);
+    world.save_divergence_checkpoint(out.w);
+  }
   out.flush();
 }
 

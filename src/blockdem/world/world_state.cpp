@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "blockdem/world/bolt_state.hpp"
 #include "blockdem/world/state_record.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -33,9 +34,6 @@ void World::save_state(StateWriter& w) const {
   decomposition_.require_replica("save_state");
   if (checkpoint_.partial)
     throw std::logic_error("save_state: the divergence checkpoint is in parts; call synchronize()");
-  // Bolts are not in the state's bytes: a restart would lose them.
-  if (!bolts_.empty())
-    throw std::invalid_argument("save_state: a world with bolts cannot be saved for a restart yet");
   // Settings a stage changes.
   w.vec(settings_.gravity);
   w.pod(settings_.damping);
@@ -54,6 +52,9 @@ void World::save_state(StateWriter& w) const {
   }
   w.size(slots_.size());
   for (const PairSlot& s : slots_) save_slot(w, s, s.contact >= 0 ? &contact_of(s) : nullptr);
+  // The bolts, and those of the divergence checkpoint (format version 6).
+  save_bolts(w, bolts_);
+  save_bolts(w, checkpoint_.bolts);
   save_divergence_checkpoint(w);
   // Contact damping: the last step's dashpots' halves of work the next step adds.
   if (settings_.contact_damping > 0.0) {
@@ -129,6 +130,8 @@ void World::load_state(StateReader& r) {
   load_blocks(r);
   load_counters(r);
   load_slots(r);
+  bolts_ = load_bolts(r, blocks_.size());
+  checkpoint_.bolts = load_bolts(r, blocks_.size());
   load_divergence_checkpoint(r);
   checkpoint_.energy.load_state(r, settings_.contact_damping > 0.0);
   dashpot_restored_ = ExactSum{};
