@@ -20,7 +20,6 @@
 
 #include "stability_support.hpp"
 #include "support/cli_runner.hpp"
-#include "support/input_error.hpp"
 #include "support/sanitized_run.hpp"
 
 namespace blockdem {
@@ -404,18 +403,6 @@ TEST(BoltedWedge, OffCentreBoltsHoldTheWedgeByTheirCoupleWhereCentredOnesFail) {
       "two vertical bolts off the centroid's line: held, the bolts pull %.4g N (%.3f W); normal "
       "forces on J2 and J3 %.4g and %.4g N against %.4g N each by block theory under W - T\n",
       pull, pull / w, normal[0], normal[1], lightened);
-}
-
-// Restart files do not hold bolts yet: asking for checkpoints is refused before anything is
-// written, rather than losing the bolts on a restart.
-TEST(BoltedWedge, CheckpointsAreRefusedWithBolts) {
-  const std::filesystem::path file = std::filesystem::path(BLOCKDEM_SOURCE_DIR) / "scenarios" /
-                                     "examples" / "roof_wedge_bolted.toml";
-  const auto out = test::run_folder("bolted_wedge_checkpoint");
-  std::filesystem::remove_all(out);
-  const auto r = test::run_cli("run '" + file.string() + "' --out '" + out.string() +
-                               "' --quiet --no-figures --checkpoint-every 100");
-  test::expect_input_error(r, out, {"roof_wedge_bolted.toml", "checkpoints", "bolts"});
 }
 
 }  // namespace
