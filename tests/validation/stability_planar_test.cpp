@@ -88,6 +88,71 @@ TEST(StrengthReductionTrialStart, BothStartsBracketHoekAndBray) {
               static_cast<long long>(steps[0]), static_cast<long long>(steps[1]));
 }
 
+// How the trials are placed: at the midpoints (factor_search = "bisect") or by the critical
+// factor extrapolated from the failed trials' accelerations (the default). A block sliding on one
+// plane is a rigid mechanism, a = c (W sin(psi) - W cos(psi) tan(phi) / F), so the extrapolation
+// is Hoek & Bray's tan(phi)/tan(psi) but for the trials' elastic start (to 0.5%); both brackets
+// contain it (to the 0.5% of PlanarSliding), each contains the other's answer to within the
+// tolerance, and the extrapolated search takes fewer steps. With cohesion the joint can break
+// (its failed trials slide on the residual strength, whose factor is tan(phi)/tan(psi) = 0.82
+// here, not the peak's 1.54), so the search bisects whatever factor_search says: the same trials.
+TEST(StrengthReductionSearch, ExtrapolationFindsHoekAndBrayInFewerStepsThanBisection) {
+  if (test::sanitized_run()) GTEST_SKIP() << "four strength reductions: physics, not memory";
+  struct Case {
+    double psi, phi, cohesion;
+  };
+  for (const Case c : {Case{30.0, 40.0, 0.0}, Case{35.0, 30.0, 200.0}}) {
+    const bool breaks = c.cohesion > 0.0;
+    const double psi = deg_to_rad(c.psi), phi = deg_to_rad(c.phi);
+    const double weight = 2500.0 * 9.81 * 0.1 * 0.1 * 0.02;
+    const double expected = (c.cohesion * 0.1 * 0.1 + weight * std::cos(psi) * std::tan(phi)) /
+                            (weight * std::sin(psi));
+    std::int64_t steps[2] = {0, 0};
+    double lo[2] = {0, 0}, hi[2] = {0, 0};
+    int k = 0;
+    for (const std::string search : {"bisect", "extrapolate"}) {
+      const std::string label = search + " psi " + std::to_string(static_cast<int>(c.psi));
+      const RunResult r =
+          test::run_text(test::incline_scenario(c.psi, c.phi, 0.1, 0.02,
+                                                std::string(kStrengthReduction) +
+                                                    "factor_search = \"" + search + "\"\n",
+                                                0.0, c.cohesion),
+                         "stab_search_" + search + std::to_string(static_cast<int>(c.psi)));
+      ASSERT_EQ(r.status, RunStatus::completed) << r.message;
+      const auto& fos = r.summary["factor_of_safety"];
+      EXPECT_EQ(fos["search"], breaks ? "bisect" : search);
+      lo[k] = fos["last_stable"].get<double>();
+      hi[k] = fos["first_failed"].get<double>();
+      EXPECT_LE(lo[k], expected * 1.005) << label;
+      EXPECT_GE(hi[k], expected * 0.995) << label;
+      EXPECT_LE(hi[k] - lo[k], 0.01 + 1e-12) << label;
+      if (search == "extrapolate" && !breaks) {
+        ASSERT_TRUE(fos["extrapolated"].is_number()) << label;
+        const double fc = fos["extrapolated"].get<double>();
+        EXPECT_NEAR(fc, expected, 0.005 * expected) << label;
+        std::printf("psi %.0f phi %.0f c %.0f Pa: extrapolated F_c = %.5f (closed form %.5f)\n",
+                    c.psi, c.phi, c.cohesion, fc, expected);
+      } else {
+        EXPECT_TRUE(fos["extrapolated"].is_null()) << label;
+      }
+      steps[k++] = r.steps_per_stage.back();
+    }
+    // Each answer (the bracket's midpoint) lies in the other's bracket, widened by the tolerance.
+    EXPECT_GE(0.5 * (lo[0] + hi[0]), lo[1] - 0.01);
+    EXPECT_LE(0.5 * (lo[0] + hi[0]), hi[1] + 0.01);
+    if (breaks) {
+      EXPECT_EQ(steps[1], steps[0]);
+      EXPECT_EQ(lo[1], lo[0]);
+      EXPECT_EQ(hi[1], hi[0]);
+    } else {
+      EXPECT_LT(steps[1], steps[0]);
+    }
+    std::printf("  bisect [%.5f, %.5f] in %lld steps, extrapolate [%.5f, %.5f] in %lld steps\n",
+                lo[0], hi[0], static_cast<long long>(steps[0]), lo[1], hi[1],
+                static_cast<long long>(steps[1]));
+  }
+}
+
 // With cohesion: psi = 35 degrees is steeper than phi = 30 degrees, so the block stands only by
 // its cohesion; strength reduction divides c and tan(phi) together.
 TEST(PlanarSlidingWithCohesion, FactorOfSafetyMatchesHoekBray) {

@@ -333,12 +333,16 @@ void RunOutputs::on_stage_end(const World& world, const StageEnd& end) {
 void RunOutputs::on_strength_reduction(const World& world, const Stage& stage, int level,
                                        const StabilitySearch& sr, const StageResult& result) {
   const double F = 0.5 * (sr.last_stable + sr.first_failed);
-  res_.summary["factor_of_safety"] = {{"value", F},
-                                      {"last_stable", sr.last_stable},
-                                      {"first_failed", sr.first_failed},
-                                      {"stage", stage.name},
-                                      {"tolerance", stage.strength.tolerance},
-                                      {"trials", trials_json(sr)}};
+  res_.summary["factor_of_safety"] = {
+      {"value", F},
+      {"last_stable", sr.last_stable},
+      {"first_failed", sr.first_failed},
+      {"stage", stage.name},
+      {"tolerance", stage.strength.tolerance},
+      {"search", sr.extrapolating ? "extrapolate" : "bisect"},
+      {"extrapolated",
+       sr.extrapolated ? nlohmann::json(*sr.extrapolated) : nlohmann::json(nullptr)},
+      {"trials", trials_json(sr)}};
   write_trials_csv(out_ / "strength_reduction.csv", "factor", sr);
   write_mechanism(out_, "mechanism", sr, sc_.output.vtk);
   res_.factor_of_safety = F;

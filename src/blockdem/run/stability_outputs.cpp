@@ -12,7 +12,7 @@ void write_trials_csv(const std::filesystem::path& path, const std::string& para
                       const StabilitySearch& search) {
   CsvWriter csv(path, {"trial", parameter, "stable", "outcome", "steps", "max_displacement_m",
                        "displacement_limit_m", "max_speed_m_s", "kinetic_energy_J", "load_work_J",
-                       "moving_blocks"});
+                       "moving_blocks", "acceleration_m_s2"});
   int i = 0;
   for (const auto& t : search.trials) {
     csv.cell(++i)
@@ -25,7 +25,8 @@ void write_trials_csv(const std::filesystem::path& path, const std::string& para
         .cell(t.motion.max_speed)
         .cell(t.motion.kinetic_energy)
         .cell(t.motion.load_work)
-        .cell(static_cast<long long>(t.motion.moving_blocks.size()));
+        .cell(static_cast<long long>(t.motion.moving_blocks.size()))
+        .cell(t.acceleration);
     csv.end_row();
   }
 }
@@ -72,7 +73,8 @@ nlohmann::json trials_json(const StabilitySearch& search) {
                  {"stable", t.stable},
                  {"outcome", t.outcome},
                  {"steps", t.steps},
-                 {"max_displacement_m", t.motion.max_displacement}});
+                 {"max_displacement_m", t.motion.max_displacement},
+                 {"acceleration_m_s2", t.acceleration}});
   }
   return a;
 }

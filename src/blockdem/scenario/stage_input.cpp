@@ -54,7 +54,7 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
                  number_text(s.collapse_tolerance));
   }
   const bool sr = s.kind == Stage::Kind::strength_reduction;
-  for (const char* key : {"laws", "factor_bounds", "tolerance", "trial_start"}) {
+  for (const char* key : {"laws", "factor_bounds", "tolerance", "trial_start", "factor_search"}) {
     if (!sr && t.has(key)) t.fail(key, "only a stage of kind \"strength_reduction\" takes this");
   }
   if (!sr) return;
@@ -69,6 +69,8 @@ void read_stability_keys(const CheckedTable& t, Stage& s) {
   }
   s.strength.from_last_stable =
       t.choice("trial_start", "stage_start", {"stage_start", "last_stable"}) == "last_stable";
+  s.strength.extrapolate =
+      t.choice("factor_search", "extrapolate", {"extrapolate", "bisect"}) == "extrapolate";
   if (t.has("tolerance")) {
     const double tol = t.number("tolerance");
     if (!(tol > 0.0)) t.fail("tolerance", "must be > 0 (a width of the factor's bracket)");

@@ -44,6 +44,33 @@ bool has_strength(const JointLaw& law) {
   return s.friction_coefficient > 0.0 || s.cohesion > 0.0 || s.tensile_strength > 0.0;
 }
 
+std::optional<double> extrapolated_factor(const std::vector<StabilityTrial>& trials) {
+  // The two failed trials of smallest factor (nearest the critical one, where the mechanism is
+  // most likely the critical one) with a measured acceleration.
+  const StabilityTrial* near[2] = {nullptr, nullptr};
+  for (const auto& t : trials) {
+    if (t.stable || !(t.acceleration > 0.0) || !std::isfinite(t.acceleration)) continue;
+    if (near[0] && t.parameter == near[0]->parameter) continue;
+    if (near[1] && t.parameter == near[1]->parameter) continue;
+    if (!near[0] || t.parameter < near[0]->parameter) {
+      near[1] = near[0];
+      near[0] = &t;
+    } else if (!near[1] || t.parameter < near[1]->parameter) {
+      near[1] = &t;
+    }
+  }
+  if (!near[0] || !near[1]) return std::nullopt;
+  // a = A - B/F through (1/F1, a1) and (1/F2, a2), F1 < F2: B = (a2 - a1) / (1/F1 - 1/F2).
+  const double f1 = near[0]->parameter, f2 = near[1]->parameter;
+  const double a1 = near[0]->acceleration, a2 = near[1]->acceleration;
+  if (!(a2 > a1)) return std::nullopt;  // the faster mechanism at the weaker joints, or none
+  const double b = (a2 - a1) / (1.0 / f1 - 1.0 / f2);
+  const double a = a1 + b / f1;
+  const double fc = b / a;
+  if (!(b > 0.0 && a > 0.0) || !std::isfinite(fc)) return std::nullopt;
+  return fc;
+}
+
 StabilityTrial run_trial(World& world, Stage stage, double parameter, const ProgressFn& progress,
                          const StopFn& stop) {
   stage.kind = Stage::Kind::equilibrium;
@@ -51,6 +78,7 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
   StabilityTrial t;
   t.parameter = parameter;
   std::optional<MotionMonitor> monitor;
+  const double t0 = world.time();
   if (progress) progress(stage, 0, EquilibriumMeasures{});  // the trial begins
   try {
     AfterStepFn after_step;
@@ -61,6 +89,9 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
     t.motion = r.motion;
     t.stable = r.converged && !r.motion.mechanism;
     t.outcome = t.stable ? "stable" : to_string(classify_failure(*monitor, false));
+    const double elapsed = world.time() - t0;
+    if (!t.stable && t.outcome != to_string(FailureKind::diverged) && elapsed > 0.0)
+      t.acceleration = 2.0 * t.motion.max_displacement / (elapsed * elapsed);
   } catch (const StepFailure&) {
     t.motion = monitor->report();
     t.outcome = to_string(FailureKind::diverged);  // numerical, whatever the motion said
@@ -182,14 +213,46 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   }
   s.last_stable = lower;
   s.first_failed = upper;
+  // Trials placed by the extrapolated critical factor F_c, while it lies inside the bracket (a
+  // stable trial above it contradicts it): a quarter of the tolerance below it (stable if the
+  // estimate holds: stable trials are the short ones), then, once the last stable factor lies
+  // that close below F_c, 0.95 of the tolerance above it (failing there closes the bracket with
+  // one more failed trial, the long ones near F_c). A trial against the expectation ends the
+  // extrapolation: the mechanism is not the rigid one the estimate assumes (joints that soften,
+  // bonds that break, another mechanism), and the search bisects.
+  // Joints that can break (cohesion, tension, a residual angle below the peak) move a failed
+  // trial's mechanism on their residual strength: its acceleration extrapolates to the residual
+  // factor, not to the one at which the intact joints give way, so such a search bisects.
+  s.extrapolating = stage.strength.extrapolate;
+  for (const JointLaw& law : saved.joint_laws())
+    if (strength_of(law.shear).can_break()) s.extrapolating = false;
+  bool missed = false;
   while (s.first_failed - s.last_stable > tolerance) {
-    const double factor = 0.5 * (s.last_stable + s.first_failed);
+    double factor = 0.5 * (s.last_stable + s.first_failed);
+    bool expect_stable = false, placed = false;
+    if (s.extrapolating && !missed) {
+      s.extrapolated = extrapolated_factor(s.trials);
+      const double fc = s.extrapolated.value_or(0.0);
+      if (s.extrapolated && strictly_between(fc, s.last_stable, s.first_failed)) {
+        const double below = fc - 0.25 * tolerance;
+        const double above = s.last_stable + 0.95 * tolerance;
+        if (below > s.last_stable) {
+          factor = below;
+          expect_stable = placed = true;
+        } else if (above < s.first_failed) {
+          factor = above;
+          placed = true;
+        }
+      }
+    }
     if (!strictly_between(factor, s.last_stable, s.first_failed)) break;
     if (stop && stop()) {
       s.interrupted = true;
       break;
     }
-    if (trial(factor).interrupted) break;
+    const StabilityTrial t = trial(factor);
+    if (t.interrupted) break;
+    if (placed && t.stable != expect_stable) missed = true;
   }
   return s;
 }

@@ -23,6 +23,10 @@ struct StabilityTrial {
   std::string outcome;
   std::int64_t steps = 0;
   MotionReport motion;
+  /// A failed trial's mean acceleration of its mechanism, 2 d / T^2 (d: the largest
+  /// displacement of a free block, T: the trial's time), as if it moved from rest at constant
+  /// acceleration (m/s^2); 0 for a stable trial or one that diverged.
+  double acceleration = 0.0;
   /// Stopped part way by the caller (run_trial's `stop`): neither stable nor failed, and not
   /// among a search's trials.
   bool interrupted = false;
@@ -37,7 +41,21 @@ struct StabilitySearch {
   std::optional<World> stable_world;
   /// The caller stopped the search between two trials (StopFn): the bracket is the one so far.
   bool interrupted = false;
+  /// A strength reduction's last estimate of the critical factor from its failed trials'
+  /// accelerations (extrapolated_factor), when it had one.
+  std::optional<double> extrapolated;
+  /// A strength reduction placed its trials by the extrapolation (stage.strength.extrapolate,
+  /// and no joint law that can break); false: it bisected.
+  bool extrapolating = false;
 };
+
+/// The factor at which a rigid mechanism's acceleration vanishes, extrapolated from the failed
+/// trials of a strength reduction: with the joints' strength divided by F, the mechanism's net
+/// driving force is D - R/F (the resisting forces N tan(phi)/F + c A/F at fixed normal forces),
+/// and under local damping its acceleration is a constant times that, a = A - B/F. The line in
+/// 1/F through the two failed trials of smallest F with a measured acceleration gives F_c =
+/// B/A. None when there are fewer than two, or the line does not rise with F.
+std::optional<double> extrapolated_factor(const std::vector<StabilityTrial>& trials);
 
 /// Called after each trial.
 using TrialFn = std::function<void(const StabilityTrial&)>;
@@ -74,7 +92,13 @@ StabilitySearch find_collapse_load(const World& saved, const Stage& stage, doubl
 /// stage's criteria. Tries the bounds first: throws std::invalid_argument (naming the factors
 /// tried and what happened) when they do not bracket the failure, saying that the model is
 /// unstable with its full strength when both failed and lower <= 1; then bisects until
-/// first_failed - last_stable <= tolerance.
+/// first_failed - last_stable <= tolerance. With stage.strength.extrapolate (the default), a
+/// trial is placed by the failed trials' extrapolated critical factor F_c where it has one (a
+/// quarter of the tolerance below F_c, expected stable; then 0.95 of the tolerance above the
+/// last stable factor, expected to fail and close the bracket) while F_c lies inside the bracket,
+/// and at the midpoint otherwise and after a trial that went against the expectation; a world
+/// with a joint law that can break (JointStrength::can_break) bisects. Every bracket is still [a
+/// stable trial, a failed trial].
 ///
 /// Both searches end whatever the tolerance: where the bracket's midpoint equals one of its ends
 /// (the bracket as narrow as doubles go), or where `stop` says so between two trials

@@ -89,6 +89,10 @@ struct Stage {
     /// trial (its strength divided further; the first trial from the stage's start). False
     /// (`"stage_start"`, the default): every trial from the stage's start.
     bool from_last_stable = false;
+    /// `factor_search = "extrapolate"` (the default): trials placed by the critical factor
+    /// extrapolated from the failed trials' accelerations (strength_reduction,
+    /// world/stability.hpp); `"bisect"`: every trial at the bracket's midpoint.
+    bool extrapolate = true;
   } strength;
 
   std::int64_t steps = 0;  ///< Kind::steps
