@@ -86,6 +86,8 @@ py::dict strength_dict(const Stage& stage, const StabilitySearch& sr, std::int64
   d["factor_of_safety"] = 0.5 * (sr.last_stable + sr.first_failed);
   d["last_stable"] = sr.last_stable;
   d["first_failed"] = sr.first_failed;
+  d["search"] = sr.extrapolating ? "extrapolate" : "bisect";
+  d["extrapolated"] = sr.extrapolated ? py::object(py::float_(*sr.extrapolated)) : py::none();
   d["trials"] = sr.trials.size();
   d["steps"] = steps;
   return d;

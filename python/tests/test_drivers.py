@@ -26,6 +26,10 @@ def test_strength_reduction_is_the_same_in_both_front_ends(tmp_path, source_dir)
     fos = run["summary"]["factor_of_safety"]
     assert (fos["last_stable"], fos["first_failed"]) == (stages[-1]["last_stable"],
                                                          stages[-1]["first_failed"])
+    # The trials placed by the extrapolated critical factor, alike in both.
+    assert (fos["search"], fos["extrapolated"]) == (stages[-1]["search"],
+                                                    stages[-1]["extrapolated"])
+    assert fos["search"] == "extrapolate"
 
 
 def test_collapse_search_is_the_same_in_both_front_ends(tmp_path):
