@@ -618,8 +618,8 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
   dc.in_trial = dc.between_trials;
   dc.trial_done = [&cb](const StabilityTrial& t) {
     if (cb.stage_done)
-      cb.stage_done("  trial " + number_text(t.parameter, "%.4g") + ": " + t.outcome + " after " +
-                    std::to_string(t.steps) + " steps");
+      cb.stage_done("  trial " + number_text(t.parameter, "%.4g") + ": " + to_string(t.outcome) +
+                    " after " + std::to_string(t.steps) + " steps");
   };
   return dc;
 }

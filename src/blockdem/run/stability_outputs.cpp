@@ -18,7 +18,7 @@ void write_trials_csv(const std::filesystem::path& path, const std::string& para
     csv.cell(++i)
         .cell(t.parameter)
         .cell(t.stable ? 1 : 0)
-        .cell(t.outcome)
+        .cell(to_string(t.outcome))
         .cell(static_cast<long long>(t.steps))
         .cell(t.motion.max_displacement)
         .cell(t.motion.displacement_limit)
@@ -71,7 +71,7 @@ nlohmann::json trials_json(const StabilitySearch& search) {
   for (const auto& t : search.trials) {
     a.push_back({{"value", t.parameter},
                  {"stable", t.stable},
-                 {"outcome", t.outcome},
+                 {"outcome", to_string(t.outcome)},
                  {"steps", t.steps},
                  {"max_displacement_m", t.motion.max_displacement},
                  {"acceleration_m_s2", t.acceleration}});

@@ -378,6 +378,88 @@ void warn_point_contact_searches(Scenario& sc) {
 
 namespace {
 
+/// The [[joints]] rules: which law acts between which block groups (one law and no rules: it
+/// acts between all blocks).
+void read_joint_rules(const CheckedTable& t, const std::set<std::string>& groups,
+                      const std::map<std::string, int>& law_index, Scenario& sc) {
+  for (const auto& jt : t.tables("joints")) {
+    JointRule r;
+    const auto g = jt.strings("groups");
+    if (g.size() != 2)
+      jt.fail("groups", "must name two block groups, e.g. [\"beam\", \"abutment\"]");
+    for (const auto& name : g) {
+      if (!name.empty() && !groups.count(name))
+        jt.fail("groups", "no block is in group \"" + name + "\"");
+    }
+    r.group_a = g[0];
+    r.group_b = g[1];
+    const std::string law = jt.string("law");
+    auto it = law_index.find(law);
+    if (it == law_index.end())
+      jt.fail("law", "no joint law named \"" + law + "\" in [[joint_laws]]");
+    r.law = it->second;
+    jt.finish();
+    sc.joint_rules.push_back(r);
+  }
+  if (sc.joint_rules.empty() && sc.joint_laws.size() == 1) {
+    // One law and no rules: it acts between all blocks.
+    sc.joint_rules.push_back(JointRule{"", "", 0});
+  }
+  if (sc.joint_rules.empty() && sc.blocks.size() > 1) {
+    t.fail("joints",
+           "several joint laws and no [[joints]] rule saying which acts between which groups");
+  }
+}
+
+/// A strength-reduction stage's laws: each named one exists, and at least one chosen law has a
+/// strength (friction) to divide.
+void check_reduced_laws(const CheckedTable& st, const Stage& stage,
+                        const std::map<std::string, int>& law_index,
+                        const std::vector<JointLaw>& laws) {
+  bool strength = false;
+  for (const auto& name : stage.strength.laws) {
+    if (!law_index.count(name)) {
+      std::string known;
+      for (const auto& [n, i] : law_index) known += (known.empty() ? "" : ", ") + n;
+      st.fail("laws", "no joint law named \"" + name + "\" (known: " + known + ")");
+    }
+  }
+  for (const auto& law : laws) {
+    const bool chosen = stage.strength.laws.empty() ||
+                        std::find(stage.strength.laws.begin(), stage.strength.laws.end(),
+                                  law.name) != stage.strength.laws.end();
+    if (chosen && has_strength(law)) strength = true;
+  }
+  if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
+}
+
+/// A scene at map coordinates (centre farther than 10 km from the origin) is simulated relative
+/// to its centre rounded to the metre: subtracting it is exact (Sterbenz), and contacts keep the
+/// precision they have at the origin. Outputs add it back. Scenes nearer keep origin 0.
+void shift_to_local_origin(Scenario& sc) {
+  if (sc.blocks.empty()) return;
+  Eigen::Vector3d lo = sc.blocks[0].position, hi = lo;
+  for (const auto& b : sc.blocks) {
+    lo = lo.cwiseMin(b.position);
+    hi = hi.cwiseMax(b.position);
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  if (centre.cwiseAbs().maxCoeff() <= 1e4) return;
+  sc.settings.origin = centre.array().round().matrix();
+  if (sc.in_situ) sc.in_situ = sc.in_situ->shifted_by(sc.settings.origin);
+  if (sc.settings.water)
+    sc.settings.water->table = sc.settings.water->table.shifted_by(sc.settings.origin);
+  for (Stage& st : sc.stages) {
+    if (st.water) st.water->table = st.water->table.shifted_by(sc.settings.origin);
+    for (BoltSpec& bolt : st.bolts) bolt.start -= sc.settings.origin;
+  }
+  for (auto& b : sc.blocks) {
+    b.position -= sc.settings.origin;
+    b.initial_position -= sc.settings.origin;
+    b.update_world_geometry();
+  }
+}
+
 /// Reads a scenario from the TOML tree of its file. `listed`: the blocks of its [[blocks]] list,
 /// read already (the tree holds an empty list in their place), or null to read them from the tree.
 Scenario read_scenario(const toml::table& root, const std::string& file,
@@ -444,33 +526,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   if (sc.blocks.empty()) t.fail("blocks", "a scenario needs at least one [[blocks]] entry");
   check_block_scales(sc);
 
-  for (const auto& jt : t.tables("joints")) {
-    JointRule r;
-    const auto g = jt.strings("groups");
-    if (g.size() != 2)
-      jt.fail("groups", "must name two block groups, e.g. [\"beam\", \"abutment\"]");
-    for (const auto& name : g) {
-      if (!name.empty() && !groups.count(name))
-        jt.fail("groups", "no block is in group \"" + name + "\"");
-    }
-    r.group_a = g[0];
-    r.group_b = g[1];
-    const std::string law = jt.string("law");
-    auto it = law_index.find(law);
-    if (it == law_index.end())
-      jt.fail("law", "no joint law named \"" + law + "\" in [[joint_laws]]");
-    r.law = it->second;
-    jt.finish();
-    sc.joint_rules.push_back(r);
-  }
-  if (sc.joint_rules.empty() && sc.joint_laws.size() == 1) {
-    // One law and no rules: it acts between all blocks.
-    sc.joint_rules.push_back(JointRule{"", "", 0});
-  }
-  if (sc.joint_rules.empty() && sc.blocks.size() > 1) {
-    t.fail("joints",
-           "several joint laws and no [[joints]] rule saying which acts between which groups");
-  }
+  read_joint_rules(t, groups, law_index, sc);
 
   // The free blocks no stage has removed yet: with an automatic time step, a stage needs one.
   std::set<std::string> free_left;
@@ -489,22 +545,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
                   "and no automatic time step exists (fix fewer region faces, excavate less, or "
                   "set [settings] time_step)");
     if (stage.kind != Stage::Kind::strength_reduction) continue;
-    // The laws to reduce exist and at least one has a strength (friction) to divide.
-    bool strength = false;
-    for (const auto& name : stage.strength.laws) {
-      if (!law_index.count(name)) {
-        std::string known;
-        for (const auto& [n, i] : law_index) known += (known.empty() ? "" : ", ") + n;
-        st.fail("laws", "no joint law named \"" + name + "\" (known: " + known + ")");
-      }
-    }
-    for (const auto& law : sc.joint_laws) {
-      const bool chosen = stage.strength.laws.empty() ||
-                          std::find(stage.strength.laws.begin(), stage.strength.laws.end(),
-                                    law.name) != stage.strength.laws.end();
-      if (chosen && has_strength(law)) strength = true;
-    }
-    if (!strength) st.fail("laws", "no chosen joint law has a friction or strength to reduce");
+    check_reduced_laws(st, stage, law_index, sc.joint_laws);
   }
   read_bolts(t, sc);
   add_elastic_twins(sc);
@@ -529,32 +570,7 @@ Scenario read_scenario(const toml::table& root, const std::string& file,
   // A built scene without stages can be generated (blockdem generate), not run.
   if (sc.stages.empty() && !sc.built)
     t.fail("stages", "a scenario needs at least one [[stages]] entry");
-  // A scene at map coordinates (centre farther than 10 km from the origin) is simulated relative
-  // to its centre rounded to the metre: subtracting it is exact (Sterbenz), and contacts keep the
-  // precision they have at the origin. Outputs add it back. Scenes nearer keep origin 0.
-  if (!sc.blocks.empty()) {
-    Eigen::Vector3d lo = sc.blocks[0].position, hi = lo;
-    for (const auto& b : sc.blocks) {
-      lo = lo.cwiseMin(b.position);
-      hi = hi.cwiseMax(b.position);
-    }
-    const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    if (centre.cwiseAbs().maxCoeff() > 1e4) {
-      sc.settings.origin = centre.array().round().matrix();
-      if (sc.in_situ) sc.in_situ = sc.in_situ->shifted_by(sc.settings.origin);
-      if (sc.settings.water)
-        sc.settings.water->table = sc.settings.water->table.shifted_by(sc.settings.origin);
-      for (Stage& st : sc.stages) {
-        if (st.water) st.water->table = st.water->table.shifted_by(sc.settings.origin);
-        for (BoltSpec& bolt : st.bolts) bolt.start -= sc.settings.origin;
-      }
-      for (auto& b : sc.blocks) {
-        b.position -= sc.settings.origin;
-        b.initial_position -= sc.settings.origin;
-        b.update_world_geometry();
-      }
-    }
-  }
+  shift_to_local_origin(sc);
   // The scenario's blocks are the recipe of a world: World::add_block derives each block's world
   // planes again, so these copies do not keep theirs (the shapes are shared, not copied).
   for (auto& b : sc.blocks) std::vector<Halfspace>().swap(b.world_planes);

@@ -21,7 +21,33 @@ bool strictly_between(double mid, double lo, double hi) {
   return mid > lo && mid < hi;
 }
 
+TrialOutcome outcome_of(FailureKind kind) {
+  switch (kind) {
+    case FailureKind::collapsed:
+      return TrialOutcome::collapsed;
+    case FailureKind::diverged:
+      return TrialOutcome::diverged;
+    case FailureKind::not_converged:
+      return TrialOutcome::not_converged;
+  }
+  return TrialOutcome::not_converged;
+}
+
 }  // namespace
+
+const char* to_string(TrialOutcome outcome) {
+  switch (outcome) {
+    case TrialOutcome::stable:
+      return "stable";
+    case TrialOutcome::collapsed:
+      return to_string(FailureKind::collapsed);
+    case TrialOutcome::diverged:
+      return to_string(FailureKind::diverged);
+    case TrialOutcome::not_converged:
+      return to_string(FailureKind::not_converged);
+  }
+  return "failed";
+}
 
 JointLaw divide_strength(const JointLaw& law, double factor) {
   JointLaw out = law;
@@ -88,16 +114,16 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
     t.interrupted = r.interrupted;
     t.motion = r.motion;
     t.stable = r.converged && !r.motion.mechanism;
-    t.outcome = t.stable ? "stable" : to_string(classify_failure(*monitor, false));
+    t.outcome = t.stable ? TrialOutcome::stable : outcome_of(classify_failure(*monitor, false));
     const double elapsed = world.time() - t0;
-    if (!t.stable && t.outcome != to_string(FailureKind::diverged) && elapsed > 0.0)
+    if (!t.stable && t.outcome != TrialOutcome::diverged && elapsed > 0.0)
       t.acceleration = 2.0 * t.motion.max_displacement / (elapsed * elapsed);
   } catch (const StepFailure&) {
     t.motion = monitor->report();
-    t.outcome = to_string(FailureKind::diverged);  // numerical, whatever the motion said
+    t.outcome = TrialOutcome::diverged;  // numerical, whatever the motion said
   } catch (const DivergenceError&) {
     t.motion = monitor->report();
-    t.outcome = to_string(classify_failure(*monitor, true));
+    t.outcome = outcome_of(classify_failure(*monitor, true));
   }
   return t;
 }
@@ -196,8 +222,9 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     // strength (or stronger) do not hold the model, and no bound can bracket a factor of safety.
     const std::string tried =
         "factor_bounds: [" + number_text(lower, "%g") + ", " + number_text(upper, "%g") +
-        "] do not bracket the failure: F = " + number_text(lower, "%g") + " was " + lo.outcome +
-        " and F = " + number_text(upper, "%g") + " was " + hi.outcome;
+        "] do not bracket the failure: F = " + number_text(lower, "%g") + " was " +
+        to_string(lo.outcome) + " and F = " + number_text(upper, "%g") + " was " +
+        to_string(hi.outcome);
     const std::string rule = " (the lower bound must be stable and the upper one fail)";
     if (lo.stable)
       throw std::invalid_argument(tried + "; both stable: raise the upper bound" + rule);

@@ -13,14 +13,21 @@
 
 namespace blockdem {
 
+/// How a trial of a search ended: stable, or why not (a failure's kind, FailureKind).
+enum class TrialOutcome {
+  stable,
+  collapsed,      ///< a mechanism
+  diverged,       ///< numerical blow-up: counted as failed and reported
+  not_converged,  ///< no equilibrium and no mechanism within the step limit: counted as failed
+};
+/// The outcome's word in the outputs: "stable", "collapsed", "diverged", "not_converged".
+const char* to_string(TrialOutcome outcome);
+
 /// One trial of a search: the parameter tried (g level or factor) and how it ended.
 struct StabilityTrial {
   double parameter = 0.0;
   bool stable = false;
-  /// "stable", or why not: "collapsed" (a mechanism), "not_converged" (no equilibrium and no
-  /// mechanism within the step limit: counted as failed), "diverged" (numerical blow-up:
-  /// counted as failed and reported).
-  std::string outcome;
+  TrialOutcome outcome = TrialOutcome::not_converged;
   std::int64_t steps = 0;
   MotionReport motion;
   /// A failed trial's mean acceleration of its mechanism, 2 d / T^2 (d: the largest

@@ -160,6 +160,43 @@ void start_stage(World& world, const Stage& stage, std::optional<MotionMonitor>&
   watch.emplace(world, stage.mechanism);
 }
 
+/// What a stage ramps from (the loads before it) and, step by step, the ramped loads: gravity,
+/// the seismic load and the water pressure over ramp_steps, and a gradual excavation's relaxation.
+struct StageRamp {
+  Eigen::Vector3d gravity_before;
+  SeismicLoad seismic_before;
+  std::optional<GroundWater> water_before;
+  bool water_ramp = false;
+
+  /// Sets the loads of step k; true while a load is still being raised or relaxed.
+  bool apply(World& world, const Stage& stage, std::int64_t k) const {
+    const bool relaxing = world.relaxing();
+    const bool in_ramp = k <= stage.ramp_steps;
+    const bool ramping = ((stage.gravity || stage.seismic || water_ramp) && in_ramp) || relaxing;
+    const double f = in_ramp ? static_cast<double>(k) / static_cast<double>(stage.ramp_steps) : 1.0;
+    if (stage.gravity && in_ramp)
+      world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
+    // The seismic load moves from the one before the stage to the stage's over the ramp.
+    if (stage.seismic && in_ramp)
+      world.settings().seismic = seismic_before.toward(*stage.seismic, f);
+    // The water pressure p = (1 - f) p_before + f p_stage; the stage's alone from f = 1.
+    if (water_ramp && in_ramp) {
+      if (k < stage.ramp_steps) {
+        world.settings().water_ramp = WaterRamp{water_before, f};
+      } else {
+        world.settings().water_ramp.reset();
+      }
+    }
+    // A gradual excavation: the removed blocks' loads down to zero at step relax_steps.
+    if (relaxing) {
+      const double done = static_cast<double>(std::min(k, stage.relax_steps)) /
+                          static_cast<double>(stage.relax_steps);
+      world.relax(1.0 - done);
+    }
+    return ramping;
+  }
+};
+
 }  // namespace
 
 StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progress,
@@ -177,18 +214,20 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   world.set_deferred_replica(deferred);
   if (resume && !(monitor && monitor->has_value()))
     throw std::logic_error("run_stage: resuming a stage needs its motion monitor");
-  const Eigen::Vector3d gravity_before = resume ? resume->gravity_before : world.settings().gravity;
+  StageRamp ramp;
+  ramp.gravity_before = resume ? resume->gravity_before : world.settings().gravity;
+  const Eigen::Vector3d& gravity_before = ramp.gravity_before;
   // The seismic load before the stage (a restart applies the stages' loads up to the one before
   // this, and this stage's at the end of its ramp).
-  const SeismicLoad seismic_before = world.settings().seismic;
+  ramp.seismic_before = world.settings().seismic;
   if (resume && stage.seismic && resume->steps_done >= stage.ramp_steps)
     world.settings().seismic = *stage.seismic;
   // Likewise the water: a ramp moves its pressure from the one before the stage to the stage's
   // (none when the two are the same water, as in a collapse search's later trials).
-  const std::optional<GroundWater> water_before = world.settings().water;
+  ramp.water_before = world.settings().water;
   const bool sets_water = stage.water || stage.dry;
-  const bool water_ramp = sets_water && stage.ramp_steps > 0 &&
-                          !(water_before == (stage.dry ? std::nullopt : stage.water));
+  ramp.water_ramp = sets_water && stage.ramp_steps > 0 &&
+                    !(ramp.water_before == (stage.dry ? std::nullopt : stage.water));
   if (resume && sets_water) apply_water(world.settings(), stage);
   std::optional<MotionMonitor> own_monitor;
   std::optional<MotionMonitor>& watch = monitor ? *monitor : own_monitor;
@@ -201,33 +240,7 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
   auto last_report = std::chrono::steady_clock::now();
   bool reported = false;
   for (std::int64_t k = resume ? resume->steps_done + 1 : 1;; ++k) {
-    const bool relaxing = world.relaxing();
-    const bool ramping =
-        ((stage.gravity || stage.seismic || water_ramp) && k <= stage.ramp_steps) || relaxing;
-    if (stage.gravity && k <= stage.ramp_steps) {
-      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
-      world.settings().gravity = gravity_before + f * (*stage.gravity - gravity_before);
-    }
-    // The seismic load moves from the one before the stage to the stage's over the ramp.
-    if (stage.seismic && k <= stage.ramp_steps) {
-      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
-      world.settings().seismic = seismic_before.toward(*stage.seismic, f);
-    }
-    // The water pressure p = (1 - f) p_before + f p_stage; the stage's alone from f = 1.
-    if (water_ramp && k <= stage.ramp_steps) {
-      const double f = static_cast<double>(k) / static_cast<double>(stage.ramp_steps);
-      if (k < stage.ramp_steps) {
-        world.settings().water_ramp = WaterRamp{water_before, f};
-      } else {
-        world.settings().water_ramp.reset();
-      }
-    }
-    // A gradual excavation: the removed blocks' loads down to zero at step relax_steps.
-    if (relaxing) {
-      const double done = static_cast<double>(std::min(k, stage.relax_steps)) /
-                          static_cast<double>(stage.relax_steps);
-      world.relax(1.0 - done);
-    }
+    const bool ramping = ramp.apply(world, stage, k);
     base.before_step(world);
     world.step();
     base.after_step(world);

@@ -15,7 +15,7 @@ StabilityTrial failed(double factor, double acceleration) {
   StabilityTrial t;
   t.parameter = factor;
   t.stable = false;
-  t.outcome = "collapsed";
+  t.outcome = TrialOutcome::collapsed;
   t.acceleration = acceleration;
   return t;
 }
@@ -24,7 +24,7 @@ StabilityTrial stable(double factor) {
   StabilityTrial t;
   t.parameter = factor;
   t.stable = true;
-  t.outcome = "stable";
+  t.outcome = TrialOutcome::stable;
   return t;
 }
 

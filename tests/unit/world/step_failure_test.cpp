@@ -83,7 +83,7 @@ TEST(StepFailure, AStabilityTrialThatMeetsItIsDivergedNotCollapsed) {
   stage.gravity = Eigen::Vector3d(0, 0, -9.81);
   const StabilityTrial t = run_trial(w, stage, 1.0);
   EXPECT_FALSE(t.stable);
-  EXPECT_EQ(t.outcome, "diverged");
+  EXPECT_EQ(t.outcome, TrialOutcome::diverged);
   EXPECT_EQ(w.step_count(), 0) << "reset to the state before the first step";
 }
 
