@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/world/state_fields.hpp"
 
 namespace blockdem {
 
@@ -118,32 +119,12 @@ void VoussoirRecorder::on_run_end() {
 
 namespace {
 
-// One function for both directions: a StateWriter takes each field, a StateReader fills it.
-template <class Stream, class T>
-void field(Stream& s, T& value) {
-  s.pod(value);
-}
+using namespace state_fields;
+
+// A flag of the recorder's state (state_fields::flag, its error naming the levels).
 template <class Stream>
 void flag(Stream& s, bool& value) {
-  std::uint8_t byte = value ? 1 : 0;
-  s.pod(byte);
-  if (byte > 1) throw StateError("saved voussoir levels are corrupt (a flag is not 0 or 1)");
-  value = byte == 1;
-}
-template <class Stream>
-void text(Stream& s, std::string& value) {
-  if constexpr (std::is_same_v<Stream, StateWriter>)
-    s.str(value);
-  else
-    value = s.str();
-}
-template <class Stream, class T, class Each>
-void list(Stream& s, std::vector<T>& items, Each each) {
-  if constexpr (std::is_same_v<Stream, StateWriter>)
-    s.size(items.size());
-  else
-    items.resize(s.size());
-  for (T& item : items) each(s, item);
+  state_fields::flag(s, value, "saved voussoir levels");
 }
 
 template <class Stream>

@@ -7,42 +7,17 @@
 #include <string>
 #include <type_traits>
 
+#include "blockdem/world/state_fields.hpp"
+
 namespace blockdem {
 namespace {
 
-// One function for both directions: a StateWriter takes each field, a StateReader fills it.
-template <class Stream>
-constexpr bool kWriting = std::is_same_v<Stream, StateWriter>;
+using namespace state_fields;
 
-template <class Stream, class T>
-void field(Stream& s, T& value) {
-  s.pod(value);
-}
-template <class Stream>
-void vector3(Stream& s, Eigen::Vector3d& v) {
-  for (int i = 0; i < 3; ++i) s.pod(v[i]);
-}
-template <class Stream>
-void text(Stream& s, std::string& value) {
-  if constexpr (kWriting<Stream>)
-    s.str(value);
-  else
-    value = s.str();
-}
+// A flag of a bolt's state (state_fields::flag, its error naming the bolt).
 template <class Stream>
 void flag(Stream& s, bool& value) {
-  std::uint8_t byte = value ? 1 : 0;
-  s.pod(byte);
-  if (byte > 1) throw StateError("saved bolt is corrupt (a flag is not 0 or 1)");
-  value = byte == 1;
-}
-template <class Stream, class T, class Each>
-void list(Stream& s, std::vector<T>& items, Each each) {
-  if constexpr (kWriting<Stream>)
-    s.size(items.size());
-  else
-    items.resize(s.size());
-  for (T& item : items) each(s, item);
+  state_fields::flag(s, value, "saved bolt");
 }
 
 template <class Stream>
