@@ -89,7 +89,8 @@ std::optional<double> extrapolated_factor(const std::vector<StabilityTrial>& tri
   // a = A - B/F through (1/F1, a1) and (1/F2, a2), F1 < F2: B = (a2 - a1) / (1/F1 - 1/F2).
   const double f1 = near[0]->parameter, f2 = near[1]->parameter;
   const double a1 = near[0]->acceleration, a2 = near[1]->acceleration;
-  if (!(a2 > a1)) return std::nullopt;  // the faster mechanism at the weaker joints, or none
+  // The weaker joints (larger F) must move the mechanism faster; else no rigid mechanism.
+  if (!(a2 > a1)) return std::nullopt;
   const double b = (a2 - a1) / (1.0 / f1 - 1.0 / f2);
   const double a = a1 + b / f1;
   const double fc = b / a;
