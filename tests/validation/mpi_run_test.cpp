@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "brick_pile.hpp"
+#include "stability_support.hpp"
 #include "support/mpi_launcher.hpp"
 #include "support/temp_path.hpp"
 
@@ -281,6 +282,36 @@ steps = 1500
 TEST_F(MpiRun, VoussoirBeamSameOutputs) {
   const fs::path scenario = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/boon2015/T2-1.toml";
   expect_same_outputs(dir_, scenario.string() + " --max-steps 300 2> /dev/null", "", 3);
+}
+
+// A factor of safety by strength reduction: three blocks side by side on an incline (psi 30,
+// phi 40: F = tan 40 / tan 30 = 1.453 for each), the trials placed by the critical factor
+// extrapolated from the failed trials' accelerations. Every trial (strength_reduction.csv, with
+// its acceleration), the estimate and the bracket as from one process, which places each trial
+// by the estimate of the trials before it: a process that measured another acceleration would
+// place its next trial elsewhere. (12,000 steps per trial: the failed ones end not converged,
+// each with its acceleration; the estimate is 1.4534.)
+TEST_F(MpiRun, StrengthReductionSameTrialsEstimateAndBracket) {
+  std::string text = incline_scenario(30.0, 40.0, 0.1, 0.02,
+                                      "[[stages]]\nname = \"srm\"\nkind = \"strength_reduction\"\n"
+                                      "factor_bounds = [0.8, 3.0]\ntolerance = 0.02\n"
+                                      "max_steps = 12000\n");
+  const std::string more =
+      "[[blocks]]\nname = \"left\"\nmaterial = \"rock\"\nsize = [0.1, 0.1, 0.02]\n"
+      "position = [-0.3, 0.0, 0.01]\n"
+      "[[blocks]]\nname = \"right\"\nmaterial = \"rock\"\nsize = [0.1, 0.1, 0.03]\n"
+      "position = [0.3, 0.0, 0.015]\n";
+  text.insert(text.find("[[stages]]"), more);
+  const fs::path scenario = write("incline.toml", text);
+  const auto summaries = expect_same_outputs(dir_, scenario.string());
+  for (const auto& s : summaries) {
+    const auto& fos = s.at("factor_of_safety");
+    EXPECT_EQ(fos.at("search"), "extrapolate");
+    EXPECT_TRUE(fos.at("extrapolated").is_number());
+    EXPECT_LE(fos.at("last_stable").get<double>(), 1.4534 * 1.005);
+    EXPECT_GE(fos.at("first_failed").get<double>(), 1.4534 * 0.995);
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "out3" / "strength_reduction.csv"));
 }
 
 // Bad input: 3 processes for 2 blocks. Every process stops; one message; exit code 2; nothing
