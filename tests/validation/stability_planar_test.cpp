@@ -126,13 +126,17 @@ TEST(StrengthReductionSearch, ExtrapolationFindsHoekAndBrayInFewerStepsThanBisec
       EXPECT_LE(lo[k], expected * 1.005) << label;
       EXPECT_GE(hi[k], expected * 0.995) << label;
       EXPECT_LE(hi[k] - lo[k], 0.01 + 1e-12) << label;
+      int placed = 0;
+      for (const auto& t : fos["trials"]) placed += t["placed_by"].is_number() ? 1 : 0;
       if (search == "extrapolate" && !breaks) {
+        EXPECT_GE(placed, 1) << label;
         ASSERT_TRUE(fos["extrapolated"].is_number()) << label;
         const double fc = fos["extrapolated"].get<double>();
         EXPECT_NEAR(fc, expected, 0.005 * expected) << label;
         std::printf("psi %.0f phi %.0f c %.0f Pa: extrapolated F_c = %.5f (closed form %.5f)\n",
                     c.psi, c.phi, c.cohesion, fc, expected);
       } else {
+        EXPECT_EQ(placed, 0) << label;
         EXPECT_TRUE(fos["extrapolated"].is_null()) << label;
       }
       steps[k++] = r.steps_per_stage.back();

@@ -619,7 +619,10 @@ DriveControl run_control(const Scenario& sc, World& world, const RunCallbacks& c
   dc.trial_done = [&cb](const StabilityTrial& t) {
     if (cb.stage_done)
       cb.stage_done("  trial " + number_text(t.parameter, "%.4g") + ": " + to_string(t.outcome) +
-                    " after " + std::to_string(t.steps) + " steps");
+                    " after " + std::to_string(t.steps) + " steps" +
+                    (t.placed_by ? " (placed by the extrapolated critical factor " +
+                                       number_text(*t.placed_by, "%.4g") + ")"
+                                 : std::string()));
   };
   return dc;
 }

@@ -69,12 +69,14 @@ void write_mechanism(const std::filesystem::path& dir, const std::string& stem,
 nlohmann::json trials_json(const StabilitySearch& search) {
   nlohmann::json a = nlohmann::json::array();
   for (const auto& t : search.trials) {
-    a.push_back({{"value", t.parameter},
-                 {"stable", t.stable},
-                 {"outcome", to_string(t.outcome)},
-                 {"steps", t.steps},
-                 {"max_displacement_m", t.motion.max_displacement},
-                 {"acceleration_m_s2", t.acceleration}});
+    a.push_back(
+        {{"value", t.parameter},
+         {"stable", t.stable},
+         {"outcome", to_string(t.outcome)},
+         {"steps", t.steps},
+         {"max_displacement_m", t.motion.max_displacement},
+         {"acceleration_m_s2", t.acceleration},
+         {"placed_by", t.placed_by ? nlohmann::json(*t.placed_by) : nlohmann::json(nullptr)}});
   }
   return a;
 }

@@ -188,7 +188,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
   if (!(lower > 0.0 && upper > lower))
     throw std::invalid_argument("factor_bounds: need 0 < lo < hi");
   StabilitySearch s;
-  auto trial = [&](double factor) {
+  auto trial = [&](double factor, std::optional<double> placed_by = std::nullopt) {
     // Factors only grow from the last stable one: its equilibrium, with less strength, is where
     // a single run reducing the strength step by step would stand (docs/stability.md).
     World w = stage.strength.from_last_stable && s.stable_world ? *s.stable_world : saved;
@@ -196,6 +196,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
     Stage st = stage;
     st.name = stage.name + " F = " + number_text(factor, "%.4g");
     StabilityTrial t = run_trial(w, st, factor, progress, in_trial);
+    t.placed_by = placed_by;
     if (t.interrupted) {
       s.interrupted = true;  // the trial is dropped: the bracket is the one before it
       return t;
@@ -278,7 +279,7 @@ StabilitySearch strength_reduction(const World& saved, const Stage& stage,
       s.interrupted = true;
       break;
     }
-    const StabilityTrial t = trial(factor);
+    const StabilityTrial t = trial(factor, placed ? s.extrapolated : std::optional<double>{});
     if (t.interrupted) break;
     if (placed && t.stable != expect_stable) missed = true;
   }

@@ -34,6 +34,9 @@ struct StabilityTrial {
   /// displacement of a free block, T: the trial's time), as if it moved from rest at constant
   /// acceleration (m/s^2); 0 for a stable trial or one that diverged.
   double acceleration = 0.0;
+  /// The extrapolated critical factor that placed this trial (strength_reduction); none for a
+  /// bound or a bisection's midpoint.
+  std::optional<double> placed_by;
   /// Stopped part way by the caller (run_trial's `stop`): neither stable nor failed, and not
   /// among a search's trials.
   bool interrupted = false;
