@@ -338,13 +338,14 @@ void draw_figures(const RunOptions& opt, const RunResult& r, bool beam) {
 /// The run's last lines on stderr; returns the exit code.
 int report_end(const RunOptions& opt, const RunResult& r, const MpiSession& mpi,
                std::chrono::steady_clock::time_point command0) {
+  // Process 0 speaks for the run (every process holds the same answer).
+  if (mpi.rank() != 0) return r.exit_code;
   if (r.factor_of_safety)
     std::fprintf(stderr, "blockdem: factor of safety %.4g\n", *r.factor_of_safety);
   if (r.collapse) {
     std::fprintf(stderr, "blockdem: collapse between %.4g g (stable) and %.4g g (failed)\n",
                  r.collapse->first, r.collapse->second);
   }
-  if (mpi.rank() != 0) return r.exit_code;
   if (r.exit_code != 0) {
     std::cerr << "blockdem: error: " << r.message << "\n"
               << "blockdem: outputs up to the last good state are in " << opt.out

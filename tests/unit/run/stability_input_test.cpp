@@ -79,12 +79,13 @@ std::string read_text(const std::filesystem::path& f) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-/// `blockdem run FILE --out OUT --quiet MORE` (without --quiet when `quiet` is false), stderr to
-/// `err`; the exit code.
+/// `blockdem run FILE --out OUT --quiet --no-figures MORE` (without --quiet when `quiet` is
+/// false), stderr to `err`; the exit code.
 int run_cli(const std::filesystem::path& file, const std::filesystem::path& out,
             const std::string& more, const std::filesystem::path& err, bool quiet = true) {
   const std::string cmd = std::string(BLOCKDEM_CLI_PATH) + " run " + file.string() + " --out " +
-                          out.string() + (quiet ? " --quiet " : " ") + more + " 2>" + err.string();
+                          out.string() + (quiet ? " --quiet" : "") + " --no-figures " + more +
+                          " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   EXPECT_TRUE(WIFEXITED(status));
   return WEXITSTATUS(status);
@@ -105,7 +106,7 @@ TEST(StabilityInput, BoundsNotBracketingSayWhichFactorsWereTried) {
   using namespace stability_input_cli;
   for (const std::string bounds : {"[1.1, 1.3]", "[1.6, 2.0]"}) {
     const std::string text = test::incline_scenario(
-        30, 40, 0.1, 0.02, sr_stage("factor_bounds = " + bounds + "\nmax_steps = 60000\n"));
+        30, 40, 0.1, 0.02, sr_stage("factor_bounds = " + bounds + "\nmax_steps = 6000\n"));
     const auto dir = test::temp_path("stab_input");
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
@@ -151,10 +152,10 @@ TEST(StabilityInput, ABoundsErrorContinuesWithCorrectedBoundsFromItsCheckpoint) 
     return dir / name;
   };
   const std::string good_stage =
-      sr_stage("factor_bounds = [1.0, 3.0]\ntolerance = 0.05\nmax_steps = 60000\n");
+      sr_stage("factor_bounds = [1.0, 3.0]\ntolerance = 0.05\nmax_steps = 6000\n");
   const auto bad = write("bad.toml", test::incline_scenario(30, 40, 0.1, 0.02,
                                                             sr_stage("factor_bounds = [1.1, 1.3]"
-                                                                     "\nmax_steps = 60000\n")));
+                                                                     "\nmax_steps = 6000\n")));
   // The corrected file, written anew (comments and spacing do not count).
   const auto good = write(
       "good.toml", "# corrected bounds\n" + test::incline_scenario(30, 40, 0.1, 0.02, good_stage));
