@@ -11,10 +11,10 @@ namespace blockdem {
 namespace {
 
 // A face polygon of the usual size stays on the stack.
-using Polygon = SmallVector<Eigen::Vector3d, 16>;
+using ClipPolygon = SmallVector<Eigen::Vector3d, 16>;
 
 /// Keeps the part of the convex polygon `poly` with n·x <= d + tolerance, into `out`.
-void clip(const Polygon& poly, const Halfspace& h, double tolerance, Polygon& out) {
+void clip(const ClipPolygon& poly, const Halfspace& h, double tolerance, ClipPolygon& out) {
   out.clear();
   const std::size_t n = poly.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -42,9 +42,9 @@ std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
       // Opposite normals and the same plane: n_b = -n_a and d_b = -d_a.
       if (pa.normal.dot(pb.normal) > -1.0 + 1e-9) continue;
       if (std::abs(pa.offset + pb.offset) > tolerance) continue;
-      Polygon buffers[2];
-      Polygon* poly = &buffers[0];
-      Polygon* clipped = &buffers[1];
+      ClipPolygon buffers[2];
+      ClipPolygon* poly = &buffers[0];
+      ClipPolygon* clipped = &buffers[1];
       for (int v : face.vertices) poly->push_back(vertices_a[static_cast<std::size_t>(v)]);
       for (std::size_t k = 0; k < planes_b.size() && poly->size() >= 3; ++k) {
         if (k == j) continue;

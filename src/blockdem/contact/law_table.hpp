@@ -236,10 +236,11 @@ Variant variant_from_params(std::string_view kind, std::string_view name,
                             const std::map<std::string, double>& params) {
   std::optional<Variant> result;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((name == LawTraits<std::variant_alternative_t<I, Variant>>::name
-          ? (result = law_from_params<std::variant_alternative_t<I, Variant>>(params), true)
-          : false) ||
-     ...);
+    static_cast<void>(
+        ((name == LawTraits<std::variant_alternative_t<I, Variant>>::name
+              ? (result = law_from_params<std::variant_alternative_t<I, Variant>>(params), true)
+              : false) ||
+         ...));
   }
   (std::make_index_sequence<std::variant_size_v<Variant>>{});
   if (!result) {

@@ -58,7 +58,7 @@ void keep_previous(const std::filesystem::path& file) {
   }
 }
 
-[[noreturn]] void fail(const std::filesystem::path& file, const char* what) {
+[[noreturn]] void fail_checkpoint(const std::filesystem::path& file, const char* what) {
   throw OutputError("cannot write " + file.string() + ": " + what + " (" + std::strerror(errno) +
                     ")");
 }
@@ -79,7 +79,7 @@ CheckpointFileWriter::CheckpointFileWriter(const std::filesystem::path& file,
   name.append(file.filename().string()).append(".tmp");
   tmp_ = dir / name;
   fd_ = ::open(tmp_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) fail(file_, "cannot create the temporary file");
+  if (fd_ < 0) fail_checkpoint(file_, "cannot create the temporary file");
 }
 
 CheckpointFileWriter::~CheckpointFileWriter() {
@@ -94,7 +94,7 @@ void CheckpointFileWriter::write_at(std::uint64_t at, std::string_view bytes) {
     const ssize_t n =
         ::pwrite(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(at + done));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) fail(file_, "write failed");
+    if (n <= 0) fail_checkpoint(file_, "write failed");
     done += static_cast<std::size_t>(n);
   }
 }
@@ -139,24 +139,24 @@ void CheckpointFileWriter::finish() {
     const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), end - at));
     const ssize_t n = ::pread(fd_, chunk.data(), want, static_cast<off_t>(at));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) fail(file_, "read back failed");
+    if (n <= 0) fail_checkpoint(file_, "read back failed");
     hash = fnv1a64(std::string_view(chunk.data(), static_cast<std::size_t>(n)), hash);
     at += static_cast<std::uint64_t>(n);
   }
   std::string tail;
   put(tail, hash);
   write_at(kHeader + size_, tail);
-  if (::fsync(fd_) != 0) fail(file_, "fsync failed");
+  if (::fsync(fd_) != 0) fail_checkpoint(file_, "fsync failed");
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) {
     ::unlink(tmp_.c_str());
-    fail(file_, "close failed");
+    fail_checkpoint(file_, "close failed");
   }
   keep_previous(file_);
   if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
     ::unlink(tmp_.c_str());
-    fail(file_, "rename failed");
+    fail_checkpoint(file_, "rename failed");
   }
   const std::filesystem::path dir = file_.has_parent_path() ? file_.parent_path() : ".";
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);

@@ -16,14 +16,14 @@
 namespace blockdem {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
+[[noreturn]] void fail_figures(const std::string& what) {
   throw std::invalid_argument("joint-law figures: " + what);
 }
 
 void require_positive(const char* name, double value, const char* unit) {
   if (!(value > 0.0 && std::isfinite(value))) {
-    fail(std::string(name) + " must be positive and finite, got " + format_value(value) + " " +
-         unit);
+    fail_figures(std::string(name) + " must be positive and finite, got " + format_value(value) +
+                 " " + unit);
   }
 }
 
@@ -31,15 +31,15 @@ void require_positive(const char* name, double value, const char* unit) {
 
 void JointLawFiguresDef::validate() const {
   require_positive("max_normal_stress", max_normal_stress, "Pa");
-  if (shear_normal_stresses.empty()) fail("shear_normal_stresses is empty");
+  if (shear_normal_stresses.empty()) fail_figures("shear_normal_stresses is empty");
   for (double s : shear_normal_stresses) require_positive("shear_normal_stresses", s, "Pa");
   require_positive("min_stiffness_stress", min_stiffness_stress, "Pa");
   require_positive("max_stiffness_stress", max_stiffness_stress, "Pa");
   if (!(max_stiffness_stress > min_stiffness_stress)) {
-    fail("max_stiffness_stress must exceed min_stiffness_stress");
+    fail_figures("max_stiffness_stress must exceed min_stiffness_stress");
   }
   require_positive("max_shear_displacement", max_shear_displacement, "m");
-  if (steps < 2) fail("steps must be at least 2, got " + std::to_string(steps));
+  if (steps < 2) fail_figures("steps must be at least 2, got " + std::to_string(steps));
 }
 
 std::vector<std::filesystem::path> write_joint_law_figure_data(const std::filesystem::path& dir,

@@ -18,7 +18,7 @@ std::string_view trim(std::string_view s) {
 }
 
 // 'text' in single quotes. (Built by appending: GCC 12 gives a false -Wrestrict for "'" + str.)
-std::string quoted(std::string_view text) {
+std::string in_quotes(std::string_view text) {
   std::string out(1, '\'');
   out.append(text);
   out += '\'';
@@ -42,30 +42,32 @@ LawSpec parse_law_spec(std::string_view kind, std::string_view text) {
     start = comma + 1;
     if (item.empty()) fail(kind, text, "empty item (write key=value,key=value)");
     const std::size_t eq = item.find('=');
-    if (eq == std::string_view::npos) fail(kind, text, quoted(item) + " is not key=value");
+    if (eq == std::string_view::npos) fail(kind, text, in_quotes(item) + " is not key=value");
     const std::string key(trim(item.substr(0, eq)));
     const std::string value(trim(item.substr(eq + 1)));
     if (key.empty() || value.empty()) {
-      fail(kind, text, quoted(item) + " needs both a key and a value");
+      fail(kind, text, in_quotes(item) + " needs both a key and a value");
     }
     if (key == "law" || key == "preset") {
       bool& seen = key == "law" ? has_law : has_preset;
-      if (seen) fail(kind, text, "key " + quoted(key) + " given twice");
+      if (seen) fail(kind, text, "key " + in_quotes(key) + " given twice");
       seen = true;
       (key == "law" ? spec.law : spec.preset) = value;
       continue;
     }
-    if (spec.params.count(key) > 0) fail(kind, text, "key " + quoted(key) + " given twice");
+    if (spec.params.count(key) > 0) fail(kind, text, "key " + in_quotes(key) + " given twice");
     // strtod reads "nan" and "inf" too: validate() then rejects them with the parameter's name.
     errno = 0;
     char* end = nullptr;
     const double number = std::strtod(value.c_str(), &end);
     if (end != value.c_str() + value.size()) {
-      fail(kind, text, "parameter " + quoted(key) + " = " + quoted(value) + " is not a number");
+      fail(kind, text,
+           "parameter " + in_quotes(key) + " = " + in_quotes(value) + " is not a number");
     }
     if (errno == ERANGE) {
       fail(kind, text,
-           "parameter " + quoted(key) + " = " + quoted(value) + " is outside the range of double");
+           "parameter " + in_quotes(key) + " = " + in_quotes(value) +
+               " is outside the range of double");
     }
     spec.params[key] = number;
   }

@@ -14,7 +14,7 @@
 namespace blockdem {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
+[[noreturn]] void fail_shear_test(const std::string& what) {
   throw std::invalid_argument("shear test: " + what);
 }
 
@@ -23,14 +23,16 @@ namespace {
 void ShearTestDef::validate() const {
   blockdem::validate(law);
   if (!(normal_stress > 0.0 && std::isfinite(normal_stress))) {
-    fail("normal_stress must be positive and finite, got " + format_value(normal_stress) + " Pa");
+    fail_shear_test("normal_stress must be positive and finite, got " +
+                    format_value(normal_stress) + " Pa");
   }
   if (!(max_displacement > 0.0 && std::isfinite(max_displacement))) {
-    fail("max_displacement must be positive and finite, got " + format_value(max_displacement) +
-         " m");
+    fail_shear_test("max_displacement must be positive and finite, got " +
+                    format_value(max_displacement) + " m");
   }
-  if (steps < 1) fail("steps must be at least 1, got " + std::to_string(steps));
-  if (cycles < 0) fail("cycles must be >= 0 (0: monotonic), got " + std::to_string(cycles));
+  if (steps < 1) fail_shear_test("steps must be at least 1, got " + std::to_string(steps));
+  if (cycles < 0)
+    fail_shear_test("cycles must be >= 0 (0: monotonic), got " + std::to_string(cycles));
 }
 
 std::vector<double> shear_path_increments(const ShearTestDef& def) {
@@ -94,14 +96,15 @@ DemShearRun run_shear_dem(const ShearTestDef& def, const NormalLaw& normal,
     throw std::invalid_argument("run_shear_dem: the kernel curve is not this test's path");
   }
   if (!(def.max_displacement <= 0.25 * rig.top_size.x())) {
-    fail("the DEM run needs max_displacement <= a quarter of the block length (" +
-         format_value(0.25 * rig.top_size.x()) + " m), got " + format_value(def.max_displacement) +
-         " m");
+    fail_shear_test("the DEM run needs max_displacement <= a quarter of the block length (" +
+                    format_value(0.25 * rig.top_size.x()) + " m), got " +
+                    format_value(def.max_displacement) + " m");
   }
   const double closure = closure_at_stress(normal, def.normal_stress);
   if (closure > rig.rounding_distance) {
-    fail("the DEM run needs the closure at sigma_n below the rounding distance r_round = " +
-         format_value(rig.rounding_distance) + " m, got " + format_value(closure) + " m");
+    fail_shear_test(
+        "the DEM run needs the closure at sigma_n below the rounding distance r_round = " +
+        format_value(rig.rounding_distance) + " m, got " + format_value(closure) + " m");
   }
   // The bottom block is longer than the top by the travel both ways, so the joint keeps the top
   // block's full face as its area.

@@ -11,14 +11,14 @@
 namespace blockdem {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
+[[noreturn]] void fail_rig(const std::string& what) {
   throw std::invalid_argument("two-block rig: " + what);
 }
 
-void require_positive(const char* name, double value, const char* unit) {
+void require_positive_rig(const char* name, double value, const char* unit) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    fail(std::string(name) + " must be positive and finite, got " + format_value(value) + " " +
-         unit);
+    fail_rig(std::string(name) + " must be positive and finite, got " + format_value(value) + " " +
+             unit);
   }
 }
 
@@ -31,27 +31,27 @@ Block box(const Eigen::Vector3d& size, const Eigen::Vector3d& centre, double den
 }  // namespace
 
 void TwoBlockRigDef::validate() const {
-  require_positive("top_size.x", top_size.x(), "m");
-  require_positive("top_size.y", top_size.y(), "m");
-  require_positive("top_size.z", top_size.z(), "m");
-  require_positive("bottom_height", bottom_height, "m");
-  require_positive("density", density, "kg/m^3");
-  require_positive("rounding_distance", rounding_distance, "m");
-  require_positive("unbalanced_tolerance", unbalanced_tolerance, "-");
-  require_positive("kinetic_tolerance", kinetic_tolerance, "-");
+  require_positive_rig("top_size.x", top_size.x(), "m");
+  require_positive_rig("top_size.y", top_size.y(), "m");
+  require_positive_rig("top_size.z", top_size.z(), "m");
+  require_positive_rig("bottom_height", bottom_height, "m");
+  require_positive_rig("density", density, "kg/m^3");
+  require_positive_rig("rounding_distance", rounding_distance, "m");
+  require_positive_rig("unbalanced_tolerance", unbalanced_tolerance, "-");
+  require_positive_rig("kinetic_tolerance", kinetic_tolerance, "-");
   if (!(damping >= 0.0 && damping < 1.0)) {
-    fail("damping must be in [0, 1), got " + format_value(damping));
+    fail_rig("damping must be in [0, 1), got " + format_value(damping));
   }
-  if (max_steps_per_level <= 0) fail("max_steps_per_level must be positive");
+  if (max_steps_per_level <= 0) fail_rig("max_steps_per_level must be positive");
 }
 
 World make_two_block_rig(const TwoBlockRigDef& rig, const NormalLaw& normal, const ShearLaw& shear,
                          double bottom_length, double initial_closure) {
   rig.validate();
-  require_positive("bottom_length", bottom_length, "m");
+  require_positive_rig("bottom_length", bottom_length, "m");
   if (!(initial_closure >= 0.0 && initial_closure <= rig.rounding_distance)) {
-    fail("initial closure must be in [0, rounding_distance], got " + format_value(initial_closure) +
-         " m");
+    fail_rig("initial closure must be in [0, rounding_distance], got " +
+             format_value(initial_closure) + " m");
   }
   WorldSettings settings;
   settings.damping = rig.damping;

@@ -16,7 +16,7 @@ using namespace state_fields;
 
 // A flag of a bolt's state (state_fields::flag, its error naming the bolt).
 template <class Stream>
-void flag(Stream& s, bool& value) {
+void bolt_flag(Stream& s, bool& value) {
   state_fields::flag(s, value, "saved bolt");
 }
 
@@ -77,7 +77,7 @@ void bolt_fields(Stream& s, Bolt& b) {
   if (state > static_cast<std::uint8_t>(Bolt::State::removed))
     throw StateError("saved bolt is corrupt (unknown state)");
   b.state = static_cast<Bolt::State>(state);
-  flag(s, b.yielded);
+  bolt_flag(s, b.yielded);
   field(s, b.largest_strain);
 }
 
