@@ -89,7 +89,7 @@ Outcome run(World w, const Stage& stage) {
 TEST(DistributedStage, ChecksFromReductionsBitIdenticalWithoutRefreshes) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   Stage stage;
   stage.name = "slide";
   stage.check_interval = 5;
@@ -172,7 +172,7 @@ Files write_outputs(World w, const Stage& stage, const std::filesystem::path& di
 // byte, and no part made the world whole: not for the rows, nor at the stage's end.
 TEST(DistributedStage, OutputsMergedWithoutRefreshesByteIdentical) {
   WorldSettings s = BrickPile::sliding_settings();
-  const BrickPile pile;
+  const BrickPile pile;  // its history columns name blocks of the whole pile
   Stage stage;
   stage.name = "slide";
   stage.kind = Stage::Kind::steps;
@@ -261,7 +261,7 @@ Diverged diverge(World w) {
 TEST(DistributedStage, CheckpointInPartsGatheredAndResetBitIdentical) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const Diverged oracle = diverge(pile.world(s, 20.0));
   ASSERT_NE(oracle.message.find("the run diverged at step 631"), std::string::npos)
       << oracle.message;
@@ -297,7 +297,7 @@ TEST(DistributedStage, CheckpointInPartsGatheredAndResetBitIdentical) {
 TEST(DistributedStage, RestartFromTwoPartsContinuesOnOneAndTwoBitIdentically) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   World straight = pile.world(s, 20.0);
   step_to(straight, 650);
   const std::vector<std::uint8_t> oracle = state_bytes(straight);

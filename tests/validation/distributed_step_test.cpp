@@ -121,7 +121,7 @@ PartRuns run_parts(const BrickPile& pile, const WorldSettings& s, double frictio
 
 TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
   WorldSettings s = BrickPile::sliding_settings();
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const int steps = 150;
   const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr);
   for (int parts : {2, 3}) {
@@ -165,7 +165,7 @@ TEST(DistributedStep, BitIdenticalToOneWorldForTwoAndThreeParts) {
 TEST(DistributedStep, DeferredReplicaBitIdenticalAtEveryRefresh) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const int steps = 150, every = 10;
   const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr, every);
   for (int parts : {2, 3}) {
@@ -205,7 +205,7 @@ TEST(DistributedStep, BasePlateOwnerReceivesNoMoreThanTheOthers) {
   s.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
   s.contact_mode = ContactMode::boon2012;
   s.threads = 1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const int steps = 60, every = 20;
   const World probe = pile.world(s, 30.0);
   const auto plate = std::find_if(probe.blocks().begin(), probe.blocks().end(),
@@ -245,7 +245,7 @@ TEST(DistributedStep, BasePlateOwnerReceivesNoMoreThanTheOthers) {
 TEST(DistributedStep, GhostListsFollowTheBlocksBetweenRareRefreshes) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const int steps = 150, every = 75;
   const Record oracle = run(pile.world(s, 20.0), steps, nullptr, nullptr, every);
   // The contacts (a, b) of one world at the two refreshes.
@@ -346,7 +346,7 @@ std::vector<MigrationRun> run_migration(const BrickPile& pile, const WorldSettin
 TEST(DistributedStep, RebalancesMigrateBlocksPointToPointBitIdentically) {
   WorldSettings s = BrickPile::sliding_settings();
   s.damping = 0.1;
-  const BrickPile pile;
+  const BrickPile pile = distributed_test_pile();
   const int steps = 210, every = 70, interval = 15;
   std::vector<std::string> oracle;
   std::string oracle_whole;
