@@ -103,8 +103,8 @@ struct BrickPile {
 };
 
 /// The pile of the tests that spread a world over parts in threads: under the sanitizers, where
-/// a step is 20 to 40 times slower, 3 layers of 6 x 6 and 5 x 5 cubes (86 blocks with the plate)
-/// instead of 4 layers of 10 x 10 and 9 x 9 (362): the same passes, exchanges and checks on
+/// a step is 20 to 40 times slower, 3 layers of 6 x 6, 5 x 5 and 6 x 6 cubes (97 cubes)
+/// instead of 4 layers of 10 x 10 and 9 x 9 (362 cubes): the same passes, exchanges and checks on
 /// fewer blocks, and the same assertions.
 inline BrickPile distributed_test_pile() {
   BrickPile pile;
