@@ -45,7 +45,12 @@ stage "ASan build" cmake --build build-sanitize -j "$jobs"
 #   T2-3 beam (five beams stay), the face_integrated dowels (their boon2012 cases and both axial
 #   bolt cases stay), and the sliver's strength reduction with and without density scaling
 #   (density scaling runs here in the column, the wall and every strength reduction, on by
-#   default).
+#   default); the axial bolt at an angle and the staged cohesive slope in face_integrated (their
+#   boon2012 cases stay: the bolt and the staged laws are the same code in both modes, and
+#   face integration runs in many other cases), and the point-contact half beam's collapse
+#   search (the search runs in the cohesive block and the roof prism, the beam in the Boon2015
+#   cases). The last three took 303 s of the clang-sanitized run's 4,767 s of test time on the
+#   slow machine of 29 November 2026.
 # A case named by a value ends with a space and the value (`  # GetParam() = ...`), one named by a
 # string ends with it; ctest's expressions allow few groups, so each case is a pattern of its own.
 # These took about 670 s of the sanitized run's 2,216 (ctest's times summed over its two jobs).
@@ -67,6 +72,9 @@ skip=(
   '^Boon2015/VoussoirCase[.].*/T2_3 '
   '^BoltSupport/BoltOnAnIncline[.]Dowel.*/face_integrated '
   '^DensityScaling[.]StrengthReductionKeepsTheBracket$'
+  '^BoltSupport/BoltOnAnIncline[.]AxialBolt.*/face_integrated '
+  '^BothModes/StagedSlope[.].*/face_integrated '
+  '^StabilityCollapseLoad[.]HalfBeamPointContactReportsWhetherItCollapses$'
 )
 stage "ASan tests" ctest --test-dir build-sanitize --output-on-failure -j "$jobs" \
   -E "$(IFS='|'; echo "${skip[*]}")"
