@@ -1,4 +1,4 @@
-# Compiling less: precompiled headers, and unity groups for the tests and the command-line program.
+# Compiling less: precompiled headers, and unity groups for the library, the tests and the program.
 #
 # CI builds the project three times (Release, AddressSanitizer, ThreadSanitizer) on two cores.
 # Measured in CPU seconds of a Release build: the test files took 449 s compiled one by one and
@@ -33,13 +33,14 @@ function(blockdem_precompile_headers target)
   endif()
 endfunction()
 
-# blockdem_unity_groups(SOURCES SIZE): puts SOURCES (the tests', the command-line program's) into
+# blockdem_unity_groups(SOURCES SIZE): puts SOURCES (the library's, the tests', the program's) into
 # unity groups of at most SIZE files, each folder's files (in sorted order) split evenly into
 # groups of their own; SIZE 0 leaves every file alone. A group is one translation unit, so two
 # files of one group may not define the same name in an anonymous namespace (give one file a
 # namespace of its own, as some tests have). Groups follow folders, so a new file changes only
 # its own folder's groups. The command-line program's 10 files took 70 s of CPU one by one and
-# 30 s in two groups.
+# 30 s in two groups; the library's 124 files (Release, GCC, one job, the machine shared with
+# as much other work in both runs, 29 November 2026) 725 s one by one and 423 s in 24 groups.
 function(blockdem_unity_groups sources size)
   if(NOT size GREATER 0)
     return()

@@ -132,7 +132,7 @@ struct Level {
 constexpr int kBuffers = 6;
 constexpr int kStackCapacity = 128;
 // Planes of both blocks held on the stack (a heap table beyond).
-constexpr std::size_t kStackPlanes = 32;
+constexpr std::size_t kFaceStackPlanes = 32;
 
 }  // namespace
 
@@ -157,12 +157,12 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // the chord from above (t <= s/c), lower planes from below (t >= s/c), lateral ones the
   // plane region (-s <= 0).
   // The three lists live in one stack table (each as long as all planes together) up to
-  // kStackPlanes planes, in a heap buffer beyond.
+  // kFaceStackPlanes planes, in a heap buffer beyond.
   const std::size_t m = planes_a.size() + planes_b.size();
-  std::array<Linear, 3 * kStackPlanes> stack_lines;
+  std::array<Linear, 3 * kFaceStackPlanes> stack_lines;
   std::vector<Linear> heap_lines;
   Linear* lines = stack_lines.data();
-  if (m > kStackPlanes) {
+  if (m > kFaceStackPlanes) {
     heap_lines.resize(3 * m);
     lines = heap_lines.data();
   }
@@ -270,13 +270,13 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
 
   // Lower planes that are the highest somewhere in P', with the box of that region; the others
   // never bound a chord in P' and drop out of the cells' constraints.
-  std::array<int, kStackPlanes> stack_active;
-  std::array<Box2, kStackPlanes> stack_boxes;
+  std::array<int, kFaceStackPlanes> stack_active;
+  std::array<Box2, kFaceStackPlanes> stack_boxes;
   std::vector<int> heap_active;
   std::vector<Box2> heap_boxes;
   int* active_bottom = stack_active.data();
   Box2* bottom_box = stack_boxes.data();
-  if (m > kStackPlanes) {
+  if (m > kFaceStackPlanes) {
     heap_active.resize(m);
     heap_boxes.resize(m);
     active_bottom = heap_active.data();

@@ -92,14 +92,14 @@ void plane_axes(const Eigen::Vector3d& normal, Eigen::Vector3d& axis_u, Eigen::V
 
 namespace {
 
-constexpr std::size_t kStackPlanes = 64;
+constexpr std::size_t kSliceStackPlanes = 64;
 // A warm-start polygon is rejected if a vertex lies outside a plane by more than this fraction
 // of the extent (a cut that small changes the area by round-off only).
 constexpr double kWarmTolerance = 1e-13;
 // ... or if two consecutive edges are this close to parallel (sine of the angle between them).
 constexpr double kWarmMinSine = 1e-9;
 
-// Workspace of the clipping, on the stack for up to kStackPlanes lines. Each cut adds at most
+// Workspace of the clipping, on the stack for up to kSliceStackPlanes lines. Each cut adds at most
 // one vertex, so polygons have at most m + 4 vertices.
 class Workspace {
  public:
@@ -108,7 +108,7 @@ class Workspace {
     points = stack_points_.data();
     values = stack_values_.data();
     labels = stack_labels_.data();
-    if (m > kStackPlanes) {
+    if (m > kSliceStackPlanes) {
       heap_points_.resize(2 * capacity);
       heap_values_.resize(capacity);
       heap_labels_.resize(2 * capacity);
@@ -128,9 +128,9 @@ class Workspace {
   int* labels = nullptr;              // two lists of `capacity` edge labels
 
  private:
-  std::array<Eigen::Vector2d, 2 * (kStackPlanes + 4)> stack_points_;
-  std::array<double, kStackPlanes + 4> stack_values_;
-  std::array<int, 2 * (kStackPlanes + 4)> stack_labels_;
+  std::array<Eigen::Vector2d, 2 * (kSliceStackPlanes + 4)> stack_points_;
+  std::array<double, kSliceStackPlanes + 4> stack_values_;
+  std::array<int, 2 * (kSliceStackPlanes + 4)> stack_labels_;
   std::vector<Eigen::Vector2d> heap_points_;
   std::vector<double> heap_values_;
   std::vector<int> heap_labels_;
@@ -248,14 +248,14 @@ bool warm_polygon(const Workspace& w, const SliceWarmStart& warm, double toleran
 }
 
 // The lines of `planes` in the plane through `origin` with axes u, v: columns on the stack for
-// up to kStackPlanes planes.
+// up to kSliceStackPlanes planes.
 class PlaneLines {
  public:
   PlaneLines(std::span<const Halfspace> planes, const Eigen::Vector3d& origin,
              const Eigen::Vector3d& axis_u, const Eigen::Vector3d& axis_v) {
     const std::size_t m = planes.size();
     double* data = stack_.data();
-    if (m > kStackPlanes) {
+    if (m > kSliceStackPlanes) {
       heap_.resize(3 * m);
       data = heap_.data();
     }
@@ -270,7 +270,7 @@ class PlaneLines {
   SliceLines lines;
 
  private:
-  std::array<double, 3 * kStackPlanes> stack_;
+  std::array<double, 3 * kSliceStackPlanes> stack_;
   std::vector<double> heap_;
 };
 
