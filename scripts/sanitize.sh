@@ -28,53 +28,22 @@ cmake -S . -B build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Rel
 stage "ASan build" cmake --build build-sanitize -j "$jobs"
 # Left to the ordinary build (scripts/test.sh), which runs every test:
 # - the install test: it builds a user's project against the installed library, and a sanitized
-#   library needs a sanitized user;
-# - two long validation studies whose code runs here in shorter tests: the unconstrained
-#   T3-full beam (Voussoir3d, face_integrated with the continuously-yielding law: the same beam
-#   code as its T2-1 case, which runs here, and the same laws in face_integrated as the
-#   laboratory tests) and the Table 3 deflection ratios (four cases that Boon2015/VoussoirCase
-#   runs here one by one);
-# - the parameter cases of a validation family whose other cases here run the same code with
-#   other numbers (each family keeps at least one case per contact mode that reaches the code in
-#   question): the Hoek & Bray plane with water (kept: boon2012 with water and seismic load,
-#   face_integrated with seismic load; water on faces runs in the reservoir and the wedge with
-#   water), the asymmetric wedges (the symmetric one and the half-full boon2012 wedge stay), the
-#   seismic incline in face_integrated (the seismic load is a body force, the same in both
-#   modes; the boon2012 case and the face_integrated plane with seismic load stay), the second
-#   planar sliding case, the topple-or-slide chart's first and last points (three stay), the
-#   T2-3 beam (five beams stay), the face_integrated dowels (their boon2012 cases and both axial
-#   bolt cases stay), and the sliver's strength reduction with and without density scaling
-#   (density scaling runs here in the column, the wall and every strength reduction, on by
-#   default); the axial bolt at an angle and the staged cohesive slope in face_integrated (their
-#   boon2012 cases stay: the bolt and the staged laws are the same code in both modes, and
-#   face integration runs in many other cases), and the point-contact half beam's collapse
-#   search (the search runs in the cohesive block and the roof prism, the beam in the Boon2015
-#   cases). The last three took 303 s of the clang-sanitized run's 4,767 s of test time on the
-#   slow machine of 29 November 2026.
-# A case named by a value ends with a space and the value (`  # GetParam() = ...`), one named by a
-# string ends with it; ctest's expressions allow few groups, so each case is a pattern of its own.
-# These took about 670 s of the sanitized run's 2,216 (ctest's times summed over its two jobs).
-skip=(
-  '^Install[.]'
-  '^Cases/Voussoir3d[.].*/T3_full '
-  '^VoussoirPaper[.]Table3DeflectionRatios$'
-  '^HoekBray/PlaneFailureWithWater[.].*/boon2012_zw10_kh0 '
-  '^HoekBray/PlaneFailureWithWater[.].*/face_integrated_zw0_kh0 '
-  '^HoekBray/PlaneFailureWithWater[.].*/face_integrated_zw10_kh0 '
-  '^HoekBray/PlaneFailureWithWater[.].*/face_integrated_zw10_kh10 '
-  '^HoekBray/PlaneFailureWithWater[.].*/face_integrated_zw5_kh0 '
-  '^HoekBray/WedgeWithWater[.].*/face_integrated_asymmetric_half '
-  '^HoekBray/WedgeSliding[.].*/asymmetric '
-  '^BothModes/SeismicIncline[.].*/"face_integrated"$'
-  '^HoekBray/PlanarSliding[.].*/psi25_phi35 '
-  '^HoekBray/ToppleOrSlide[.].*/point0 '
-  '^HoekBray/ToppleOrSlide[.].*/point4 '
-  '^Boon2015/VoussoirCase[.].*/T2_3 '
-  '^BoltSupport/BoltOnAnIncline[.]Dowel.*/face_integrated '
-  '^DensityScaling[.]StrengthReductionKeepsTheBracket$'
-  '^BoltSupport/BoltOnAnIncline[.]AxialBolt.*/face_integrated '
-  '^BothModes/StagedSlope[.].*/face_integrated '
-  '^StabilityCollapseLoad[.]HalfBeamPointContactReportsWhetherItCollapses$'
-)
+#   library needs a sanitized user (the documentation and Python tests skip themselves here);
+# - the tests named in tests/sanitize_skip.txt: every coverage counter (a region), line and
+#   branch arm of the library or the program that one of them reaches, a test here reaches too, so
+#   the sanitizers check the same code without them. scripts/choose_sanitized_tests.py measures
+#   that with a coverage build and writes the list; a test not named there runs here. A case of
+#   a parameterised test is named without the printed parameter (` # GetParam() = ...`).
+mapfile -t skip < <(grep -v -e '^#' -e '^$' tests/sanitize_skip.txt)
+declare -A left_out
+for name in "${skip[@]}"; do left_out["$name"]=1; done
+selected=()
+while IFS= read -r line; do
+  number=${line%%:*}
+  name=${line#*: }
+  name=${name%%  # GetParam() = *}
+  [[ $name == Install.* || -n ${left_out["$name"]:-} ]] || selected+=("$number")
+done < <(ctest --test-dir build-sanitize -N | sed -n 's/^ *Test *#\([0-9]*: .*\)$/\1/p')
+echo "sanitize: ${#selected[@]} tests under the sanitizers, ${#skip[@]} left to the ordinary run"
 stage "ASan tests" ctest --test-dir build-sanitize --output-on-failure -j "$jobs" \
-  -E "$(IFS='|'; echo "${skip[*]}")"
+  -I "0,0,0,$(IFS=,; echo "${selected[*]}")"
