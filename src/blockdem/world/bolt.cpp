@@ -139,17 +139,6 @@ double crossing_at(const std::vector<BoltSpan>& spans, std::size_t k) {
   return 0.5 * (spans[k].to + spans[k + 1].from);
 }
 
-/// Adds a force at world point x to block b's loads and its stiffness terms.
-void load(std::vector<Block>& blocks, int block, const Eigen::Vector3d& f, const Eigen::Vector3d& x,
-          double k, std::vector<double>& stiffness, std::vector<double>& rotational) {
-  const auto i = static_cast<std::size_t>(block);
-  Block& b = blocks[i];
-  b.force += f;
-  b.torque += (x - b.position).cross(f);
-  stiffness[i] += k;
-  rotational[i] += k * (x - b.position).squaredNorm();
-}
-
 /// An elastic-perfectly plastic member: its force k (x - plastic) capped at ±cap; the plastic
 /// part moves so that the force stays on the cap. Returns whether it yielded.
 bool plastic_member(double k, double cap, double x, double& plastic, double& force) {
@@ -160,6 +149,12 @@ bool plastic_member(double k, double cap, double x, double& plastic, double& for
   force = capped;
   return true;
 }
+
+/// A tendon solve's vectors, kept per thread between solves.
+struct TendonWork {
+  std::vector<char> yielded_e, yielded_s, next_e, next_s;
+  std::vector<double> diag, off, rhs, delta;
+};
 
 }  // namespace
 
@@ -172,8 +167,18 @@ bool Tendon::solve(std::span<const double> rock) {
     const Spring& s = springs[k];
     return s.stiffness * (u[static_cast<std::size_t>(s.node)] - rock[k] - s.slip);
   };
+  // The solve's vectors are kept per thread from one solve to the next: a step solves every
+  // bolt's tendon, and allocating them each time cost as much as the arithmetic.
+  thread_local TendonWork work;
   // Per member: yielded at the present u (its force the cap, its tangent ~0).
-  std::vector<char> yielded_e(elements.size(), 0), yielded_s(springs.size(), 0);
+  std::vector<char>& yielded_e = work.yielded_e;
+  std::vector<char>& yielded_s = work.yielded_s;
+  std::vector<char>& next_e = work.next_e;
+  std::vector<char>& next_s = work.next_s;
+  yielded_e.resize(elements.size());
+  yielded_s.resize(springs.size());
+  next_e.resize(elements.size());
+  next_s.resize(springs.size());
   const auto classify = [&](std::vector<char>& ye, std::vector<char>& ys) {
     for (std::size_t e = 0; e < elements.size(); ++e)
       ye[e] = std::abs(element_trial(e)) > yield_force ? 1 : 0;
@@ -181,8 +186,14 @@ bool Tendon::solve(std::span<const double> rock) {
       ys[k] = std::abs(spring_trial(k)) > springs[k].strength ? 1 : 0;
   };
   classify(yielded_e, yielded_s);
-  std::vector<double> diag(n + 1), off(n + 1), rhs(n + 1);
-  std::vector<char> next_e(elements.size()), next_s(springs.size());
+  std::vector<double>& diag = work.diag;
+  std::vector<double>& off = work.off;
+  std::vector<double>& rhs = work.rhs;
+  std::vector<double>& delta = work.delta;
+  diag.resize(n + 1);
+  off.resize(n + 1);
+  rhs.resize(n + 1);
+  delta.resize(n + 1);
   for (int iteration = 0; iteration < 64; ++iteration) {
     // Newton on the residual R_i = N_i - N_{i-1} - Σ g (forces on node i along the bolt), the
     // yielded members at their caps; a floor of 1e-9 of a member's stiffness keeps the matrix
@@ -207,13 +218,13 @@ bool Tendon::solve(std::span<const double> rock) {
       rhs[i] -= g;
       diag[i] += springs[k].stiffness * (yielded_s[k] ? 1e-9 : 1.0);
     }
-    // K δ = R over nodes 1..n (node 0 is the plate's, given): the Thomas algorithm.
+    // K δ = R over nodes 1..n (node 0 is the plate's, given): the Thomas algorithm. Every
+    // δ_i, i >= 1, is written before it is read.
     for (std::size_t i = 2; i <= n; ++i) {
       const double m = off[i - 1] / diag[i - 1];
       diag[i] -= m * off[i - 1];
       rhs[i] -= m * rhs[i - 1];
     }
-    std::vector<double> delta(n + 1, 0.0);
     for (std::size_t i = n; i >= 1; --i) {
       delta[i] = (rhs[i] - (i < n ? off[i] * delta[i + 1] : 0.0)) / diag[i];
     }
@@ -316,12 +327,15 @@ Bolt install_bolt(const BoltSpec& spec, std::vector<BoltSpan> spans,
   return bolt;
 }
 
-void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& stiffness,
-                std::vector<double>& rotational) {
+void bolt_loads(Bolt& bolt, const std::vector<Block>& blocks, std::vector<BoltLoad>& loads) {
+  loads.clear();
   if (!bolt.active()) return;
   const BoltSpec& spec = bolt.spec;
   const auto world = [&](const BoltTie& t) -> Eigen::Vector3d {
     return blocks[static_cast<std::size_t>(t.block)].to_world(t.body_point);
+  };
+  const auto add = [&](int block, const Eigen::Vector3d& f, const Eigen::Vector3d& x, double k) {
+    loads.push_back({block, f, x, k});
   };
   // A dowel sheared to its rupture displacement at any crossing breaks the bolt, before any of
   // its forces of this step (as a tendon that ruptures): the shear across the bolt's axis (the
@@ -362,16 +376,27 @@ void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& sti
       yielded |= plastic_member(k, spec.yield_force, stretch, bolt.plastic_extension, force);
     }
     bolt.axial_force = std::max(force, 0.0);
-    load(blocks, bolt.ties[0].block, bolt.axial_force * axis, x0, k, stiffness, rotational);
-    load(blocks, bolt.ties[1].block, -bolt.axial_force * axis, x1, k, stiffness, rotational);
+    add(bolt.ties[0].block, bolt.axial_force * axis, x0, k);
+    add(bolt.ties[1].block, -bolt.axial_force * axis, x1, k);
   } else {
-    // Grouted: the tendon solved against the rock's displacements along the bolt.
+    // Grouted: the tendon solved against the rock's displacements along the bolt. Each tie's
+    // world point is formed once; neighbouring elements' springs share a node, and a tie equal
+    // to the one before (same block, same body point) takes its point.
     Tendon& t = bolt.tendon;
-    std::vector<double> rock(t.springs.size());
-    for (std::size_t k = 0; k < t.springs.size(); ++k)
-      rock[k] = (world(bolt.ties[k]) - bolt.ties[k].installed).dot(axis);
+    thread_local std::vector<Eigen::Vector3d> at;
+    thread_local std::vector<double> rock;
+    at.resize(t.springs.size());
+    rock.resize(t.springs.size());
+    for (std::size_t k = 0; k < t.springs.size(); ++k) {
+      const BoltTie& tie = bolt.ties[k];
+      const bool same = k > 0 && tie.block == bolt.ties[k - 1].block &&
+                        tie.body_point == bolt.ties[k - 1].body_point;
+      at[k] = same ? at[k - 1] : world(tie);
+      rock[k] = (at[k] - tie.installed).dot(axis);
+    }
     const BoltTie& plate = bolt.ties.back();
-    t.u[0] = (world(plate) - plate.installed).dot(axis);
+    const Eigen::Vector3d plate_at = world(plate);
+    t.u[0] = (plate_at - plate.installed).dot(axis);
     yielded |= t.solve(rock);
     for (std::size_t e = 0; e < t.elements.size(); ++e) {
       const double strain = (t.u[e + 1] - t.u[e]) / (bolt.node_at[e + 1] - bolt.node_at[e]);
@@ -382,10 +407,8 @@ void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& sti
       return;
     }
     for (std::size_t k = 0; k < t.springs.size(); ++k)
-      load(blocks, bolt.ties[k].block, t.springs[k].force * axis, world(bolt.ties[k]),
-           t.springs[k].stiffness, stiffness, rotational);
-    load(blocks, plate.block, t.plate_force() * axis, world(plate), t.elements.front().stiffness,
-         stiffness, rotational);
+      add(bolt.ties[k].block, t.springs[k].force * axis, at[k], t.springs[k].stiffness);
+    add(plate.block, t.plate_force() * axis, plate_at, t.elements.front().stiffness);
   }
   // Dowels: the relative displacement of the blocks across the bolt's axis at each crossing.
   if (spec.shear_stiffness > 0.0) {
@@ -404,12 +427,24 @@ void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& sti
       }
       c.force = -spec.shear_stiffness * elastic;
       const Eigen::Vector3d x = 0.5 * (xa + xb);
-      load(blocks, c.block_b, c.force, x, spec.shear_stiffness, stiffness, rotational);
-      load(blocks, c.block_a, -c.force, x, spec.shear_stiffness, stiffness, rotational);
+      add(c.block_b, c.force, x, spec.shear_stiffness);
+      add(c.block_a, -c.force, x, spec.shear_stiffness);
     }
   }
   bolt.yielded |= yielded;
   if (bolt.yielded) bolt.state = Bolt::State::yielded;
+}
+
+void add_bolt_loads(std::span<const BoltLoad> loads, std::vector<Block>& blocks,
+                    std::vector<double>& stiffness, std::vector<double>& rotational) {
+  for (const BoltLoad& l : loads) {
+    const auto i = static_cast<std::size_t>(l.block);
+    Block& b = blocks[i];
+    b.force += l.force;
+    b.torque += (l.point - b.position).cross(l.force);
+    stiffness[i] += l.stiffness;
+    rotational[i] += l.stiffness * (l.point - b.position).squaredNorm();
+  }
 }
 
 }  // namespace blockdem

@@ -156,10 +156,23 @@ const char* to_string(Bolt::State state);
 Bolt install_bolt(const BoltSpec& spec, std::vector<BoltSpan> spans,
                   const std::vector<Block>& blocks);
 
+/// One load of a bolt on a block: a force at a world point, and the member's stiffness for the
+/// time step.
+struct BoltLoad {
+  int block = -1;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< (N)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< world (m)
+  double stiffness = 0.0;                           ///< (N/m)
+};
+
 /// The loads of one bolt on its blocks at their present poses: updates its state (tendon,
-/// dowels, rupture) and adds each force and moment to `blocks` (force, torque) in a fixed order,
-/// and its stiffness terms to `stiffness` and `rotational` (per block, for the time step).
-void apply_bolt(Bolt& bolt, std::vector<Block>& blocks, std::vector<double>& stiffness,
-                std::vector<double>& rotational);
+/// dowels, rupture) and writes its loads into `loads` (emptied first) in a fixed order. Reads the
+/// blocks' poses only, so that bolts can be solved side by side.
+void bolt_loads(Bolt& bolt, const std::vector<Block>& blocks, std::vector<BoltLoad>& loads);
+
+/// Adds each load's force and moment to its block (force, torque) in the order given, and its
+/// stiffness terms to `stiffness` and `rotational` (per block, for the time step).
+void add_bolt_loads(std::span<const BoltLoad> loads, std::vector<Block>& blocks,
+                    std::vector<double>& stiffness, std::vector<double>& rotational);
 
 }  // namespace blockdem

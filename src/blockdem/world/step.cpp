@@ -45,7 +45,7 @@ void World::step() {
     }
   }
   // 5b. Bolts: their loads after the contacts', bolt by bolt (one process only).
-  if (!bolts_.empty()) apply_bolts();
+  if (!bolts_.empty()) apply_bolts(s);
   // 6. Servos, then integration with each block's terms of the energy budget (parallel per
   // block).
   apply_servos(s.dt, s.distributed ? &decomposition_.own() : nullptr);

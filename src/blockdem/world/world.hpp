@@ -470,8 +470,8 @@ class World {
   void check_step(StepScratch& s);
   void keep_divergence_checkpoint();
   /// After the contacts' loads: the bolts' (world_support.cpp), and their stiffness in the
-  /// automatic time step.
-  void apply_bolts();
+  /// automatic time step. The bolts are solved on s.threads threads, their loads added in order.
+  void apply_bolts(const StepScratch& s);
   /// After a removal: the bolts' blocks by their new indices (-1: removed).
   void renumber_bolts(const std::vector<int>& new_index);
   /// A block whose pairs this process finds and keeps: its own, not resting.
@@ -603,6 +603,8 @@ class World {
   };
   std::vector<Relaxation> relaxation_;
   std::vector<Bolt> bolts_;  ///< installed bolts (world_support.cpp)
+  /// Each bolt's loads of this step, kept between steps for their room (world_support.cpp).
+  std::vector<std::vector<BoltLoad>> bolt_loads_;
   std::vector<std::pair<int, int>> pairs_;
 
   // Per-block stiffness sums of this step, for the automatic time step.

@@ -2,12 +2,17 @@
 // blocks after the contacts' in a fixed order (bolt by bolt), so that every thread count gives
 // the same bits.
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
+namespace {
+// The fewest bolts solved on several threads.
+constexpr std::int64_t kParallelBolts = 16;
+}  // namespace
 
 int World::install_bolt(const BoltSpec& spec) {
   if (settings_.distribution != nullptr)
@@ -27,16 +32,29 @@ std::int64_t World::bolt_count(Bolt::State state) const {
   return n;
 }
 
-void World::apply_bolts() {
-  // Serial and in bolt order: a bolt's loads on a block are summed in the same order for any
-  // number of threads. The bolts' stiffnesses join the contacts' in the automatic time step.
-  for (Bolt& bolt : bolts_) apply_bolt(bolt, blocks_, stiffness_, rotational_stiffness_);
+void World::apply_bolts(const StepScratch& s) {
+  // Each bolt is solved from the blocks' poses alone, so the bolts are solved side by side; their
+  // loads are then added bolt by bolt, in order, so that a block's loads are summed in the same
+  // order for any number of threads. The bolts' stiffnesses join the contacts' in the automatic
+  // time step.
+  // A bolt's solve takes some microseconds; a handful of bolts is solved on one thread, where
+  // waking the others would cost more than it saves.
+  const auto n = static_cast<std::int64_t>(bolts_.size());
+  bolt_loads_.resize(bolts_.size());
+#pragma omp parallel for num_threads(s.threads) \
+    schedule(dynamic, 4) if (s.threads > 1 && n >= kParallelBolts)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    bolt_loads(bolts_[i], blocks_, bolt_loads_[i]);
+  }
+  for (const std::vector<BoltLoad>& loads : bolt_loads_)
+    add_bolt_loads(loads, blocks_, stiffness_, rotational_stiffness_);
   double dt_min = contact_dt_ > 0.0 ? contact_dt_ / settings_.safety_factor
                                     : std::numeric_limits<double>::infinity();
   for (const Bolt& bolt : bolts_) {
     if (!bolt.active()) continue;
-    for (const BoltSpan& s : bolt.spans) {
-      const auto i = static_cast<std::size_t>(s.block);
+    for (const BoltSpan& span : bolt.spans) {
+      const auto i = static_cast<std::size_t>(span.block);
       const Block& b = blocks_[i];
       if (!b.is_dynamic() || stiffness_[i] <= 0.0) continue;
       dt_min = std::min(dt_min, std::sqrt(b.inertial_mass() / stiffness_[i]));
