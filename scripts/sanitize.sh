@@ -24,7 +24,8 @@ cmake -S . -B build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Rel
   -DBLOCKDEM_BUILD_BENCH=OFF -DBLOCKDEM_PYTHON=OFF -DBLOCKDEM_MPI=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DBLOCKDEM_TEST_COSTS="$PWD/tests/costs/sanitized.txt" >/dev/null
 stage "ASan build" cmake --build build-sanitize -j "$jobs"
 # Left to the ordinary build (scripts/test.sh), which runs every test:
 # - the install test: it builds a user's project against the installed library, and a sanitized
