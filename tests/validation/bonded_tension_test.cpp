@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "blockdem/run/run_summary.hpp"
 #include "scenes.hpp"
 
 namespace blockdem {
@@ -81,6 +82,12 @@ TEST_P(BondedTensionTest, WeakBondBreaksInTensionAndTheBlockFalls) {
   ASSERT_EQ(w.broken_bonds_by_set().size(), 1u);
   EXPECT_EQ(w.broken_bonds_by_set()[0][0], 1);
   EXPECT_EQ(w.broken_bonds_by_set()[0][1], 0);
+  // summary.json's table: that row as "other faces", then a row for each joint set named.
+  const nlohmann::json table = broken_bonds_by_set(w, {"J1"});
+  EXPECT_EQ(table.size(), 2u) << table.dump();
+  EXPECT_EQ(table["other faces"]["tension"], 1) << table.dump();
+  EXPECT_EQ(table["other faces"]["shear"], 0) << table.dump();
+  EXPECT_EQ(table["J1"]["tension"], 0) << table.dump();
   EXPECT_EQ(w.contact_count(), 0u);
   // Free fall from the break, a stretch of at most sigma_t / k_n after the start: v = -g t.
   const double t = w.time();

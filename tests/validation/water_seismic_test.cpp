@@ -333,13 +333,19 @@ INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
 // The block above, half submerged (table 0.25 m above its base) and settled, then wholly
 // submerged (table at 2 m) over a ramp of 200 steps, then dry ("none") over 100: its water force
 // is Archimedes' rho_w g V_sub under each table (V_sub at the block's pose), so at step k of a
-// ramp it is (1 - f) rho_w g V_sub,before + f rho_w g V_sub,stage. Tolerance 1e-9 of rho_w g V
-// (the integration is exact; round-off).
+// ramp it is (1 - f) rho_w g V_sub,before + f rho_w g V_sub,stage. Then a stage that keeps it dry
+// over a ramp of 50 (the same water: nothing to ramp, no force) and one that floods it again
+// without a ramp (the whole force from its first step). Tolerance 1e-9 of rho_w g V (the
+// integration is exact; round-off).
 const std::string kRiseAndDrain =
     "[[stages]]\nname = \"rise\"\nkind = \"steps\"\nsteps = 300\nramp_steps = 200\n"
     "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n"
     "[[stages]]\nname = \"drain\"\nkind = \"steps\"\nsteps = 150\nramp_steps = 100\n"
-    "water_table = \"none\"\n";
+    "water_table = \"none\"\n"
+    "[[stages]]\nname = \"dry\"\nkind = \"steps\"\nsteps = 60\nramp_steps = 50\n"
+    "water_table = \"none\"\n"
+    "[[stages]]\nname = \"flood\"\nkind = \"steps\"\nsteps = 40\nramp_steps = 0\n"
+    "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n";
 
 class WaterRamp : public ::testing::TestWithParam<const char*> {};
 
@@ -354,19 +360,21 @@ TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
     const double bottom = w.level_state(i).position.z() - 0.25;
     return kWater * kG * std::clamp(table_z - bottom, 0.0, 0.5);
   };
-  // Rise (0.25 m to 2 m), then drain (2 m to none).
+  // Rise (0.25 m to 2 m), drain (2 m to none), stay dry, flood (none to 2 m at once).
   struct Ramp {
     double before_z, stage_z;  // none: -inf
   };
-  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY}};
+  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY}, {-INFINITY, -INFINITY}, {-INFINITY, 2.0}};
   double worst = 0.0;
   int checked = 0;
-  for (int s = 1; s <= 2; ++s) {
+  for (int s = 1; s <= 4; ++s) {
     const Stage& stage = sc.stages[static_cast<std::size_t>(s)];
     const Ramp ramp = ramps[s - 1];
     const StepFn on_step = [&](const World&, const Stage&, std::int64_t k) {
       const double f =
-          std::min(1.0, static_cast<double>(k) / static_cast<double>(stage.ramp_steps));
+          stage.ramp_steps > 0
+              ? std::min(1.0, static_cast<double>(k) / static_cast<double>(stage.ramp_steps))
+              : 1.0;
       const double expected = (1.0 - f) * buoyancy(ramp.before_z) + f * buoyancy(ramp.stage_z);
       const Eigen::Vector3d force = w.blocks()[static_cast<std::size_t>(i)].water_force();
       const double error = (force - Eigen::Vector3d(0.0, 0.0, expected)).norm();
@@ -377,10 +385,12 @@ TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
     const StageResult r = run_stage(w, stage, {}, nullptr, {}, nullptr, on_step);
     ASSERT_TRUE(r.converged) << r.message;
     EXPECT_FALSE(w.settings().water_ramp.has_value());
+    // Dry after the drain: no water force at all.
+    if (s == 3) {
+      EXPECT_EQ(w.blocks()[static_cast<std::size_t>(i)].water_force(), Eigen::Vector3d::Zero());
+    }
   }
-  EXPECT_EQ(checked, 450);
-  // Dry at the end: no water force at all.
-  EXPECT_EQ(w.blocks()[static_cast<std::size_t>(i)].water_force(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(checked, 550);
   std::printf("%s: %d steps, largest error %.2e of rho_w g V\n", GetParam(), checked, worst);
 }
 

@@ -21,6 +21,7 @@
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/run/run_files.hpp"
 #include "blockdem/run/stage_driver.hpp"
+#include "restart_support.hpp"
 
 extern char** environ;
 
@@ -169,6 +170,53 @@ TEST(SearchBounds, AStopInsideATrialDropsTheTrialAndEndsTheSearch) {
   EXPECT_EQ(steps_in_third, 50);
   EXPECT_NE(heard.message.find("after 2 trials"), std::string::npos) << heard.message;
   EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
+}
+
+// A stop inside the first trial (the lower bound's, after its 50th step): the search ends with
+// no trial at all, interrupted.
+TEST(SearchBounds, AStopInsideTheFirstTrialEndsTheSearchWithNoTrial) {
+  const Scenario sc = parse_scenario(strength_reduction_last(), "srm.toml");
+  World world = build_world(sc);
+  DriveControl control;
+  int trials = 0, steps_in_first = 0;
+  control.trial_done = [&](const StabilityTrial&) { ++trials; };
+  control.in_trial = [&](int, bool) { return trials == 0 && ++steps_in_first == 50; };
+  Heard heard;
+  const DriveResult d =
+      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
+  EXPECT_EQ(d.status, RunStatus::interrupted);
+  EXPECT_EQ(d.level, 2);
+  EXPECT_EQ(trials, 0);
+  EXPECT_EQ(steps_in_first, 50);
+  EXPECT_NE(heard.message.find("after 0 trials"), std::string::npos) << heard.message;
+  EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
+}
+
+// A caller of the library that passes no callbacks (no progress or set-up lines) stops a run in
+// its tilt stage and restarts it from the checkpoint: the outputs are those of the run never
+// stopped (bytes; the summary but for its wall time).
+TEST(SearchBounds, ARestartWithoutCallbacksEndsAsTheRunNeverStopped) {
+  const Scenario sc = parse_scenario(test::incline_scenario(30, 40, 0.1, 0.02, ""), "tilt.toml");
+  const auto fresh = test::run_folder("no_callbacks_fresh");
+  const auto out = test::run_folder("no_callbacks");
+  std::filesystem::remove_all(fresh);
+  std::filesystem::remove_all(out);
+  RunControl control;
+  control.fingerprint.whole = 7;
+  const RunResult whole = run_scenario(sc, fresh, {}, control);
+  ASSERT_EQ(whole.status, RunStatus::completed) << whole.message;
+  ASSERT_EQ(whole.steps_per_stage.size(), 2u);
+  const std::int64_t stop_at = whole.steps_per_stage[0] + whole.steps_per_stage[1] / 2;
+  control.poll = [&](std::int64_t steps, bool) { return RunPoll{steps == stop_at, false}; };
+  const RunResult stopped = run_scenario(sc, out, {}, control);
+  ASSERT_EQ(stopped.status, RunStatus::interrupted) << stopped.message;
+  RunControl again;
+  again.fingerprint.whole = 7;
+  again.restart = out / kCheckpointName;
+  const RunResult resumed = run_scenario(sc, out, {}, again);
+  EXPECT_EQ(resumed.status, RunStatus::completed) << resumed.message;
+  EXPECT_EQ(resumed.steps, whole.steps);
+  test::expect_same_outputs(fresh, out);
 }
 
 TEST(SearchBounds, AStoppedStrengthReductionIsInterruptedAndItsRestartFindsTheSameFactor) {

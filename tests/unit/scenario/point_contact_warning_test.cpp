@@ -73,6 +73,31 @@ TEST(PointContactWarning, NotInFaceIntegratedModeNorWithoutASearchNorForBoxes) {
   EXPECT_TRUE(point_contact_warnings(boxes).empty());
 }
 
+// Six faces do not make a box: a free parallelepiped (a cube sheared by 0.05 m over its height)
+// is warned of; a box turned about an oblique axis is still a box.
+TEST(PointContactWarning, ASixFacedBlockThatIsNotABoxIsWarnedOfATurnedBoxIsNot) {
+  std::string boxes = test::incline_scenario(30, 40, 0.1, 0.02, kStrength);
+  const std::string fi = "contact_mode = \"face_integrated\"";
+  boxes.replace(boxes.find(fi), fi.size(), "contact_mode = \"boon2012\"");
+  const std::string sheared =
+      "[[blocks]]\nname = \"sheared\"\nmaterial = \"rock\"\nshape = \"vertices\"\n"
+      "vertices = [[0, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0], [0, 0.1, 0], [0.05, 0, 0.1], "
+      "[0.15, 0, 0.1], [0.15, 0.1, 0.1], [0.05, 0.1, 0.1]]\nposition = [3.0, 0.0, 1.0]\n";
+  const std::string turned =
+      "[[blocks]]\nname = \"turned\"\nmaterial = \"rock\"\nsize = [0.1, 0.2, 0.3]\n"
+      "position = [-3.0, 0.0, 1.0]\nrotation_deg = 37\nrotation_axis = [1, 2, 3]\n";
+  // The blocks go before the stages (a TOML array of tables may be split, but keep it tidy).
+  const auto with = [&](const std::string& block) {
+    std::string text = boxes;
+    text.insert(text.find("[[stages]]"), block);
+    return text;
+  };
+  const auto w = point_contact_warnings(with(sheared));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("not boxes (block \"sheared\")"), std::string::npos) << w[0];
+  EXPECT_TRUE(point_contact_warnings(with(turned)).empty());
+}
+
 TEST(PointContactWarning, RunPrintsItOnStderrOnce) {
   const auto dir = test::temp_path("point_contact_warning");
   std::filesystem::remove_all(dir);
