@@ -57,6 +57,23 @@ TEST(SmallVector, CopiesAndMovesCarryTheElementsInUse) {
   EXPECT_EQ(values_of(large), large_values);
 }
 
+// clear() empties a vector on the heap too, and the next elements go inline again (a
+// narrow-phase buffer reused from pair to pair).
+TEST(SmallVector, ClearedOnTheHeapStartsInlineAgain) {
+  SmallVector<double, 8> v;
+  for (int i = 0; i < 12; ++i) v.push_back(0.5 * i);
+  ASSERT_EQ(v.size(), 12u);
+  EXPECT_EQ(v[11], 5.5);
+  v.clear();
+  EXPECT_TRUE(v.empty());
+  EXPECT_EQ(v.begin(), v.end());
+  for (int i = 0; i < 3; ++i) v.push_back(-1.0 * i);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_EQ(v[2], -2.0);
+  EXPECT_EQ(v.back(), -2.0);
+}
+
 // The face contact's cells: Eigen vectors inline, copied with a cell of the sequence of cells.
 TEST(SmallVector, CellsCopyTheirVerticesAndClosures) {
   SmallVector<ClosureCell, 2> cells;

@@ -227,6 +227,18 @@ TEST(JointStrength, ContinuouslyYieldingBreaksWhenShearExceedsCohesion) {
   EXPECT_EQ(state.bond, BondState::broken_in_shear);
 }
 
+// A joint can break (a bond to lose) when any one strength beyond friction is there: cohesion
+// alone, a tensile strength alone, or a residual friction below the peak alone.
+TEST(JointStrength, AnyOneStrengthBeyondFrictionCanBreak) {
+  JointStrength cohesive, tensile, softening;
+  cohesive.cohesion = 1e5;
+  tensile.tensile_strength = 5e4;
+  softening.residual_friction_coefficient = tan_deg(25.0);
+  EXPECT_TRUE(cohesive.can_break());
+  EXPECT_TRUE(tensile.can_break());
+  EXPECT_TRUE(softening.can_break());
+}
+
 TEST(JointStrength, FactoryReadsStrengthKeysAndRejectsBadOnes) {
   const auto lin =
       std::get<LinearShear>(shear_law_from_params("linear", {{"friction_deg", 35.0},
