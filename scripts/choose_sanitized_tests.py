@@ -13,9 +13,11 @@ This script measures that with clang's source-based coverage:
 3. keeps, for each test, the coverage counters (a function's regions) it made non-zero, the
    lines it executed and the branch arms it took in the library (src/blockdem/) and the
    command-line program (apps/cli/);
-4. goes through the tests of at least --min-seconds, longest first, and leaves a test out when
-   every counter, line and arm it reaches is reached by another test still in: the tests kept
-   reach all that the tests reach together (checked at the end on the merged profiles).
+4. goes through the tests the list leaves out already, then those of at least --min-seconds,
+   each longest first, and leaves a test out when every counter, line and arm it reaches is
+   reached by another test still in: the tests kept reach all that the tests reach together
+   (checked at the end on the merged profiles). Starting from the list keeps it where it still
+   holds, rather than following the noise of the timings between siblings of a similar length.
 
 It writes the names left out to tests/sanitize_skip.txt, which scripts/sanitize.sh reads. A test
 not named there (a new one, a renamed one) runs under the sanitizers. Run it again when tests or
@@ -127,8 +129,10 @@ def lines_and_branches(build_dir, profdata):
         elif line.startswith("BRDA:"):
             number, block, branch, taken = line[5:].split(",")
             # An arm's count is a difference of two counters; at -O1 it can come out negative,
-            # which the export prints wrapped (about 1.8e19): not a count, not an arm reached.
-            if taken not in ("-", "0") and int(taken) < 2**63:
+            # which the lcov export prints wrapped to 32 bits (4294967290 for -6): not a count,
+            # not an arm reached. (A real count of 2^31 or more, two billion passes of one
+            # branch in one test, is taken for such a wrap too.)
+            if taken not in ("-", "0") and int(taken) % 2**32 < 2**31:
                 reached.add((source, int(number), block, branch))
     return reached
 
@@ -165,6 +169,8 @@ def main():
     parser.add_argument("--out", default=str(ROOT / "tests" / "sanitize_skip.txt"))
     parser.add_argument("--choose-only", action="store_true",
                         help="choose again from the profiles of the last run in --build")
+    parser.add_argument("--prefer", default=None,
+                        help="a list whose tests are considered first (default: --out as it is)")
     args = parser.parse_args()
     profiles = os.path.join(args.build, "test-profiles")
     record = os.path.join(profiles, "results.json")
@@ -205,11 +211,21 @@ def main():
     for reach in counters:
         for counter in reach:
             kept_by[counter] = kept_by.get(counter, 0) + 1
-    order = sorted(range(len(results)), key=lambda i: -results[i]["seconds"])
+    # The tests the list leaves out already come first (longest first), then the others: a test
+    # that shares code with a sibling of about its length stays where it was, so that the list
+    # changes where the code or the tests need it, not with the noise of the timings.
+    prefer_file = args.prefer or args.out
+    preferred = set()
+    if os.path.exists(prefer_file):
+        with open(prefer_file) as f:
+            preferred = {line.strip() for line in f if line.strip() and not line.startswith("#")}
+    order = sorted(range(len(results)),
+                   key=lambda i: (results[i]["name"] not in preferred, -results[i]["seconds"]))
     left_out = []
     for i in order:
         result = results[i]
-        if result["seconds"] < args.min_seconds or result["name"] in failed:
+        if result["name"] in failed or (result["seconds"] < args.min_seconds
+                                        and result["name"] not in preferred):
             continue
         if all(kept_by[c] >= 2 for c in counters[i]):
             for c in counters[i]:

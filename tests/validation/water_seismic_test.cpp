@@ -334,9 +334,10 @@ INSTANTIATE_TEST_SUITE_P(BothModes, SubmergedBlock,
 // submerged (table at 2 m) over a ramp of 200 steps, then dry ("none") over 100: its water force
 // is Archimedes' rho_w g V_sub under each table (V_sub at the block's pose), so at step k of a
 // ramp it is (1 - f) rho_w g V_sub,before + f rho_w g V_sub,stage. Then a stage that keeps it dry
-// over a ramp of 50 (the same water: nothing to ramp, no force) and one that floods it again
-// without a ramp (the whole force from its first step). Tolerance 1e-9 of rho_w g V (the
-// integration is exact; round-off).
+// over a ramp of 50 (the same water: nothing to ramp, no force), one that floods it from dry over
+// 40 steps, and three without a ramp (Archimedes' force under the new table, or none, from their
+// first step): the table lowered to 0.25 m, drained, and raised to 2 m from dry. Tolerance 1e-9 of
+// rho_w g V (the integration is exact; round-off).
 const std::string kRiseAndDrain =
     "[[stages]]\nname = \"rise\"\nkind = \"steps\"\nsteps = 300\nramp_steps = 200\n"
     "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n"
@@ -344,7 +345,13 @@ const std::string kRiseAndDrain =
     "water_table = \"none\"\n"
     "[[stages]]\nname = \"dry\"\nkind = \"steps\"\nsteps = 60\nramp_steps = 50\n"
     "water_table = \"none\"\n"
-    "[[stages]]\nname = \"flood\"\nkind = \"steps\"\nsteps = 40\nramp_steps = 0\n"
+    "[[stages]]\nname = \"flood\"\nkind = \"steps\"\nsteps = 60\nramp_steps = 40\n"
+    "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n"
+    "[[stages]]\nname = \"lower\"\nkind = \"steps\"\nsteps = 40\nramp_steps = 0\n"
+    "water_table = { point = [0.0, 0.0, 0.25], normal = [0.0, 0.0, 1.0] }\n"
+    "[[stages]]\nname = \"empty\"\nkind = \"steps\"\nsteps = 30\nramp_steps = 0\n"
+    "water_table = \"none\"\n"
+    "[[stages]]\nname = \"fill\"\nkind = \"steps\"\nsteps = 30\nramp_steps = 0\n"
     "water_table = { point = [0.0, 0.0, 2.0], normal = [0.0, 0.0, 1.0] }\n";
 
 class WaterRamp : public ::testing::TestWithParam<const char*> {};
@@ -360,14 +367,16 @@ TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
     const double bottom = w.level_state(i).position.z() - 0.25;
     return kWater * kG * std::clamp(table_z - bottom, 0.0, 0.5);
   };
-  // Rise (0.25 m to 2 m), drain (2 m to none), stay dry, flood (none to 2 m at once).
+  // Rise (0.25 m to 2 m), drain (2 m to none), stay dry, flood (none to 2 m), then at once: lower
+  // (to 0.25 m), empty (none) and fill (2 m).
   struct Ramp {
     double before_z, stage_z;  // none: -inf
   };
-  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY}, {-INFINITY, -INFINITY}, {-INFINITY, 2.0}};
+  const Ramp ramps[] = {{0.25, 2.0}, {2.0, -INFINITY},  {-INFINITY, -INFINITY}, {-INFINITY, 2.0},
+                        {2.0, 0.25}, {0.25, -INFINITY}, {-INFINITY, 2.0}};
   double worst = 0.0;
   int checked = 0;
-  for (int s = 1; s <= 4; ++s) {
+  for (int s = 1; s <= 7; ++s) {
     const Stage& stage = sc.stages[static_cast<std::size_t>(s)];
     const Ramp ramp = ramps[s - 1];
     const StepFn on_step = [&](const World&, const Stage&, std::int64_t k) {
@@ -390,7 +399,7 @@ TEST_P(WaterRamp, ArchimedesForceFollowsThePressureRampedBetweenTwoTables) {
       EXPECT_EQ(w.blocks()[static_cast<std::size_t>(i)].water_force(), Eigen::Vector3d::Zero());
     }
   }
-  EXPECT_EQ(checked, 550);
+  EXPECT_EQ(checked, 670);
   std::printf("%s: %d steps, largest error %.2e of rho_w g V\n", GetParam(), checked, worst);
 }
 
