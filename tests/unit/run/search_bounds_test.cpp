@@ -148,48 +148,40 @@ TEST(SearchBounds, EachTrialOfAStrengthReductionHasItsOwnStatusLines) {
   EXPECT_NE(names[0], names[1]);  // the two bounds first
 }
 
-// A stop inside a trial (after its 50th step) ends the search there: the trial is dropped, the
-// trials before it stay, and the drive ends interrupted without a factor of safety.
-TEST(SearchBounds, AStopInsideATrialDropsTheTrialAndEndsTheSearch) {
+// A stop inside trial `trial` (counted from 0) after its 50th step ends the search there: the
+// trial is dropped, the trials before it stay, and the drive ends interrupted without a factor of
+// safety.
+void expect_stop_inside_trial(int trial) {
   const Scenario sc = parse_scenario(strength_reduction_last(), "srm.toml");
   World world = build_world(sc);
   DriveControl control;
-  int trials = 0, steps_in_third = 0;
+  int trials = 0, steps_in_it = 0;
   control.trial_done = [&](const StabilityTrial&) { ++trials; };
   control.in_trial = [&](int level, bool before_stage) {
     EXPECT_EQ(level, 2);
     EXPECT_TRUE(before_stage);
-    return trials == 2 && ++steps_in_third == 50;
+    return trials == trial && ++steps_in_it == 50;
   };
   Heard heard;
   const DriveResult d =
       drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
   EXPECT_EQ(d.status, RunStatus::interrupted);
   EXPECT_EQ(d.level, 2);
-  EXPECT_EQ(trials, 2);
-  EXPECT_EQ(steps_in_third, 50);
-  EXPECT_NE(heard.message.find("after 2 trials"), std::string::npos) << heard.message;
+  EXPECT_EQ(trials, trial);
+  EXPECT_EQ(steps_in_it, 50);
+  const std::string after = "after " + std::to_string(trial) + " trials";
+  EXPECT_NE(heard.message.find(after), std::string::npos) << heard.message;
   EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
 }
 
-// A stop inside the first trial (the lower bound's, after its 50th step): the search ends with
-// no trial at all, interrupted.
+// In the third trial (the first bisection's).
+TEST(SearchBounds, AStopInsideATrialDropsTheTrialAndEndsTheSearch) {
+  expect_stop_inside_trial(2);
+}
+
+// In the first trial (the lower bound's): the search ends with no trial at all.
 TEST(SearchBounds, AStopInsideTheFirstTrialEndsTheSearchWithNoTrial) {
-  const Scenario sc = parse_scenario(strength_reduction_last(), "srm.toml");
-  World world = build_world(sc);
-  DriveControl control;
-  int trials = 0, steps_in_first = 0;
-  control.trial_done = [&](const StabilityTrial&) { ++trials; };
-  control.in_trial = [&](int, bool) { return trials == 0 && ++steps_in_first == 50; };
-  Heard heard;
-  const DriveResult d =
-      drive_stages(world, sc.stages, static_cast<int>(sc.stages.size()), {}, control, {&heard});
-  EXPECT_EQ(d.status, RunStatus::interrupted);
-  EXPECT_EQ(d.level, 2);
-  EXPECT_EQ(trials, 0);
-  EXPECT_EQ(steps_in_first, 50);
-  EXPECT_NE(heard.message.find("after 0 trials"), std::string::npos) << heard.message;
-  EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
+  expect_stop_inside_trial(0);
 }
 
 // A caller of the library that passes no callbacks (no progress or set-up lines) stops a run in
