@@ -11,7 +11,7 @@
 
 #include "blockdem/collision/inscribed_ball.hpp"
 #include "oracle/clp_lp.hpp"
-#include "unit/collision/random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

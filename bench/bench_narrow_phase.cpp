@@ -13,7 +13,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "oracle/clp_boon2012.hpp"
-#include "unit/collision/random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

@@ -7,6 +7,7 @@
 
 #include "blockdem/collision/boon2012.hpp"
 #include "blockdem/geometry/polyhedron.hpp"
+#include "support/dense_solves.hpp"
 
 namespace blockdem {
 namespace {
@@ -95,9 +96,9 @@ TEST(ContactGeometryValidation, EdgeToFace) {
 TEST(ContactGeometryValidation, VertexToFace) {
   const double h = 1e-4;
   // Rotation taking the diagonal (1,1,1)/√3 to -z, so the vertex (-½,-½,-½)... is the lowest.
-  const Eigen::Matrix3d r = Eigen::Quaterniond::FromTwoVectors(
-                                Eigen::Vector3d(1, 1, 1).normalized(), Eigen::Vector3d::UnitZ())
-                                .toRotationMatrix();
+  const Eigen::Matrix3d r =
+      test::quaternion_between(Eigen::Vector3d(1, 1, 1).normalized(), Eigen::Vector3d::UnitZ())
+          .toRotationMatrix();
   const double half_diagonal = std::sqrt(3.0) / 2;
   const double z_apex = 0.5 - h;
   const auto a = cube(Eigen::Matrix3d::Identity(), {0, 0, 0});

@@ -19,6 +19,7 @@
 #include "blockdem/run/removable_blocks.hpp"
 #include "blockdem/run/scene_builders.hpp"
 #include "support/cli_runner.hpp"
+#include "support/dense_solves.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
@@ -41,7 +42,7 @@ Eigen::Vector3d meet(const std::pair<Eigen::Vector3d, double>& a,
                      const std::pair<Eigen::Vector3d, double>& c) {
   Eigen::Matrix3d m;
   m << a.first.transpose(), b.first.transpose(), c.first.transpose();
-  return m.fullPivLu().solve(Eigen::Vector3d(a.second, b.second, c.second));
+  return test::solve_full_lu(m, Eigen::Vector3d(a.second, b.second, c.second));
 }
 
 /// The wedge as the example's joints cut it: apex, and the roof's corners on J2-J3, J1-J2, J1-J3.

@@ -18,6 +18,7 @@
 
 #include "blockdem/numerics/units.hpp"
 #include "stability_support.hpp"
+#include "support/dense_solves.hpp"
 #include "support/sanitized_run.hpp"
 
 namespace blockdem {
@@ -45,7 +46,7 @@ TEST(KeyBlock, RoofWedgeFactorOfSafetyMatchesBlockTheory) {
   const Eigen::Vector3d normal_part = weight - weight.dot(line) * line;
   Eigen::Matrix<double, 3, 2> planes;
   planes << n2, n3;
-  const Eigen::Vector2d reactions = planes.colPivHouseholderQr().solve(-normal_part);
+  const Eigen::Vector2d reactions = test::solve_qr(planes, -normal_part);
   ASSERT_GT(reactions.minCoeff(), 0.0) << "both sliding planes in contact";
   const double expected = reactions.sum() * std::tan(deg_to_rad(55.0)) / -line.z();
 

@@ -10,7 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "unit/collision/random_shapes.hpp"
+#include "support/dense_solves.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {
@@ -35,7 +36,7 @@ double newton_decrement(const Planes& planes, const Eigen::Vector3d& x) {
     g += w;
     h += w * w.transpose();
   }
-  return std::sqrt(g.dot(h.ldlt().solve(g)));
+  return std::sqrt(g.dot(test::solve_ldlt(h, g)));
 }
 
 // A box's analytic centre is its centre (each pair of opposite faces is balanced there), from

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "oracle/clp_boon2012.hpp"
-#include "unit/collision/random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

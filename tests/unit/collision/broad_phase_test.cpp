@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "unit/collision/random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

@@ -14,7 +14,7 @@
 #include "blockdem/collision/face_contact.hpp"
 #include "blockdem/contact/normal_integral.hpp"
 #include "oracle/face_integration_reference.hpp"
-#include "random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "oracle/clp_lp.hpp"
-#include "unit/collision/random_shapes.hpp"
+#include "support/random_shapes.hpp"
 
 namespace blockdem {
 namespace {

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "../collision/random_shapes.hpp"
 #include "blockdem/contact/twist.hpp"
+#include "support/random_shapes.hpp"
 
 // A namespace of this file's own: the unity build (cmake/build_speed.cmake) compiles it together
 // with other test files that define helpers of the same names.
