@@ -15,7 +15,7 @@
 # for a column-pivoting QR, 3 to 5 s for an LU or an LDLT), and a header's inline function
 # instantiates them in every file that includes it. The tests and the benchmarks take theirs from
 # tests/support/dense_solves.hpp, compiled once: the six unity groups and two benchmark files that
-# used them took 312 s of CPU in a Release build, and 199 s with the helpers (their own 33 s
+# used them took 312 s of CPU in a Release build, and 199 s with the helpers (their own 29 s
 # included), 30 November 2026.
 
 # Headers precompiled into every file of the library, the tests and the benchmarks: Eigen

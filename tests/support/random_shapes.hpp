@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "blockdem/geometry/halfspace.hpp"
+#include "support/dense_solves.hpp"
 
 namespace blockdem::test_shapes {
 
@@ -147,7 +148,31 @@ inline Planes random_hull(Rng& rng, int planes, double radius) {
 
 /// Vertices of a bounded polytope by brute force over plane triples (fine for a few dozen
 /// planes): intersections of three planes that satisfy every plane within `tol` (m), deduplicated.
-std::vector<Eigen::Vector3d> vertices(const Planes& planes, double tol = 1e-9);
+inline std::vector<Eigen::Vector3d> vertices(const Planes& planes, double tol = 1e-9) {
+  std::vector<Eigen::Vector3d> out;
+  const std::size_t m = planes.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t j = i + 1; j < m; ++j) {
+      for (std::size_t k = j + 1; k < m; ++k) {
+        Eigen::Matrix3d a;
+        a.row(0) = planes[i].normal.transpose();
+        a.row(1) = planes[j].normal.transpose();
+        a.row(2) = planes[k].normal.transpose();
+        if (std::abs(a.determinant()) < 1e-9) continue;
+        const Eigen::Vector3d x = test::solve_partial_lu(
+            a, Eigen::Vector3d(planes[i].offset, planes[j].offset, planes[k].offset));
+        const bool inside = std::all_of(planes.begin(), planes.end(), [&](const Halfspace& h) {
+          return h.signed_distance(x) <= tol;
+        });
+        const bool seen = std::any_of(out.begin(), out.end(), [&](const Eigen::Vector3d& v) {
+          return (v - x).norm() <= 10.0 * tol;
+        });
+        if (inside && !seen) out.push_back(x);
+      }
+    }
+  }
+  return out;
+}
 
 /// Largest distance between two points of the list (the diameter of their hull) (m).
 inline double diameter(const std::vector<Eigen::Vector3d>& points) {
@@ -199,7 +224,16 @@ inline Planes place_vertex_on_face(const Planes& a, std::size_t face, const Plan
 /// opposite normals, the face centroids coinciding, B spun by `spin` (rad) about the common
 /// normal, then moves B by `gap` (m) along A's face normal: an exactly aligned face-to-face
 /// contact for gap = 0 (r* = 0), separated for gap > 0, overlapping for gap < 0.
-Planes place_face_on_face(const Planes& a, std::size_t face_a, const Planes& b, std::size_t face_b,
-                          double spin, double gap);
+inline Planes place_face_on_face(const Planes& a, std::size_t face_a, const Planes& b,
+                                 std::size_t face_b, double spin, double gap) {
+  const Eigen::Vector3d n = a[face_a].normal;
+  const Eigen::Matrix3d align =
+      (Eigen::AngleAxisd(spin, n) * test::quaternion_between(b[face_b].normal, -n))
+          .toRotationMatrix();
+  const Planes b_rot = transformed(b, align, Eigen::Vector3d::Zero());
+  const Eigen::Vector3d ca = face_centroid(a, vertices(a), face_a);
+  const Eigen::Vector3d cb = face_centroid(b_rot, vertices(b_rot), face_b);
+  return transformed(b_rot, Eigen::Matrix3d::Identity(), ca - cb + gap * n);
+}
 
 }  // namespace blockdem::test_shapes
