@@ -21,6 +21,7 @@
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
 #include "blockdem/io/output_error.hpp"
+#include "blockdem/io/process_memory.hpp"
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/parallel/mpi_run.hpp"
 #include "blockdem/rockmass/scene.hpp"
@@ -60,6 +61,7 @@ struct RunOptions {
   std::string restart;
   bool resume = false;
   std::string shared_out;  ///< the run's output folder when `out` is a process's scratch folder
+  bool memory_report = false;
 };
 
 // The signal that asked the run to stop (SIGINT, SIGTERM), or 0. A second signal ends the
@@ -335,6 +337,18 @@ void draw_figures(const RunOptions& opt, const RunResult& r, bool beam) {
   update_files_record(opt.out, r.foreign_files);
 }
 
+/// --memory-report: one line per process (each prints its own, in one write).
+void report_memory(const RunResult& r, const MpiSession& mpi) {
+  const std::int64_t run_peak = resident_memory().peak;
+  const auto mb = [](std::int64_t bytes) {
+    return bytes < 0 ? -1.0 : static_cast<double>(bytes) / 1048576.0;
+  };
+  std::fprintf(stderr,
+               "blockdem: process %d of %d: peak resident memory %.1f MiB while setting up "
+               "(reading the scene, building the world), %.1f MiB while running the stages\n",
+               mpi.rank(), mpi.size(), mb(r.set_up_peak_memory), mb(run_peak));
+}
+
 /// The run's last lines on stderr; returns the exit code.
 int report_end(const RunOptions& opt, const RunResult& r, const MpiSession& mpi,
                std::chrono::steady_clock::time_point command0) {
@@ -480,6 +494,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     };
     control.write_checkpoint_files = mpi.rank() == 0;
     control.shared_out = opt.shared_out;
+    control.report_memory = opt.memory_report;
     sc.settings.distribution = mpi.distribution();
     r = run_scenario(std::move(sc), opt.out, cb, control);
   } catch (const CheckpointError& e) {
@@ -498,6 +513,7 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
     return 128 + (agreed_signal != 0 ? agreed_signal : SIGINT);
   }
   draw_figures(opt, r, beam);
+  if (opt.memory_report) report_memory(r, mpi);
   return report_end(opt, r, mpi, command0);
 }
 
@@ -533,6 +549,10 @@ void register_run(CLI::App& app) {
                       ->check(CLI::ExistingFile);
   cmd->add_flag("--resume", opt->resume, "Continue from OUT/checkpoint.bdck (see --restart)")
       ->excludes(restart);
+  cmd->add_flag("--memory-report", opt->memory_report,
+                "At the end, print each process's peak resident memory while it read the scene "
+                "and set up the world, and while it ran the stages (the process's peak is "
+                "started again after the set-up)");
   cmd->add_flag("!--no-figures", opt->figures,
                 "Do not draw figures (voussoir scenarios draw PNGs with matplotlib)");
   cmd->callback([opt] { set_exit_code(run(*opt)); });

@@ -343,6 +343,40 @@ TEST_F(MpiRun, MoreRanksThanBlocksIsAnInputError) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A deep initial overlap on several processes: spread over processes, each checks a share of
+// the candidate pairs at the set-up, and the error must still name the first offending pair in
+// (i, j) order, as one process does. Six 0.1 m cubes 0.3 m apart on a fixed base, the fourth
+// and the sixth sunk 1 mm into it (k_n = 1e10 Pa/m: 1e7 Pa, 26 times the bound of 100 rho g H):
+// the pairs (base, cube) are the only candidates, so on 2 and 3 processes the two offending ones
+// fall in different processes' shares.
+TEST_F(MpiRun, InitialOverlapFoundOnTwoProcessesNamesTheFirstPairAsOneProcess) {
+  std::ostringstream s;
+  s << "[[materials]]\nname = \"rock\"\ndensity = 2600.0\n"
+       "[[joint_laws]]\nname = \"joint\"\nnormal = { law = \"linear\", stiffness = 1e10 }\n"
+       "shear = { law = \"linear\", stiffness = 1e9, friction_deg = 35 }\n"
+       "[[blocks]]\nname = \"base\"\nmaterial = \"rock\"\nsize = [2.0, 0.5, 0.05]\n"
+       "position = [0.75, 0.0, -0.025]\nmotion = \"fixed\"\n";
+  for (int c = 1; c <= 6; ++c) {
+    const double z = (c == 4 || c == 6) ? 0.049 : 0.05;
+    s << "[[blocks]]\nname = \"cube" << c << "\"\nmaterial = \"rock\"\nsize = [0.1, 0.1, 0.1]\n"
+      << "position = [" << 0.3 * (c - 1) << ", 0.0, " << z << "]\n";
+  }
+  s << "[[stages]]\nname = \"settle\"\ngravity = [0.0, 0.0, -9.81]\nmax_steps = 10\n";
+  const fs::path scenario = write("sunk.toml", s.str());
+  for (int ranks : {0, 2, 3}) {
+    const fs::path out = dir_ / ("out" + std::to_string(ranks));
+    const fs::path log = dir_ / ("log" + std::to_string(ranks) + ".txt");
+    const std::string cmd = (ranks == 0 ? std::string() : mpirun(ranks)) + BLOCKDEM_CLI_PATH +
+                            " run " + scenario.string() + " --out " + out.string() +
+                            " --quiet 2> " + log.string();
+    EXPECT_EQ(exit_code(cmd), 2) << cmd;
+    const std::string err = read_file(log);
+    EXPECT_NE(err.find("blocks \"base\" and \"cube4\" overlap by"), std::string::npos) << err;
+    EXPECT_EQ(err.find("cube6"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(out)) << ranks << " processes";
+  }
+}
+
 // Bad input on one process only (MPMD: process 1 is given a broken file): every process stops
 // with process 1's message, exit code 2, nothing written.
 TEST_F(MpiRun, ScenarioFailingOnOneRankStopsAll) {

@@ -11,6 +11,7 @@
 
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint_file.hpp"
+#include "blockdem/io/process_memory.hpp"
 #include "blockdem/io/run_recorder.hpp"
 #include "blockdem/io/time_history.hpp"
 #include "blockdem/io/vtu.hpp"
@@ -710,7 +711,13 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
     load_restart(restart, sc, world, control, start);
     report_setup(cb, setup0, "checkpoint's state loaded");
   }
+  // What was read to build the world (the scene's blocks, a checkpoint's bytes) is freed: its
+  // pages go back to the system, so that the run's resident memory is the world's.
+  release_free_heap();
+  const std::int64_t set_up_peak = control.report_memory ? resident_memory().peak : -1;
+  if (control.report_memory) restart_peak();
   RunResult res;
+  res.set_up_peak_memory = set_up_peak;
   res.foreign_files = prepare_folder(out, resume);
   RunOutputs outputs(sc, out, cb, res);
   outputs.set_removable(std::move(removable));

@@ -43,6 +43,9 @@ struct RunResult {
   std::vector<std::int64_t> steps_per_stage;
   std::int64_t steps = 0;
   double wall_time = 0.0;  ///< (s)
+  /// With RunControl::report_memory: this process's peak resident memory up to the end of the
+  /// set-up (reading the scene, building the world, loading a checkpoint) (B); -1 otherwise.
+  std::int64_t set_up_peak_memory = -1;
 };
 
 struct RunCallbacks {
@@ -99,6 +102,11 @@ struct RunControl {
   /// (the processes that do not write the outputs): each process writes its VTK pieces into
   /// its vtk/ (docs/outputs.md). Empty: `out`.
   std::filesystem::path shared_out;
+  /// Keep the set-up's peak resident memory in RunResult::set_up_peak_memory and start the
+  /// process's peak again once the world is built (restart_peak), so that the peak at the end
+  /// is the run's own (bench/memory_ranks.sh). Tools that read the process's peak then see only
+  /// the run's.
+  bool report_memory = false;
 };
 
 /// Builds the world, runs every stage, and writes history.csv, blocks.csv, contacts.csv (and

@@ -106,8 +106,7 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   }
   const std::int64_t n = static_cast<std::int64_t>(pairs.size());
   std::int64_t first = n;
-  // The world keeps these results for its first step, which would solve the same pairs again.
-  w.prime_narrow_phase(pairs, [&](std::int64_t k, const ContactGeometry& g) {
+  const auto check = [&](std::int64_t k, const ContactGeometry& g) {
     const auto [pi, pj] = pairs[static_cast<std::size_t>(k)];
     const Block& a = blocks[static_cast<std::size_t>(pi)];
     const Block& b = blocks[static_cast<std::size_t>(pj)];
@@ -118,7 +117,31 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
 #pragma omp critical(blockdem_initial_overlap)
       first = std::min(first, k);
     }
-  });
+  };
+  const auto& distribution = sc.settings.distribution;
+  if (distribution && distribution->size() > 1) {
+    // Spread over processes, the first step finds only each process's own pairs and solves
+    // them cold (the same geometry a primed slot gives), so nothing is primed: each process
+    // checks a contiguous share of the pairs, and the first offending pair is the minimum over
+    // the processes (exact), the same on every process. No process holds every pair's result.
+    if (!sc.allow_initial_overlap) {
+      const std::int64_t size = distribution->size(), rank = distribution->rank();
+      const std::int64_t begin = n * rank / size, end = n * (rank + 1) / size;
+      const int threads = w.thread_count();
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1)
+      for (std::int64_t k = begin; k < end; ++k) {
+        const auto [i, j] = pairs[static_cast<std::size_t>(k)];
+        const Block& a = blocks[static_cast<std::size_t>(i)];
+        const Block& b = blocks[static_cast<std::size_t>(j)];
+        const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+        check(k, boon2012_contact(a.world_planes, b.world_planes, extent, sc.settings.boon2012));
+      }
+      first = static_cast<std::int64_t>(distribution->min({static_cast<double>(first)})[0]);
+    }
+  } else {
+    // The world keeps these results for its first step, which would solve the same pairs again.
+    w.prime_narrow_phase(pairs, check);
+  }
   if (first < n) {
     const auto [i, j] = pairs[static_cast<std::size_t>(first)];
     const Block& a = blocks[static_cast<std::size_t>(i)];
