@@ -20,8 +20,8 @@ ranks=("$@")
 [ ${#ranks[@]} -gt 0 ] || ranks=(1 2 3)
 mkdir -p "$work"
 echo "# $(date -u '+%F %T') UTC, $(uptime | sed 's/.*load/load/'), $bin"
-echo "| processes | set-up peak per process (MiB) | run peak per process (MiB) | whole peak (MiB) | run peak / one process's |"
-echo "|---|---|---|---|---|"
+echo "| processes | set-up peak per process (MiB) | after the set-up (MiB) | run peak per process (MiB) | whole peak (MiB) | run peak / one process's |"
+echo "|---|---|---|---|---|---|"
 one=""
 for k in "${ranks[@]}"; do
   rm -rf "$work/out$k" "$work/time$k".* "$work/log$k.txt"
@@ -29,12 +29,14 @@ for k in "${ranks[@]}"; do
     -x OMP_WAIT_POLICY -x OMP_NUM_THREADS -np "$k" sh -c \
     '/usr/bin/time -f "%M" -o "$0.$OMPI_COMM_WORLD_RANK" "$@"' "$work/time$k" \
     "$bin" run "$scenario" --out "$work/out$k" --threads 1 --quiet --no-figures --memory-report \
-    2> "$work/log$k.txt" || { cat "$work/log$k.txt" >&2; exit 1; }
-  # "blockdem: process R of K: peak resident memory A MiB while setting up (...), B MiB while ..."
+    2> "$work/log$k.txt" || [ $? -eq 3 ] || { cat "$work/log$k.txt" >&2; exit 1; }
+  # "blockdem: process R of K: peak resident memory A MiB while setting up (...; C MiB after
+  # it), B MiB while running the stages"
   setup=$(grep -o 'memory [0-9.]* MiB while setting' "$work/log$k.txt" | awk '{print $2}' | sort -n | paste -sd/)
+  after=$(grep -o '; [0-9.]* MiB after it' "$work/log$k.txt" | awk '{print $2}' | sort -n | paste -sd/)
   run=$(grep -o ', [0-9.]* MiB while running' "$work/log$k.txt" | awk '{print $2}' | sort -n | paste -sd/)
   whole=$(for f in "$work/time$k".*; do awk '{printf "%.1f\n", $1 / 1024}' "$f"; done | sort -n | paste -sd/)
   top=$(echo "$run" | tr / '\n' | sort -n | tail -1)
   [ -n "$one" ] || one=$top
-  echo "| $k | $setup | $run | $whole | $(awk -v a="$top" -v b="$one" 'BEGIN {printf "%.2f", a / b}') |"
+  echo "| $k | $setup | $after | $run | $whole | $(awk -v a="$top" -v b="$one" 'BEGIN {printf "%.2f", a / b}') |"
 done

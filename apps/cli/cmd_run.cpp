@@ -345,8 +345,9 @@ void report_memory(const RunResult& r, const MpiSession& mpi) {
   };
   std::fprintf(stderr,
                "blockdem: process %d of %d: peak resident memory %.1f MiB while setting up "
-               "(reading the scene, building the world), %.1f MiB while running the stages\n",
-               mpi.rank(), mpi.size(), mb(r.set_up_peak_memory), mb(run_peak));
+               "(reading the scene, building the world; %.1f MiB after it), %.1f MiB while "
+               "running the stages\n",
+               mpi.rank(), mpi.size(), mb(r.set_up_peak_memory), mb(r.set_up_memory), mb(run_peak));
 }
 
 /// The run's last lines on stderr; returns the exit code.

@@ -714,10 +714,11 @@ RunResult run_with(const Scenario& sc, const std::function<World()>& build,
   // What was read to build the world (the scene's blocks, a checkpoint's bytes) is freed: its
   // pages go back to the system, so that the run's resident memory is the world's.
   release_free_heap();
-  const std::int64_t set_up_peak = control.report_memory ? resident_memory().peak : -1;
+  const ResidentMemory set_up = control.report_memory ? resident_memory() : ResidentMemory{};
   if (control.report_memory) restart_peak();
   RunResult res;
-  res.set_up_peak_memory = set_up_peak;
+  res.set_up_peak_memory = set_up.peak;
+  res.set_up_memory = set_up.current;
   res.foreign_files = prepare_folder(out, resume);
   RunOutputs outputs(sc, out, cb, res);
   outputs.set_removable(std::move(removable));

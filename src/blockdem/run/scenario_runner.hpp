@@ -46,6 +46,9 @@ struct RunResult {
   /// With RunControl::report_memory: this process's peak resident memory up to the end of the
   /// set-up (reading the scene, building the world, loading a checkpoint) (B); -1 otherwise.
   std::int64_t set_up_peak_memory = -1;
+  /// With RunControl::report_memory: its resident memory at the end of the set-up, with what
+  /// was read to build the world freed (B); -1 otherwise.
+  std::int64_t set_up_memory = -1;
 };
 
 struct RunCallbacks {
