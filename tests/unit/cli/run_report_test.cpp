@@ -122,4 +122,33 @@ TEST(RunReport, AFailingFigureIsOneWarningLineAndALineInTheReport) {
   fs::remove_all(dir);
 }
 
+// --memory-report: one line, the set-up's peak at least the resident size after the set-up
+// (a peak is never below the size it ends at), and the run's peak, started again from that
+// size, at least that size; without the flag, no line.
+TEST(RunReport, MemoryReportGivesTheSetUpsAndTheRunsPeaks) {
+  const fs::path file = fs::path(BLOCKDEM_SOURCE_DIR) / "scenarios/examples/column.toml";
+  const fs::path out = test::temp_path("run_report_memory");
+  fs::remove_all(out);
+  const std::string args =
+      "run '" + file.string() + "' --out '" + out.string() + "' --quiet --no-figures";
+  const test::CommandOutput r = test::run_cli(args + " --memory-report");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::regex line(
+      R"(blockdem: process 0 of 1: peak resident memory ([0-9.]+) MiB while setting up )"
+      R"(\(reading the scene, building the world; ([0-9.]+) MiB after it\), ([0-9.]+) MiB )"
+      R"(while running the stages\n)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, line)) << r.err;
+  const double set_up_peak = std::stod(m[1]), after = std::stod(m[2]), run_peak = std::stod(m[3]);
+  EXPECT_GT(after, 1.0) << r.err;
+  EXPECT_GE(set_up_peak, after) << r.err;
+  EXPECT_GE(run_peak, after) << r.err;
+  EXPECT_FALSE(std::regex_search(m.suffix().str(), line)) << r.err;
+  fs::remove_all(out);
+  const test::CommandOutput plain = test::run_cli(args);
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("resident memory"), std::string::npos) << plain.err;
+  fs::remove_all(out);
+}
+
 }  // namespace blockdem::run_report_test
