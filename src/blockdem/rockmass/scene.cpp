@@ -32,7 +32,8 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   // temporaries left among the sliced cells. A run frees the cells before it builds its world
   // (their pages then go back to the system whole, not held by a block's data in each); made
   // among them, the 1e5-block rock mass of bench/memory_ranks.sh kept 65 MB of freed cells
-  // resident (bench/scaling-log.md, "Blocks made apart from the cells"). Another allocator
+  // resident (bench/scaling-log.md, "The set-up without every pair, and blocks made apart from
+  // the cells"; `blockdem generate`, which holds both, peaks 4 % higher). Another allocator
   // changes only where the bytes are.
   RockMassBlocks made;
   std::exception_ptr error;
