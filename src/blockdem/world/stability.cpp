@@ -110,7 +110,15 @@ StabilityTrial run_trial(World& world, Stage stage, double parameter, const Prog
   try {
     AfterStepFn after_step;
     if (stop) after_step = [&stop](const StageResume&) { return stop(); };
-    const StageResult r = run_stage(world, stage, progress, &monitor, after_step);
+    // Between steps the trial reads its world only through reductions (the monitor, the
+    // equilibrium measures; `stop` reads no block), and its end whole: spread over processes,
+    // the world is made whole there and at a failure, not after every step.
+    StageSync sync;
+    sync.after_step_synchronizes = true;
+    sync.on_step_reads = [](const World&) { return false; };
+    sync.end_synchronizes = true;
+    const StageResult r =
+        run_stage(world, stage, progress, &monitor, after_step, nullptr, {}, &sync);
     t.steps = r.steps;
     t.interrupted = r.interrupted;
     t.motion = r.motion;
