@@ -53,15 +53,16 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
           " is missing (reinstall blockdem, or set BLOCKDEM_DATA_DIR)";
     return false;
   }
-  std::string python;
-  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
-    const std::string probe =
-        std::string(candidate) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
-    if (std::system(probe.c_str()) == 0) {
-      python = candidate;
-      break;
+  // The interpreter is looked for once per process: a probe imports matplotlib (0.3 s), and a
+  // run draws several figures.
+  static const std::string python = [] {
+    for (const char* candidate : {"/usr/bin/python3", "python3"}) {
+      const std::string probe =
+          std::string(candidate) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
+      if (std::system(probe.c_str()) == 0) return std::string(candidate);
     }
-  }
+    return std::string();
+  }();
   if (python.empty()) {
     why =
         "no Python with matplotlib and numpy was found (on Debian: apt-get install "

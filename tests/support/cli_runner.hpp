@@ -23,13 +23,13 @@ struct CommandOutput {
 };
 
 /// Runs `BLOCKDEM_CLI_PATH arguments` through the shell, capturing stdout through a pipe and
-/// stderr through a temporary file.
-inline CommandOutput run_cli(const std::string& arguments) {
+/// stderr through a temporary file. `environment` (e.g. "NAME=value ") goes before the program.
+inline CommandOutput run_cli(const std::string& arguments, const std::string& environment = "") {
   static std::atomic<int> counter{0};
   const std::filesystem::path err_path =
       temp_path("cli_test_" + std::to_string(counter++) + ".err");
   const std::string command =
-      std::string(BLOCKDEM_CLI_PATH) + " " + arguments + " 2>'" + err_path.string() + "'";
+      environment + BLOCKDEM_CLI_PATH + " " + arguments + " 2>'" + err_path.string() + "'";
   CommandOutput result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
