@@ -265,8 +265,8 @@ TEST(JointLawFigures, WritesTheFourTablesWithUnitsInTheHeaders) {
   ASSERT_EQ(files.size(), 4u);
   const char* headers[] = {
       "law,closure_m,normal_stress_Pa",
-      "normal_stress_Pa,shear_displacement_m,shear_stiffness_Pa_per_m,"
-      "capped_shear_stiffness_Pa_per_m,initial_stiffness_Pa_per_m,peak_displacement_m",
+      ("normal_stress_Pa,shear_displacement_m,shear_stiffness_Pa_per_m,"
+       "capped_shear_stiffness_Pa_per_m,initial_stiffness_Pa_per_m,peak_displacement_m"),
       "normal_stress_Pa,eq7_initial_stiffness_Pa_per_m,eq2_stiffness_Pa_per_m",
       "normal_stress_Pa,shear_displacement_m,shear_stress_Pa,mobilised_friction,plastic_slip_m"};
   for (std::size_t i = 0; i < files.size(); ++i) {
