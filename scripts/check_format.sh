@@ -2,7 +2,7 @@
 # Checks that every tracked C++ file is formatted with the repository's .clang-format
 # (clang-format from Debian 12, version 14). Lists the files that differ; exit 1 if any.
 # One clang-format reads 64 files, as many at once as there are cores: one process a file took
-# 43 to 57 s on the 2-core machine, this 4 s.
+# 43 to 57 s on the 2-core machine, this 3.4 s.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang-format >/dev/null || { echo "check_format: clang-format is not installed (scripts/install-deps.sh installs it)" >&2; exit 1; }
