@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -24,6 +25,12 @@ namespace {
 void choose_wait_policy(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
   if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+  // Started again from its file's path, so that the process keeps its name ("blockdem" in ps,
+  // top and pgrep; started as /proc/self/exe it would be "exe"), else as /proc/self/exe (the file
+  // moved or removed since).
+  std::array<char, 4096> self{};
+  const ssize_t length = readlink("/proc/self/exe", self.data(), self.size() - 1);
+  if (length > 0) execv(self.data(), argv);
   execv("/proc/self/exe", argv);
   // Not started again (no /proc): run on under the library's default.
 }

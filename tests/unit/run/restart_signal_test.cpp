@@ -9,6 +9,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -38,8 +39,10 @@ long long last_stage_steps() {
 /// steps (VTK frame 3: frames 0-2 are the start and the first two stages' ends, 1,000 steps in
 /// all; `vtk_interval` is 2,500 steps), and returns the exit status (-1: no normal exit). A
 /// file the run writes inside the stage, not a delay, tells that the stage has begun: under
-/// heavy load a fixed delay once ended before its first step.
-int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
+/// heavy load a fixed delay once ended before its first step. `name`, if given, receives the
+/// running process's name (/proc/PID/comm, what ps, top and pgrep show).
+int run_and_signal(const fs::path& scenario, const fs::path& out, int sig,
+                   std::string* name = nullptr) {
   std::vector<std::string> args = {BLOCKDEM_CLI_PATH, "run",        scenario.string(),
                                    "--out",           out.string(), "--quiet",
                                    "--no-figures",    "--threads",  "2"};
@@ -58,6 +61,10 @@ int run_and_signal(const fs::path& scenario, const fs::path& out, int sig) {
   const fs::path inside_last_stage = out / "vtk" / "blocks_000003.vtu";
   while (!fs::exists(inside_last_stage) && !waited())
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  if (name != nullptr) {
+    std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+    std::getline(comm, *name);
+  }
   ::kill(pid, sig);
   int status = 0;
   while (::waitpid(pid, &status, WNOHANG) == 0) {
@@ -99,10 +106,14 @@ TEST(RestartSignals, SigintStopsWith130AndTheResumedRunIsBitIdentical) {
   expect_same_outputs(reference, out);
 }
 
+// Also: the running program is named blockdem (it starts itself again to choose how its threads
+// wait, apps/cli/main.cpp; started as /proc/self/exe, ps and top showed it as "exe").
 TEST(RestartSignals, SigtermStopsWith143AndAnInterruptedRecord) {
   const fs::path scenario = write_restart_scenario("signal_term", 0, last_stage_steps());
   const fs::path out = fresh_dir("signal_term");
-  ASSERT_EQ(run_and_signal(scenario, out, SIGTERM), 143);
+  std::string name;
+  ASSERT_EQ(run_and_signal(scenario, out, SIGTERM, &name), 143);
+  EXPECT_EQ(name, fs::path(BLOCKDEM_CLI_PATH).filename().string().substr(0, 15));
   expect_interrupted_record(out);
 }
 
