@@ -10,6 +10,8 @@ slivers are not made); the base fixed, the sides on rollers; one stage of `steps
 1 g from the blocks as cut (joints exactly closed). L is chosen for about `blocks` blocks before
 slivers are avoided (a cube of 1000 m^3 is cut into 1420): --blocks 1000, 10000, 100000 give
 L = 8.9, 19.2, 41.3 m and, with the slivers avoided, about 1.0e3, 8.4e3 and 7.6e4 blocks.
+With --in-situ the joints start instead with the geostatic stress under 10 m more of rock (the
+top carries that traction): the rock mass is at rest from the first step, every joint pressed.
 
     /usr/bin/python3 bench/make_rockmass.py --blocks 100000 --steps 11 --mode boon2012 > rm.toml
 """
@@ -27,6 +29,11 @@ def main():
                         "tunnel (radius 0.1 L) along y through the cube's middle")
     p.add_argument("--density-scaling", action="store_true",
                    help="density_scaling = true in the stages (quasi-static settling)")
+    p.add_argument("--in-situ", action="store_true",
+                   help="the joints start with the geostatic stress of 10 m of rock above the "
+                        "cube's top (k = 0.5 both ways) and gravity on from the first step: the "
+                        "rock mass starts settled, every joint pressed ([in_situ]; the top "
+                        "carries the field's traction)")
     p.add_argument("--max-blocks", type=int, default=0,
                    help="[rock_mass] max_blocks (0: the builder's default, 2e6 estimated)")
     a = p.parse_args()
@@ -34,6 +41,8 @@ def main():
     out = sys.stdout
     out.write(f'title = "three-set rock mass, cube of {side} m, 1 m spacing"\n')
     out.write(f'[settings]\ndamping = 0.7\ncontact_mode = "{a.mode}"\n')
+    if a.in_situ:
+        out.write("gravity = [0.0, 0.0, -9.81]\n")
     out.write("[output]\nvtk = false\n")
     out.write('[[materials]]\nname = "sandstone"\ndensity = 2500.0\n')
     out.write('[[joint_laws]]\nname = "joint"\nnormal = { law = "linear", stiffness = 5e9 }\n'
@@ -55,6 +64,10 @@ def main():
     out.write('[[boundaries]]\nfaces = ["z_min"]\ncondition = "fixed"\n')
     out.write('[[boundaries]]\nfaces = ["x_min", "x_max", "y_min", "y_max"]\n'
               'condition = "roller"\n')
+    if a.in_situ:
+        out.write(f'[in_situ]\nground_z = {side + 10.0:.1f}\nmaterial = "sandstone"\n'
+                  'k_x = 0.5\nk_y = 0.5\n')
+        out.write('[[boundaries]]\nfaces = ["z_max"]\ncondition = "stress"\n')
     if a.excavate > 0:
         r = round(0.1 * side, 2)
         out.write(f'[[excavations]]\nname = "tunnel"\nshape = "tunnel"\nprofile = "horseshoe"\n'

@@ -3,24 +3,28 @@
 # and excavated, with the time of each part, the peak memory and the step rates at 1 and 2
 # threads (bench/README.md, "A million blocks").
 #
-#   bash bench/million.sh build/blockdem /tmp/million [STEPS]
+#   bash bench/million.sh build/blockdem /tmp/million [STEPS] [in-situ]
 #
 # The scene is bench/make_rockmass.py's three-set rock mass in a cube of 97.1 m (1 m spacing,
 # mode face_integrated): about 949,000 blocks. Stages: STEPS steps of settling under gravity, then
 # STEPS steps of a stage that excavates a horseshoe tunnel of radius 9.7 m along y through the
 # cube's middle, both with density scaling (default STEPS = 20). A settling to equilibrium takes
-# thousands of steps: the rates below tell how long.
+# thousands of steps: the rates below tell how long. With `in-situ` the joints start with the
+# geostatic stress (make_rockmass.py --in-situ): the rock mass is settled from the first step,
+# every joint pressed, and the figures are those of a settled model.
 set -euo pipefail
 bin=$(realpath "$1")
 out=$2
 steps=${3:-20}
+extra=()
+[ "${4:-}" = "in-situ" ] && extra=(--in-situ)
 here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 mkdir -p "$out"
 cd "$out"
 "$python" "$here/make_rockmass.py" --blocks 1300000 --max-blocks 3000000 --mode face_integrated \
-  --steps "$steps" --excavate "$steps" --density-scaling > million.toml
+  --steps "$steps" --excavate "$steps" --density-scaling "${extra[@]}" > million.toml
 echo "load before: $(uptime)"
 
 # Generation alone: the cut and its files (blocks.csv, faces.csv, blocks.vtk).
