@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config clang-format libgomp1 clang libomp-dev
+  build-essential cmake ninja-build pkg-config clang-format libgomp1 clang libomp-dev
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev coinor-libclp-dev
   libopenmpi-dev openmpi-bin

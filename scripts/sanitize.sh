@@ -27,6 +27,7 @@ export BLOCKDEM_TEST_SANITIZED=1
 # on the 2-core machine, the same day, the 293 tests both runs finished took 1357 s of test time
 # with clang against 1630 s with GCC (0.83), and clang's build 1033 s against GCC's 1776 s (GCC's
 # shared the machine with other work, so part of that gap is not the compiler's).
+export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"  # as scripts/build.sh
 cmake -S . -B build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBLOCKDEM_BUILD_BENCH=OFF -DBLOCKDEM_PYTHON=OFF -DBLOCKDEM_MPI=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \

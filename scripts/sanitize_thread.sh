@@ -18,6 +18,7 @@ llvm=$(ls -d /usr/lib/llvm-*/lib | sort -V | tail -1)
 # is added here.
 threaded='/(parallel_determinism|restart|restart_signal|world_state|broad_phase|distributed_step|distributed_stage|step_failure)_test[.]cpp$'
 # -O1 and line tables only, as in scripts/sanitize.sh: reports still name file and line.
+export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"  # as scripts/build.sh
 CXX=clang++ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLOCKDEM_BUILD_BENCH=OFF \
   -DBLOCKDEM_PYTHON=OFF -DBLOCKDEM_MPI=OFF -DBLOCKDEM_TEST_SOURCES_REGEX="$threaded" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
