@@ -45,36 +45,73 @@ void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min,
   }
 }
 
-void PairSorter::sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
-  // Counting sort on the first body: starts_[i] is where body i's pairs begin.
-  starts_.assign(bodies + 1, 0);
-  for (const auto& p : pairs) ++starts_[static_cast<std::size_t>(p.first) + 1];
-  for (std::size_t i = 0; i < bodies; ++i) starts_[i + 1] += starts_[i];
-  scratch_.resize(pairs.size());
-  for (const auto& p : pairs) scratch_[starts_[static_cast<std::size_t>(p.first)]++] = p;
-  // starts_[i] now holds the end of body i's pairs; most bodies have a few (insertion sort),
-  // a large one (a base plate) many.
+namespace {
+
+// Sorts each body's pairs by j in place: body i's pairs are [ends[i - 1], ends[i]) (from 0 for
+// body 0). Most bodies have a few (insertion sort), a large one (a base plate) many.
+void sort_each_body(std::vector<std::pair<int, int>>& pairs, const std::size_t* ends,
+                    std::size_t bodies) {
   std::size_t begin = 0;
   for (std::size_t i = 0; i < bodies; ++i) {
-    const std::size_t end = starts_[i];
+    const std::size_t end = ends[i];
     if (end - begin > 32) {
-      std::sort(scratch_.begin() + static_cast<std::ptrdiff_t>(begin),
-                scratch_.begin() + static_cast<std::ptrdiff_t>(end));
+      std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+                pairs.begin() + static_cast<std::ptrdiff_t>(end));
       begin = end;
       continue;
     }
     for (std::size_t k = begin + 1; k < end; ++k) {
-      const auto v = scratch_[k];
+      const auto v = pairs[k];
       std::size_t m = k;
-      while (m > begin && scratch_[m - 1].second > v.second) {
-        scratch_[m] = scratch_[m - 1];
+      while (m > begin && pairs[m - 1].second > v.second) {
+        pairs[m] = pairs[m - 1];
         --m;
       }
-      scratch_[m] = v;
+      pairs[m] = v;
     }
     begin = end;
   }
+}
+
+}  // namespace
+
+void PairSorter::sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
+  // Counting sort on the first body: starts_[i] is where body i's pairs begin.
+  starts_.assign(bodies + 1, 0);
+  bool grouped = true;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    ++starts_[static_cast<std::size_t>(pairs[k].first) + 1];
+    grouped = grouped && (k == 0 || pairs[k - 1].first <= pairs[k].first);
+  }
+  for (std::size_t i = 0; i < bodies; ++i) starts_[i + 1] += starts_[i];
+  if (grouped) {
+    // starts_[i + 1] is the end of body i's pairs, already in place.
+    sort_each_body(pairs, starts_.data() + 1, bodies);
+    return;
+  }
+  scratch_.resize(pairs.size());
+  for (const auto& p : pairs) scratch_[starts_[static_cast<std::size_t>(p.first)]++] = p;
+  // starts_[i] now holds the end of body i's pairs.
+  sort_each_body(scratch_, starts_.data(), bodies);
   pairs.swap(scratch_);
+}
+
+void PairSorter::sort_parts(std::vector<std::vector<std::pair<int, int>>>& parts,
+                            std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
+  starts_.assign(bodies + 1, 0);
+  std::size_t total = 0;
+  for (const auto& part : parts) {
+    total += part.size();
+    for (const auto& p : part) ++starts_[static_cast<std::size_t>(p.first) + 1];
+  }
+  for (std::size_t i = 0; i < bodies; ++i) starts_[i + 1] += starts_[i];
+  pairs.resize(total);
+  for (auto& part : parts) {
+    for (const auto& p : part) pairs[starts_[static_cast<std::size_t>(p.first)]++] = p;
+    std::vector<std::pair<int, int>>().swap(part);
+  }
+  // starts_[i] now holds the end of body i's pairs.
+  sort_each_body(pairs, starts_.data(), bodies);
 }
 
 }  // namespace blockdem

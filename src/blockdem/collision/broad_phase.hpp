@@ -56,7 +56,14 @@ struct BoxView {
 /// until release().
 class PairSorter {
  public:
+  /// Pairs already grouped by i (a one-thread sweep in body order) are sorted in place, without
+  /// the scratch list.
   void sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
+  /// The pairs of `parts` (each thread's list, in any order), sorted into `pairs`; each part is
+  /// freed once its pairs are placed, so that the lists and the sorted pairs are not all whole
+  /// in memory with a scratch list besides.
+  void sort_parts(std::vector<std::vector<std::pair<int, int>>>& parts,
+                  std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
   /// Frees the buffers (a large scene's scratch list is as long as its list of pairs).
   void release() {
     std::vector<std::pair<int, int>>().swap(scratch_);

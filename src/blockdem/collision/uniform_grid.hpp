@@ -140,8 +140,11 @@ void UniformGrid::find_pairs(const BoxView& boxes, Want&& want,
   } else {
     sweep();
   }
-  for (const auto& c : chunks_) pairs.insert(pairs.end(), c.begin(), c.end());
-  sorter_.sort(pairs, static_cast<std::size_t>(n));
+  if (threads > 1) {
+    sorter_.sort_parts(chunks_, pairs, static_cast<std::size_t>(n));
+  } else {
+    sorter_.sort(pairs, static_cast<std::size_t>(n));
+  }
   release();
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
@@ -46,7 +47,10 @@ struct ContactPreload {
   }
 };
 
-/// The prestressed pairs of a world, sorted by (a, b).
+/// The prestressed pairs of a world, sorted by (a, b), with the place of each block's first pair
+/// as block A: a pair is found by a scan of its block's few pairs (a rock mass's block is A of
+/// about three), not by a binary search over the whole list, whose steps would each miss the cache
+/// in a large model (112 bytes per pair: 310 MB at a million blocks).
 class ContactPreloads {
  public:
   bool empty() const { return list_.empty(); }
@@ -58,15 +62,16 @@ class ContactPreloads {
     list_ = std::move(list);
     std::sort(list_.begin(), list_.end(),
               [](const ContactPreload& x, const ContactPreload& y) { return key(x) < key(y); });
+    index();
   }
   /// The pair's prestress, or null.
   const ContactPreload* find(int a, int b) const {
-    if (list_.empty()) return nullptr;
-    const std::pair<int, int> k{a, b};
-    const auto it = std::lower_bound(
-        list_.begin(), list_.end(), k,
-        [](const ContactPreload& p, const std::pair<int, int>& q) { return key(p) < q; });
-    return it != list_.end() && it->a == a && it->b == b ? &*it : nullptr;
+    if (a < 0 || static_cast<std::size_t>(a) + 1 >= first_.size()) return nullptr;
+    const std::size_t end = first_[static_cast<std::size_t>(a) + 1];
+    for (std::size_t k = first_[static_cast<std::size_t>(a)]; k < end; ++k) {
+      if (list_[k].b == b) return &list_[k];
+    }
+    return nullptr;
   }
   /// After blocks were removed: `new_index[i]` is block i's new index, -1 for a removed block
   /// (the order of the others is kept, so the list stays sorted).
@@ -81,11 +86,21 @@ class ContactPreloads {
       list_[kept++] = p;
     }
     list_.resize(kept);
+    index();
   }
 
  private:
   static std::pair<int, int> key(const ContactPreload& p) { return {p.a, p.b}; }
+  /// first_[a] .. first_[a + 1]: the places of the pairs whose block A is a (the list is sorted).
+  void index() {
+    first_.clear();
+    if (list_.empty()) return;
+    first_.assign(static_cast<std::size_t>(list_.back().a) + 2, 0);
+    for (const ContactPreload& p : list_) ++first_[static_cast<std::size_t>(p.a) + 1];
+    for (std::size_t i = 1; i < first_.size(); ++i) first_[i] += first_[i - 1];
+  }
   std::vector<ContactPreload> list_;
+  std::vector<std::uint64_t> first_;
 };
 
 }  // namespace blockdem

@@ -3,11 +3,14 @@
 // twisting moment (response/in_situ.hpp), kept in block A's body frame.
 #include <algorithm>
 #include <cstdint>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "blockdem/response/in_situ.hpp"
+#include "blockdem/world/pass_support.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -17,52 +20,68 @@ std::size_t World::prestress_joints(const StressField& field,
   if (const std::string why = field.problem(); !why.empty())
     throw std::invalid_argument("the in-situ stress " + why);
   const std::int64_t n = static_cast<std::int64_t>(pairs.size());
-  std::vector<std::optional<ContactPreload>> found(pairs.size());
-  std::vector<std::string> errors(pairs.size());
-  const int threads = thread_count();
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) if (threads > 1 && n > 64)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const auto [i, j] = pairs[static_cast<std::size_t>(k)];
-    if (!steps_pair(i, j)) continue;
-    const Block& a = blocks_[static_cast<std::size_t>(i)];
-    const Block& b = blocks_[static_cast<std::size_t>(j)];
-    const auto face = shared_face_of(a, b);
-    if (!face) continue;
-    const int law = shared_face_law(i, j, *face, law_for(i, j));
-    if (law < 0) continue;
-    const NormalLaw& normal = laws_[static_cast<std::size_t>(law)].normal;
-    try {
-      const FaceTraction t = face_traction(field, face->polygon, face->normal);
-      const LinearClosure c = closure_for_traction(normal, face->polygon, face->normal, t);
-      ContactPreload p;
-      p.a = i;
-      p.b = j;
-      p.plane_a = face->plane_a;
-      p.plane_b = face->plane_b;
-      p.shift = 0.0;
-      for (const Eigen::Vector3d& x : face->polygon) p.shift = std::max(p.shift, c.at(x));
-      // In A's body frame.
-      const Eigen::Matrix3d to_body = a.rotation().transpose();
-      p.point = to_body * (c.point - a.position);
-      p.closure = c.value;
-      p.gradient = to_body * c.gradient;
-      p.shear_force = to_body * t.shear_force(face->normal);
-      p.twisting_moment = t.twisting_moment(face->normal);
-      found[static_cast<std::size_t>(k)] = p;
-    } catch (const std::invalid_argument& e) {
-      std::ostringstream s;
-      s << "the joint between blocks \"" << a.name << "\" and \"" << b.name << "\" (law \""
-        << laws_[static_cast<std::size_t>(law)].name << "\"): " << e.what();
-      errors[static_cast<std::size_t>(k)] = s.str();
+  // Each thread lists the prestresses it found and its first failing pair: the list is sorted by
+  // (a, b) when it is assigned, and the failure reported is the first in the pairs' order, so
+  // neither depends on the thread count. (Not a result per candidate pair: 152 bytes each, most
+  // of them empty, for the millions of pairs of a large rock mass.)
+  const int threads = std::max(thread_count(), 1);
+  std::vector<std::vector<ContactPreload>> found(static_cast<std::size_t>(threads));
+  std::vector<std::pair<std::int64_t, std::string>> failed(static_cast<std::size_t>(threads),
+                                                           {n, std::string()});
+#pragma omp parallel num_threads(threads) if (threads > 1 && n > 64)
+  {
+    const auto t = static_cast<std::size_t>(pass_support::team_rank());
+    std::vector<ContactPreload>& mine = found[t];
+#pragma omp for schedule(dynamic, 64)
+    for (std::int64_t k = 0; k < n; ++k) {
+      const auto [i, j] = pairs[static_cast<std::size_t>(k)];
+      if (!steps_pair(i, j)) continue;
+      const Block& a = blocks_[static_cast<std::size_t>(i)];
+      const Block& b = blocks_[static_cast<std::size_t>(j)];
+      const auto face = shared_face_of(a, b);
+      if (!face) continue;
+      const int law = shared_face_law(i, j, *face, law_for(i, j));
+      if (law < 0) continue;
+      const NormalLaw& normal = laws_[static_cast<std::size_t>(law)].normal;
+      try {
+        const FaceTraction t_face = face_traction(field, face->polygon, face->normal);
+        const LinearClosure c = closure_for_traction(normal, face->polygon, face->normal, t_face);
+        ContactPreload p;
+        p.a = i;
+        p.b = j;
+        p.plane_a = face->plane_a;
+        p.plane_b = face->plane_b;
+        p.shift = 0.0;
+        for (const Eigen::Vector3d& x : face->polygon) p.shift = std::max(p.shift, c.at(x));
+        // In A's body frame.
+        const Eigen::Matrix3d to_body = a.rotation().transpose();
+        p.point = to_body * (c.point - a.position);
+        p.closure = c.value;
+        p.gradient = to_body * c.gradient;
+        p.shear_force = to_body * t_face.shear_force(face->normal);
+        p.twisting_moment = t_face.twisting_moment(face->normal);
+        mine.push_back(p);
+      } catch (const std::invalid_argument& e) {
+        if (k < failed[t].first) {
+          std::ostringstream s;
+          s << "the joint between blocks \"" << a.name << "\" and \"" << b.name << "\" (law \""
+            << laws_[static_cast<std::size_t>(law)].name << "\"): " << e.what();
+          failed[t] = {k, s.str()};
+        }
+      }
     }
   }
   // The first failing pair in (a, b) order, whatever the thread count.
-  for (const std::string& e : errors) {
-    if (!e.empty()) throw std::invalid_argument(e);
-  }
+  const auto first = std::min_element(
+      failed.begin(), failed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  if (first->first < n) throw std::invalid_argument(first->second);
+  std::size_t total = 0;
+  for (const auto& part : found) total += part.size();
   std::vector<ContactPreload> list;
-  for (auto& p : found) {
-    if (p) list.push_back(*p);
+  list.reserve(total);
+  for (auto& part : found) {
+    list.insert(list.end(), part.begin(), part.end());
+    std::vector<ContactPreload>().swap(part);
   }
   preloads_.assign(std::move(list));
   return preloads_.size();
