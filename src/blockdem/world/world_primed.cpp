@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "blockdem/world/pass_support.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
@@ -88,6 +89,7 @@ void World::prime_narrow_phase(
   }
   // With merge_pairs' slack of an eighth, which the next steps' new pairs fill.
   primed_slots_.reserve(count + count / 8);
+  pass_support::populate_pages(primed_slots_.data(), count * sizeof(PairSlot), thread_count());
   primed_slots_.resize(count);
   primed_area_.assign(count, kNotPrimed);
   // A contact's result is kept only without twist, which reads the slice polygon as well.
