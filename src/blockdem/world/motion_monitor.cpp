@@ -11,6 +11,11 @@
 #include "blockdem/numerics/number_text.hpp"
 
 namespace blockdem {
+namespace {
+/// MotionReport::elastic_energy_start before the world's first step (saved as is, restored).
+constexpr double kPending = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
 void MechanismCriteria::validate() const {
   if (!(displacement_limit >= 0.0) || !std::isfinite(displacement_limit))
     throw std::invalid_argument("displacement_limit: must be >= 0 (0: automatic)");
@@ -27,6 +32,9 @@ MotionMonitor::MotionMonitor(const World& world, const MechanismCriteria& criter
   }
   report_.displacement_limit =
       criteria_.displacement_limit > 0.0 ? criteria_.displacement_limit : limit;
+  // A world not yet stepped has no joint forces: its joints' energy (an in-situ prestress
+  // above all, which can be most of what a stage releases) is taken after the first step.
+  if (world.step_count() == 0) report_.elastic_energy_start = kPending;
   for (const Contact* c : world.contacts())
     report_.elastic_energy_start += 0.5 * std::max(c->normal_force, 0.0) * c->geometry.overlap;
   observe(world, true);
@@ -34,6 +42,8 @@ MotionMonitor::MotionMonitor(const World& world, const MechanismCriteria& criter
 
 void MotionMonitor::observe(const World& world, bool ramping) {
   MotionReport& r = report_;
+  if (std::isnan(r.elastic_energy_start) && world.step_count() > 0)
+    r.elastic_energy_start = world.energy_budget().initial;
   // Maxima, exact sums and the list of moving blocks over the blocks this process counts,
   // reduced over the processes of a distributed world (World::reduce_partials): the bits of one
   // process whatever the split.
@@ -104,7 +114,9 @@ void MotionMonitor::save_state(StateWriter& out) const {
 }
 
 bool MotionMonitor::energy_created() const {
-  const double available = std::max(report_.load_work, 0.0) + report_.elastic_energy_start;
+  const double stored =
+      std::isnan(report_.elastic_energy_start) ? 0.0 : report_.elastic_energy_start;
+  const double available = std::max(report_.load_work, 0.0) + stored;
   return report_.kinetic_energy > 1.1 * available + 1e-12;
 }
 

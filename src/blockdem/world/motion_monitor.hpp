@@ -32,7 +32,11 @@ struct MotionReport {
   /// Work done by gravity and external forces on the free blocks since the stage start (J).
   double load_work = 0.0;
   /// Elastic energy in the normal springs at the stage start, ½ Σ F_n δ (J): an upper bound of
-  /// what the joints can release for the stiffening laws (linear, exponential).
+  /// what the joints can release for the stiffening laws (linear, exponential). For a stage that
+  /// starts the world's first step, whose joints take their forces in that step (an in-situ
+  /// prestress, blocks placed overlapping), the energy the world's ledger starts from instead:
+  /// the joints' elastic energy and the blocks' kinetic energy after that step
+  /// (EnergyBudget::initial). NaN until the monitor has observed a stepped world.
   double elastic_energy_start = 0.0;
   /// Time step over the critical estimate sqrt(m/K) of the stiffest block (-).
   double time_step_ratio = 0.0;
