@@ -28,12 +28,11 @@ void clip(const ClipPolygon& poly, const Halfspace& h, double tolerance, ClipPol
   }
 }
 
-}  // namespace
-
-std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
-                                      std::span<const Eigen::Vector3d> vertices_a,
-                                      std::span<const Halfspace> planes_a,
-                                      std::span<const Halfspace> planes_b, double tolerance) {
+template <class VertexAt>
+std::optional<SharedFace> shared_face_of_faces(const Polyhedron& shape_a, const VertexAt& vertex_a,
+                                               std::span<const Halfspace> planes_a,
+                                               std::span<const Halfspace> planes_b,
+                                               double tolerance, double min_area) {
   std::optional<SharedFace> best;
   for (const Face& face : shape_a.faces()) {
     const Halfspace& pa = planes_a[static_cast<std::size_t>(face.plane)];
@@ -45,22 +44,55 @@ std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
       ClipPolygon buffers[2];
       ClipPolygon* poly = &buffers[0];
       ClipPolygon* clipped = &buffers[1];
-      for (int v : face.vertices) poly->push_back(vertices_a[static_cast<std::size_t>(v)]);
+      for (int v : face.vertices) poly->push_back(vertex_a(static_cast<std::size_t>(v)));
       for (std::size_t k = 0; k < planes_b.size() && poly->size() >= 3; ++k) {
         if (k == j) continue;
         clip(*poly, planes_b[k], tolerance, *clipped);
         std::swap(poly, clipped);
       }
       if (poly->size() < 3) continue;
+      // Half the vector area's length: the polygon's area to round-off, which the moments'
+      // own sum (the area kept) differs from by far less than the factor 2 allowed here.
+      Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
+      for (std::size_t i = 1; i + 1 < poly->size(); ++i)
+        vector_area += ((*poly)[i] - (*poly)[0]).cross((*poly)[i + 1] - (*poly)[0]);
+      if (vector_area.norm() < min_area) continue;
       const PolygonMoments m =
           polygon_area_centroid(std::span<const Eigen::Vector3d>(poly->data(), poly->size()));
-      if (!(m.area > tolerance * tolerance) || (best && m.area <= best->area)) continue;
+      if (!(m.area > tolerance * tolerance) || !(m.area > min_area) ||
+          (best && m.area <= best->area))
+        continue;
       best = SharedFace{face.plane, static_cast<int>(j),
                         pa.normal,  m.centroid,
                         m.area,     std::vector<Eigen::Vector3d>(poly->begin(), poly->end())};
     }
   }
   return best;
+}
+
+}  // namespace
+
+std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
+                                      std::span<const Eigen::Vector3d> vertices_a,
+                                      std::span<const Halfspace> planes_a,
+                                      std::span<const Halfspace> planes_b, double tolerance,
+                                      double min_area) {
+  return shared_face_of_faces(
+      shape_a, [&](std::size_t v) -> const Eigen::Vector3d& { return vertices_a[v]; }, planes_a,
+      planes_b, tolerance, min_area);
+}
+
+std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
+                                      const Eigen::Quaterniond& orientation_a,
+                                      const Eigen::Vector3d& position_a,
+                                      std::span<const Halfspace> planes_a,
+                                      std::span<const Halfspace> planes_b, double tolerance,
+                                      double min_area) {
+  const std::vector<Eigen::Vector3d>& body = shape_a.vertices();
+  return shared_face_of_faces(
+      shape_a,
+      [&](std::size_t v) -> Eigen::Vector3d { return position_a + orientation_a * body[v]; },
+      planes_a, planes_b, tolerance, min_area);
 }
 
 }  // namespace blockdem

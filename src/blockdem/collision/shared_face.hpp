@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <span>
 #include <vector>
@@ -26,10 +27,22 @@ struct SharedFace {
 /// The largest face of A (shape `shape_a` at world vertices `vertices_a`, world planes `planes_a`)
 /// that lies on a plane of B (`planes_b`) facing the other way, within `tolerance` (m) of it,
 /// clipped by B's other planes: the polygon where A and B touch without overlapping. Empty when
-/// no such polygon has an area above (tolerance)^2.
+/// no such polygon has an area above (tolerance)^2, nor above `min_area` (m^2): a caller that
+/// takes no face below an area of its own says so here, and the polygons of blocks that meet
+/// along an edge or at a corner (most neighbours of a rock mass's block) are dropped before
+/// their moments are computed.
 std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
                                       std::span<const Eigen::Vector3d> vertices_a,
                                       std::span<const Halfspace> planes_a,
-                                      std::span<const Halfspace> planes_b, double tolerance);
+                                      std::span<const Halfspace> planes_b, double tolerance,
+                                      double min_area = 0.0);
+/// The same for A at a pose (its world vertices position + orientation · v, found only for the
+/// faces that lie on one of B's planes).
+std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
+                                      const Eigen::Quaterniond& orientation_a,
+                                      const Eigen::Vector3d& position_a,
+                                      std::span<const Halfspace> planes_a,
+                                      std::span<const Halfspace> planes_b, double tolerance,
+                                      double min_area = 0.0);
 
 }  // namespace blockdem

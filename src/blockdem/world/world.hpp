@@ -253,7 +253,10 @@ class World {
   /// any thread and in any order. The results of the pairs that the next step evaluates are
   /// kept, and that step takes them instead of solving the same pairs again (the same bits: a
   /// pair with a block that moved or changed in between is solved again, and nothing is kept
-  /// after that step). The set-up's check of the initial overlaps is such a pass.
+  /// after that step). The set-up's check of the initial overlaps is such a pass. A prestressed
+  /// pair (preloads()) whose second block lies beyond the first's face plane of their shared
+  /// face, to a nanometre per metre, is not solved (the step solves it with that plane moved
+  /// out) nor visited: it has no initial overlap.
   void prime_narrow_phase(const std::vector<std::pair<int, int>>& pairs,
                           const std::function<void(std::int64_t, const ContactGeometry&)>& visit);
 

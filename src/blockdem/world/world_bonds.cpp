@@ -13,15 +13,16 @@
 namespace blockdem {
 
 std::optional<SharedFace> World::shared_face_of(const Block& a, const Block& b, double gap) const {
-  std::vector<Eigen::Vector3d> vertices;
-  vertices.reserve(a.shape.vertices().size());
-  for (const auto& v : a.shape.vertices()) vertices.push_back(a.to_world(v));
   const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius()) + gap;
-  auto face = shared_face(a.shape, vertices, a.world_planes, b.world_planes, tolerance);
-  if (!face) return face;
   // A face, not two blocks meeting along an edge (a sliver within the tolerance) ...
   const double size = std::min(a.shape.bounding_radius(), b.shape.bounding_radius());
-  if (!(face->area > 1e-6 * size * size)) return std::nullopt;
+  const double min_area = 1e-6 * size * size;
+  // A's world vertices only for its faces on one of B's planes (Block::to_world's arithmetic):
+  // this runs for every pair of neighbours at set-up.
+  auto face = shared_face(a.shape, a.orientation, a.position, a.world_planes, b.world_planes,
+                          tolerance, min_area);
+  if (!face) return face;
+  if (!(face->area > min_area)) return std::nullopt;
   // ... nor pressed into each other along one: the polygon's width (its area over its widest
   // span) is many times the depth of pressing, as where two faces press, not two edges.
   if (gap > 0.0) {

@@ -21,6 +21,18 @@ bool same_bits(const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
   return same_bits(x.x(), y.x()) && same_bits(x.y(), y.y()) && same_bits(x.z(), y.z());
 }
 
+// Whether every vertex of B lies beyond the plane of A's face of the joint they share (A inside
+// n·x <= d), to the tolerance of shared_face: A and B then overlap within a slab of that
+// thickness at most, no initial overlap.
+bool beyond_shared_plane(const Block& a, const Block& b, const ContactPreload& p) {
+  const Halfspace& h = a.world_planes[static_cast<std::size_t>(p.plane_a)];
+  const double tolerance = 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+  for (const Eigen::Vector3d& v : b.shape.vertices()) {
+    if (h.signed_distance(b.to_world(v)) < -tolerance) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // The cache's layout, field for field: a field added to Boon2012Cache, InscribedBall or
@@ -101,11 +113,17 @@ void World::prime_narrow_phase(
     const auto [i, j] = pairs[static_cast<std::size_t>(k)];
     const Block& a = blocks_[static_cast<std::size_t>(i)];
     const Block& b = blocks_[static_cast<std::size_t>(j)];
-    const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+    // A prestressed pair is solved by the step with its face plane moved out, so its result
+    // here would not be kept; when B lies beyond A's face of the shared face, it is not solved.
+    const ContactPreload* preload = preloads_.find(i, j);
+    const bool apart = preload != nullptr && beyond_shared_plane(a, b, *preload);
     Boon2012Cache cache;
-    const ContactGeometry g =
-        boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
-    visit(k, g);
+    ContactGeometry g;
+    if (!apart) {
+      const double extent = 2.0 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+      g = boon2012_contact(a.world_planes, b.world_planes, extent, settings_.boon2012, &cache);
+      visit(k, g);
+    }
     const std::int32_t s = slot_of[static_cast<std::size_t>(k)];
     if (s < 0) continue;
     PairSlot& slot = primed_slots_[static_cast<std::size_t>(s)];
@@ -113,7 +131,7 @@ void World::prime_narrow_phase(
     slot.b = j;
     slot.group_law = law_for(i, j);
     if (step_count_ > 0) slot.bond = BondState::unbonded;  // as merge_pairs opens it
-    if (preloads_.find(i, j) != nullptr) continue;         // solved with its face plane moved out
+    if (preload != nullptr) continue;                      // solved with its face plane moved out
     // What the step reads of the geometry: a contact has a positive area and overlap.
     const bool contact = g.touching && g.area > 0.0 && g.overlap > 0.0;
     if (contact && !keep_contacts) continue;  // solved again, from an empty warm start
