@@ -128,7 +128,6 @@ WaterTable WaterTable::surface(const std::vector<Eigen::Vector3d>& points) {
   // those taken: four or more points on one circle give one of their triangulations.
   std::vector<std::array<std::size_t, 3>> triangles;
   std::vector<std::array<Eigen::Vector2d, 3>> shapes;
-  double area = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       for (std::size_t k = j + 1; k < n; ++k) {
@@ -148,7 +147,6 @@ WaterTable WaterTable::surface(const std::vector<Eigen::Vector3d>& points) {
         if (!empty) continue;
         triangles.push_back(t);
         shapes.push_back(shape);
-        area += 0.5 * std::abs(twice);
       }
     }
   }

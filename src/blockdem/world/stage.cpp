@@ -304,11 +304,20 @@ StageResult run_stage(World& world, const Stage& stage, const ProgressFn& progre
     if (k >= stage.max_steps) {
       world.synchronize();
       const EquilibriumMeasures m = world.equilibrium();
-      r.message = "no equilibrium after " + std::to_string(k) + " steps: unbalanced force ratio " +
-                  number_text(m.unbalanced_force_ratio) + " (tolerance " +
-                  number_text(stage.unbalanced_tolerance) + "), kinetic energy ratio " +
-                  number_text(m.kinetic_energy_ratio) + " (tolerance " +
-                  number_text(stage.kinetic_tolerance) + ")" +
+      // A stage that runs to a count or a time has no equilibrium to miss: it was cut short
+      // (blockdem run --max-steps, or a max_steps below its steps).
+      const std::string cut =
+          "stopped by its step limit (max_steps = " + std::to_string(stage.max_steps) + ") after " +
+          std::to_string(k);
+      r.message = (stage.kind == Stage::Kind::steps
+                       ? cut + " of its " + std::to_string(stage.steps) + " steps"
+                   : timed ? cut + " steps, at " + number_text(world.time() - t0, "%.4g") +
+                                 " s of its " + number_text(stage.duration, "%.4g") + " s"
+                           : "no equilibrium after " + std::to_string(k) + " steps") +
+                  ": unbalanced force ratio " + number_text(m.unbalanced_force_ratio) +
+                  " (tolerance " + number_text(stage.unbalanced_tolerance) +
+                  "), kinetic energy ratio " + number_text(m.kinetic_energy_ratio) +
+                  " (tolerance " + number_text(stage.kinetic_tolerance) + ")" +
                   (servos_settled(world) ? "" : ", a servo has not reached its target force");
       break;
     }

@@ -44,5 +44,43 @@ TEST(StageHook, CalledEveryStepAndStopsTheStage) {
   EXPECT_EQ(full.steps, 1000);
 }
 
+// A stage that runs to a count or a time, cut short by its step limit (blockdem run --max-steps):
+// not converged, and said to be stopped, not to have missed an equilibrium it never sought. The
+// cube of the test above, pushed on: after k steps, v = k F dt / m.
+TEST(StageHook, StepLimitStopsACountedOrTimedStageAndSaysSo) {
+  WorldSettings s;
+  s.time_step = 1e-4;
+  World w = linear_world(1e9, 1e8, 40.0, s);
+  Block cube = box_block(Eigen::Vector3d::Ones(), {0, 0, 0}, 1000.0);
+  cube.set_external_force(Eigen::Vector3d(50.0, 0.0, 0.0));
+  w.add_block(cube);
+  Stage counted;
+  counted.kind = Stage::Kind::steps;
+  counted.steps = 1000;
+  counted.max_steps = 300;
+  const StageResult r = run_stage(w, counted);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.steps, 300);
+  EXPECT_EQ(r.message.rfind(
+                "stopped by its step limit (max_steps = 300) after 300 of its 1000 steps:", 0),
+            0u)
+      << r.message;
+  EXPECT_NEAR(w.blocks()[0].velocity.x(), 300 * 50.0 * 1e-4 / 1000.0, 1e-12);
+
+  Stage timed;
+  timed.kind = Stage::Kind::duration;
+  timed.duration = 1.0;
+  timed.max_steps = 200;
+  const StageResult t = run_stage(w, timed);
+  EXPECT_FALSE(t.converged);
+  EXPECT_EQ(t.steps, 200);
+  EXPECT_EQ(
+      t.message.rfind("stopped by its step limit (max_steps = 200) after 200 steps, at 0.02 s "
+                      "of its 1 s:",
+                      0),
+      0u)
+      << t.message;
+}
+
 }  // namespace
 }  // namespace blockdem::test
