@@ -81,13 +81,14 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   };
   std::vector<std::pair<int, int>> pairs;
   UniformGrid broad_phase;
-  broad_phase.find_pairs(
-      lo, hi, [](int, int) { return true; }, pairs, w.thread_count());
-  // Joints that carry the in-situ stress from the start (before the pass below primes the
-  // first step's narrow phase, which leaves their pairs to it).
-  if (sc.in_situ) {
-    // Boxes grown by a nanometre per metre: blocks that share an axis-aligned face may have
-    // boxes that miss each other by round-off.
+  if (!sc.in_situ) {
+    broad_phase.find_pairs(
+        lo, hi, [](int, int) { return true; }, pairs, w.thread_count());
+  } else {
+    // Joints that carry the in-situ stress from the start (before the pass below primes the
+    // first step's narrow phase, which leaves their pairs to it). Their candidates: the pairs
+    // of boxes grown by a nanometre per metre (blocks that share an axis-aligned face may have
+    // boxes that miss each other by round-off).
     std::vector<Eigen::Vector3d> lo_grown(lo), hi_grown(hi);
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const double pad =
@@ -98,6 +99,21 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
     std::vector<std::pair<int, int>> near;
     broad_phase.find_pairs(
         lo_grown, hi_grown, [](int, int) { return true; }, near, w.thread_count());
+    std::vector<Eigen::Vector3d>().swap(lo_grown);
+    std::vector<Eigen::Vector3d>().swap(hi_grown);
+    // The pairs of the boxes as they are, which the grown boxes' pairs hold, in the same (i, j)
+    // order: those whose boxes overlap on every axis, touching counts (the broad phase's own
+    // test, so the list is the one it would find), without a second broad phase.
+    pairs.reserve(near.size());
+    for (const auto& [i, j] : near) {
+      const Eigen::Vector3d& ilo = lo[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d& ihi = hi[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d& jlo = lo[static_cast<std::size_t>(j)];
+      const Eigen::Vector3d& jhi = hi[static_cast<std::size_t>(j)];
+      if (!(jlo.x() > ihi.x() || ilo.x() > jhi.x() || jlo.y() > ihi.y() || ilo.y() > jhi.y() ||
+            jlo.z() > ihi.z() || ilo.z() > jhi.z()))
+        pairs.push_back({i, j});
+    }
     try {
       w.prestress_joints(*sc.in_situ, near);
     } catch (const std::invalid_argument& e) {

@@ -1,7 +1,9 @@
 // Shared faces of two blocks: the polygon of two unit cubes side by side against its closed form
 // (area, centroid, normal), none for cubes that meet along an edge or at a corner when the caller
 // asks for a least area, and the pose form (A's world vertices found face by face) the same bits
-// as the form given every world vertex, at turned poses.
+// as the form given every world vertex, at turned poses; and a least area drops no face that the
+// full clip keeps (the clip stops early for a sliver: the full clip without a least area is the
+// oracle).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -104,6 +106,54 @@ TEST(SharedFace, PoseFormGivesTheBitsOfTheVerticesForm) {
     EXPECT_NEAR(x->area, expected, 1e-9) << k;
   }
   EXPECT_GT(found, 30);
+}
+
+TEST(SharedFace, LeastAreaDropsOnlyWhatTheFullClipFindsBelowIt) {
+  // Two sheared prisms (a parallelepiped on e1, e2, e3), B one e1 along from A: they share the
+  // face spanned by e2 and e3, B slid along it by s e2 + u e3. As s or u nears 1 the shared
+  // polygon narrows to a sliver along an edge (s = 1: the blocks meet along the edge only; past
+  // 1 they share nothing). With a least area m, the face must be the full clip's (min_area 0,
+  // which never stops early) with the same bits where that face's area exceeds m, and none where
+  // it does not.
+  const Eigen::Vector3d e1(1.0, 0.0, 0.0), e2(0.4, 1.0, 0.0), e3(0.2, 0.3, 1.0);
+  std::vector<Eigen::Vector3d> corners;
+  for (int i = 0; i < 8; ++i)
+    corners.push_back((i & 1) * e1 + ((i >> 1) & 1) * e2 + ((i >> 2) & 1) * e3);
+  const Polyhedron prism = Polyhedron::from_vertices(corners);
+  const double fractions[] = {0.0,        0.3,        0.9, 1.0 - 1e-3,  1.0 - 1e-5,
+                              1.0 - 1e-7, 1.0 - 1e-9, 1.0, 1.0 + 1e-12, 1.0 + 1e-6};
+  const double least[] = {1e-9, 1e-7, 1e-6, 1e-4, 1e-2, 0.5};
+  int kept = 0, dropped = 0;
+  for (int turn = 0; turn < 3; ++turn) {
+    const Eigen::Quaterniond q(
+        Eigen::AngleAxisd(0.9 * turn, Eigen::Vector3d(1.0, 2.0, 0.5 + turn).normalized()));
+    const Eigen::Vector3d origin(3.0 * turn, -2.0, 1.0 + turn);
+    const Posed a = posed(prism, q, origin);
+    for (double s : fractions) {
+      for (double u : {0.0, 0.5, 1.0 - 1e-6, 1.0}) {
+        const Posed b = posed(prism, q, origin + q * (e1 + s * e2 + u * e3));
+        const auto full = by_vertices(a, b);
+        for (double m : least) {
+          for (const auto& face : {by_vertices(a, b, m), by_pose(a, b, m)}) {
+            if (full && full->area > m) {
+              ASSERT_TRUE(face.has_value()) << s << " " << u << " " << m;
+              EXPECT_EQ(face->plane_a, full->plane_a);
+              EXPECT_EQ(face->plane_b, full->plane_b);
+              EXPECT_EQ(face->area, full->area);
+              EXPECT_EQ(face->centroid, full->centroid);
+              ++kept;
+            } else {
+              EXPECT_FALSE(face.has_value()) << s << " " << u << " " << m;
+              ++dropped;
+            }
+          }
+        }
+      }
+    }
+  }
+  // Both sides of the least area are met many times.
+  EXPECT_GT(kept, 100);
+  EXPECT_GT(dropped, 100);
 }
 
 }  // namespace
