@@ -60,8 +60,11 @@ class ContactPreloads {
   /// Takes the pairs' prestresses (any order; one per pair).
   void assign(std::vector<ContactPreload> list) {
     list_ = std::move(list);
-    std::sort(list_.begin(), list_.end(),
-              [](const ContactPreload& x, const ContactPreload& y) { return key(x) < key(y); });
+    const auto by_key = [](const ContactPreload& x, const ContactPreload& y) {
+      return key(x) < key(y);
+    };
+    if (!std::is_sorted(list_.begin(), list_.end(), by_key))
+      std::sort(list_.begin(), list_.end(), by_key);
     index();
   }
   /// The pair's prestress, or null.

@@ -1,10 +1,12 @@
 // Small helpers of the step's passes over slots and blocks: the OpenMP team a pass runs in, and
-// prefetch hints for the block records a pass reads some slots ahead (hints change no result).
+// prefetch hints for the block records a pass reads some slots ahead, and the kernel's hints and
+// page returns for the large stores (none changes a result).
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "blockdem/dynamics/block.hpp"
 #include "blockdem/geometry/halfspace.hpp"
@@ -68,6 +70,40 @@ inline void prefetch_planes(const Block& b) {
   for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(p + o);
 }
 
+#ifdef __linux__
+// The whole pages inside [p, p + bytes) of a store of 64 MiB or more (madvise wants a
+// page-aligned start), as {begin, end, page size}; an empty range for a smaller store or where
+// the page size is unknown.
+struct PageRange {
+  std::uintptr_t begin = 0, end = 0, page = 0;
+  bool empty() const { return end <= begin; }
+};
+inline PageRange large_store_pages(const void* p, std::size_t bytes) {
+  const long page_size = sysconf(_SC_PAGESIZE);
+  if (p == nullptr || page_size <= 0 || bytes < (std::size_t{64} << 20)) return {};
+  const auto page = static_cast<std::uintptr_t>(page_size);
+  const auto first = reinterpret_cast<std::uintptr_t>(p);
+  return {(first + page - 1) / page * page, (first + bytes) / page * page, page};
+}
+#endif
+
+// Asks for huge pages (2 MiB on x86-64) for the storage [p, p + bytes), 64 MiB or more, where the
+// kernel has them to give (transparent huge pages set to "madvise" or "always"): one page fault
+// and one mapping per 2 MiB instead of 512. For a large store written from its start soon after it
+// is allocated: what is resident grows by whole huge pages, so at most 2 MiB beyond what is
+// written. On this project's test machine, 1.28 GB mapped and written once on 2 threads took
+// 0.27-0.32 s with huge pages and 1.06-1.07 s without (a 30-line C++ program, 1 December 2026).
+// A hint: nothing elsewhere or on an error, and it changes no result.
+inline void prefer_huge_pages(void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const PageRange r = large_store_pages(p, bytes);
+  if (!r.empty()) madvise(reinterpret_cast<void*>(r.begin), r.end - r.begin, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
 // Maps the pages of [p, p + bytes) for writing, on `threads` threads at once, before one thread
 // fills them: a fresh allocation of a large store (a million-block model's pair slots, 1.3 GB) is
 // otherwise faulted in page by page by the thread that fills it, and a page fault is dear in a
@@ -80,15 +116,12 @@ inline void prefetch_planes(const Block& b) {
 // no result.
 inline void populate_pages(void* p, std::size_t bytes, int threads) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  const long page_size = sysconf(_SC_PAGESIZE);
-  if (p == nullptr || page_size <= 0 || bytes < (std::size_t{64} << 20)) return;
-  const auto page = static_cast<std::uintptr_t>(page_size);
-  // The whole pages inside the range (madvise wants a page-aligned start).
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + page - 1) / page * page;
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) / page * page;
-  if (end <= begin) return;
+  const PageRange r = large_store_pages(p, bytes);
+  if (r.empty()) return;
+  const std::uintptr_t begin = r.begin, end = r.end, page = r.page;
   const std::int64_t pages = static_cast<std::int64_t>((end - begin) / page);
   const std::int64_t parts = std::max(threads, 1);
+  prefer_huge_pages(p, bytes);
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
   for (std::int64_t k = 0; k < parts; ++k) {
     const std::uintptr_t from = begin + static_cast<std::uintptr_t>(pages * k / parts) * page;
@@ -102,6 +135,28 @@ inline void populate_pages(void* p, std::size_t bytes, int threads) {
   (void)bytes;
   (void)threads;
 #endif
+}
+
+// Gives back the memory of a store's spare room, [size, capacity), where it is large: a store
+// that holds far fewer elements than it has room for (the contact store after the first step of
+// a scene: room for a state per candidate pair, about one in four used in a rock mass). The
+// room's whole pages are returned to the kernel (madvise MADV_DONTNEED: the address space stays
+// the store's, and a page written again later comes back zeroed), where shrink_to_fit would
+// copy the elements to a new allocation while the old one is still held: 548 MB copied at the
+// million-block rock mass's first step, its peak resident memory raised by as much. Below 64 MiB
+// of spare room, and where madvise is not there, shrink_to_fit. The spare room holds no
+// elements, so what is in its pages is not read; no result changes.
+template <class T>
+void release_spare_room(std::vector<T>& store) {
+#if defined(__linux__) && defined(MADV_DONTNEED)
+  const std::size_t spare = (store.capacity() - store.size()) * sizeof(T);
+  const PageRange r = large_store_pages(store.data() + store.size(), spare);
+  if (r.page != 0) {  // 64 MiB or more of spare room
+    if (!r.empty()) madvise(reinterpret_cast<void*>(r.begin), r.end - r.begin, MADV_DONTNEED);
+    return;
+  }
+#endif
+  store.shrink_to_fit();
 }
 
 }  // namespace blockdem::pass_support

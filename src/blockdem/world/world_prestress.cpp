@@ -3,6 +3,7 @@
 // twisting moment (response/in_situ.hpp), kept in block A's body frame.
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,7 @@ std::size_t World::prestress_joints(const StressField& field,
     // face with about one neighbour in four): address space only until it is written, and no
     // copies of a list grown by doubling.
     mine.reserve(static_cast<std::size_t>(n / threads / 3 + 16));
+    pass_support::prefer_huge_pages(mine.data(), mine.capacity() * sizeof(ContactPreload));
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t k = 0; k < n; ++k) {
       const auto [i, j] = pairs[static_cast<std::size_t>(k)];
@@ -79,13 +81,20 @@ std::size_t World::prestress_joints(const StressField& field,
   const auto first = std::min_element(
       failed.begin(), failed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   if (first->first < n) throw std::invalid_argument(first->second);
-  std::size_t total = 0;
-  for (const auto& part : found) total += part.size();
-  std::vector<ContactPreload> list;
-  list.reserve(total);
-  for (auto& part : found) {
-    list.insert(list.end(), part.begin(), part.end());
-    std::vector<ContactPreload>().swap(part);
+  // Each thread took its chunks of pairs in increasing order, so its list is sorted by (a, b):
+  // the lists are merged, not joined and sorted.
+  const auto by_pair = [](const ContactPreload& x, const ContactPreload& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  std::vector<ContactPreload> list = std::move(found[0]);
+  for (std::size_t t = 1; t < found.size(); ++t) {
+    std::vector<ContactPreload> merged;
+    merged.reserve(list.size() + found[t].size());
+    pass_support::prefer_huge_pages(merged.data(), merged.capacity() * sizeof(ContactPreload));
+    std::merge(list.begin(), list.end(), found[t].begin(), found[t].end(),
+               std::back_inserter(merged), by_pair);
+    std::vector<ContactPreload>().swap(found[t]);
+    list.swap(merged);
   }
   preloads_.assign(std::move(list));
   return preloads_.size();
