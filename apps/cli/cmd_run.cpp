@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include <omp.h>
 #include <unistd.h>
 
 #include "blockdem/io/atomic_file.hpp"
@@ -443,6 +444,8 @@ int run_one(RunOptions opt, const MpiSession& mpi) {
   try {
     // Read and check everything before anything is written.
     progress.update("blockdem: reading " + opt.scenario);
+    // A rock mass's blocks are made on as many threads as the run steps with.
+    if (opt.threads > 0) omp_set_num_threads(opt.threads);
     Scenario sc = load_scenario(opt.scenario);
     if (const double s = seconds_since(command0); s >= 1.0) {
       // A large scene: reading it (and cutting its rock mass) takes a while.

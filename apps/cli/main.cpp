@@ -10,21 +10,36 @@
 #include <iostream>
 #include <new>
 #include <stdexcept>
+#include <string_view>
 
 #include "blockdem/io/output_error.hpp"
 #include "commands.hpp"
 
 namespace {
 
+// The environment the program runs in, set before the libraries read it: they read it when the
+// program loads, before main, so the program starts itself again, once, with it set. A setting
+// the user made is kept.
+//
 // How OpenMP's threads wait at the end of a parallel pass. The library's own default spins for
 // a while before it sleeps; on a machine whose other cores are busy, a spinning thread takes the
 // core that the thread still working needs, and two threads run slower than one (bench/README.md,
-// "Threads on a busy machine"). The library reads the policy from the environment when the
-// program loads, before main: so the program starts itself again, once, with the policy set. A
-// policy the user set (OMP_WAIT_POLICY or GOMP_SPINCOUNT) is kept.
-void choose_wait_policy(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
-  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+// "Threads on a busy machine"). OMP_WAIT_POLICY=passive unless the user set it or GOMP_SPINCOUNT.
+//
+// `blockdem generate` makes a million cells and blocks in small allocations it keeps to the end,
+// and in a virtual machine each page of them costs a page fault: with glibc's allocator on
+// transparent huge pages (GLIBC_TUNABLES=glibc.malloc.hugetlb=1; where the system offers them)
+// the million-block rock mass of bench/million.sh was cut and written in 20.5 s instead of 29.7 s
+// (bench/README.md, "A million blocks generated on every core"). Only there: a run's memory is
+// sized by its 4 KB pages (docs/rock-mass.md).
+void choose_environment(int argc, char** argv) {
+  bool again = false;
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr)
+    again |= setenv("OMP_WAIT_POLICY", "passive", 1) == 0;
+  if (argc > 1 && std::string_view(argv[1]) == "generate" &&
+      std::getenv("GLIBC_TUNABLES") == nullptr)
+    again |= setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) == 0;
+  if (!again) return;
   // Started again from its file's path, so that the process keeps its name ("blockdem" in ps,
   // top and pgrep; started as /proc/self/exe it would be "exe"), else as /proc/self/exe (the file
   // moved or removed since).
@@ -32,13 +47,13 @@ void choose_wait_policy(char** argv) {
   const ssize_t length = readlink("/proc/self/exe", self.data(), self.size() - 1);
   if (length > 0) execv(self.data(), argv);
   execv("/proc/self/exe", argv);
-  // Not started again (no /proc): run on under the library's default.
+  // Not started again (no /proc): run on under the libraries' defaults.
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  choose_wait_policy(argv);
+  choose_environment(argc, argv);
   CLI::App app{"blockdem: rigid polyhedral blocks with compliant joints, for jointed rock masses"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("blockdem ") + blockdem::cli::version());

@@ -3,11 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+
+#include <omp.h>
 
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/rockmass/excavation_shapes.hpp"
+#include "blockdem/rockmass/shares.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 
 namespace blockdem {
@@ -206,7 +210,7 @@ std::string RockMassModel::label(const FaceTag& tag) const {
 RockMassModel read_rock_mass(const CheckedTable& root,
                              const std::map<std::string, double>& materials,
                              const std::map<std::string, int>& laws,
-                             const std::optional<StressField>& in_situ) {
+                             const std::optional<StressField>& in_situ, int cut_threads) {
   RockMassModel m;
   const CheckedTable r = root.table("rock_mass");
   m.spec.region = read_region(r);
@@ -228,6 +232,7 @@ RockMassModel read_rock_mass(const CheckedTable& root,
                        ? SlicingSettings::SmallBlocks::remove
                        : SlicingSettings::SmallBlocks::merge;
   s.cut_tolerance = r.positive("cut_tolerance", 0.0, true);
+  s.threads = cut_threads;
   s.max_blocks = r.integer("max_blocks", s.max_blocks);
   if (s.max_blocks < 1) r.fail("max_blocks", "must be at least 1");
   s.max_joints = r.integer("max_joints", s.max_joints);
@@ -343,56 +348,72 @@ void add_boundary_traction(Block& b, const ConvexCell& cell, const CellFace& fac
   b.set_external_torque(b.external_torque() + moment);
 }
 
+// The world block of cell i, its faces' laws and joint sets (empty when none has one), in
+// their places in `out`.
+void make_one_block(const RockMassModel& m, std::size_t i, RockMassBlocks& out) {
+  const ConvexCell& c = m.rock_mass.blocks[i];
+  std::vector<Halfspace> planes;
+  for (const auto& f : c.faces()) planes.push_back(f.plane);
+  // A cell cut from the (closed) region is closed.
+  Block b = make_block(Polyhedron::from_closed_planes(planes), m.density,
+                       RockMassModel::block_name(i), m.group);
+  // Each world plane of the block is one of the cell's faces: match by normal and offset.
+  std::vector<int> laws(b.world_planes.size(), -1);
+  std::vector<int> sets(b.world_planes.size(), -1);
+  const double scale = 1e-9 * (1.0 + b.position.norm() + b.shape.bounding_radius());
+  for (std::size_t j = 0; j < b.world_planes.size(); ++j) {
+    const Halfspace& h = b.world_planes[j];
+    for (const auto& f : c.faces()) {
+      if (h.normal.dot(f.plane.normal) > 1.0 - 1e-9 &&
+          std::abs(h.offset - f.plane.offset) < scale) {
+        laws[j] = m.law_of(f.tag);
+        if (f.tag.source == FaceSource::joint) sets[j] = f.tag.index;
+        break;
+      }
+    }
+  }
+  for (const auto& bc : m.boundaries) {
+    for (const auto& f : c.faces()) {
+      if (f.tag.source != FaceSource::region ||
+          std::find(bc.faces.begin(), bc.faces.end(), f.tag.index) == bc.faces.end())
+        continue;
+      if (bc.kind == BoundaryCondition::Kind::fixed) {
+        b.motion = Motion::fixed;
+      } else if (bc.kind == BoundaryCondition::Kind::stress) {
+        add_boundary_traction(b, c, f, bc.stress);
+      } else {
+        Eigen::Index axis = 0;
+        f.plane.normal.cwiseAbs().maxCoeff(&axis);
+        b.blocked_translation[axis] = true;
+        b.blocked_rotation.setConstant(true);
+      }
+    }
+  }
+  const bool any_law = std::any_of(laws.begin(), laws.end(), [](int l) { return l >= 0; });
+  if (any_law) out.face_laws[i] = std::move(laws);
+  const bool any_set = std::any_of(sets.begin(), sets.end(), [](int k) { return k >= 0; });
+  if (any_set) out.face_sets[i] = std::move(sets);
+  out.blocks[i] = std::move(b);
+}
+
 }  // namespace
 
-RockMassBlocks make_rock_mass_blocks(const RockMassModel& m) {
+RockMassBlocks make_rock_mass_blocks(const RockMassModel& m, int threads) {
+  if (threads <= 0) threads = omp_get_max_threads();
+  const auto count = static_cast<std::int64_t>(m.rock_mass.blocks.size());
+  // Each thread makes contiguous shares of the blocks, several per thread, in their places: the
+  // blocks are those of one thread. A share's error is kept, and the first share's thrown (one
+  // thread's error).
   RockMassBlocks out;
-  const auto& cells = m.rock_mass.blocks;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const ConvexCell& c = cells[i];
-    std::vector<Halfspace> planes;
-    for (const auto& f : c.faces()) planes.push_back(f.plane);
-    // A cell cut from the (closed) region is closed.
-    Block b = make_block(Polyhedron::from_closed_planes(planes), m.density,
-                         RockMassModel::block_name(i), m.group);
-    // Each world plane of the block is one of the cell's faces: match by normal and offset.
-    std::vector<int> laws(b.world_planes.size(), -1);
-    std::vector<int> sets(b.world_planes.size(), -1);
-    const double scale = 1e-9 * (1.0 + b.position.norm() + b.shape.bounding_radius());
-    for (std::size_t j = 0; j < b.world_planes.size(); ++j) {
-      const Halfspace& h = b.world_planes[j];
-      for (const auto& f : c.faces()) {
-        if (h.normal.dot(f.plane.normal) > 1.0 - 1e-9 &&
-            std::abs(h.offset - f.plane.offset) < scale) {
-          laws[j] = m.law_of(f.tag);
-          if (f.tag.source == FaceSource::joint) sets[j] = f.tag.index;
-          break;
-        }
-      }
-    }
-    for (const auto& bc : m.boundaries) {
-      for (const auto& f : c.faces()) {
-        if (f.tag.source != FaceSource::region ||
-            std::find(bc.faces.begin(), bc.faces.end(), f.tag.index) == bc.faces.end())
-          continue;
-        if (bc.kind == BoundaryCondition::Kind::fixed) {
-          b.motion = Motion::fixed;
-        } else if (bc.kind == BoundaryCondition::Kind::stress) {
-          add_boundary_traction(b, c, f, bc.stress);
-        } else {
-          Eigen::Index axis = 0;
-          f.plane.normal.cwiseAbs().maxCoeff(&axis);
-          b.blocked_translation[axis] = true;
-          b.blocked_rotation.setConstant(true);
-        }
-      }
-    }
-    const bool any_law = std::any_of(laws.begin(), laws.end(), [](int l) { return l >= 0; });
-    out.face_laws.push_back(any_law ? laws : std::vector<int>{});
-    const bool any_set = std::any_of(sets.begin(), sets.end(), [](int k) { return k >= 0; });
-    out.face_sets.push_back(any_set ? std::move(sets) : std::vector<int>{});
-    out.blocks.push_back(std::move(b));
-  }
+  out.blocks.resize(static_cast<std::size_t>(count));
+  out.face_laws.resize(static_cast<std::size_t>(count));
+  out.face_sets.resize(static_cast<std::size_t>(count));
+  for_each_share(share_count(count, threads, 64), count, threads,
+                 [&](std::int64_t, std::int64_t begin, std::int64_t end) {
+                   for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end);
+                        ++i)
+                     make_one_block(m, i, out);
+                 });
   for (std::size_t e = 0; e < m.spec.excavations.size(); ++e) {
     auto& names = out.excavated[m.spec.excavations[e].name];
     for (int i : m.rock_mass.blocks_inside(m.spec, static_cast<int>(e)))

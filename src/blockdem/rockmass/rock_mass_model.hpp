@@ -46,11 +46,13 @@ struct RockMassModel {
 
 /// Reads the rock-mass keys of a scenario's root table (the caller has read [[materials]] and
 /// [[joint_laws]] into `materials` (density by name) and `laws` (index by name)) and slices
-/// the region. Throws ScenarioError naming file, key and reason.
+/// the region on `cut_threads` threads (SlicingSettings::threads). Throws ScenarioError naming
+/// file, key and reason.
 RockMassModel read_rock_mass(const CheckedTable& root,
                              const std::map<std::string, double>& materials,
                              const std::map<std::string, int>& laws,
-                             const std::optional<StressField>& in_situ = std::nullopt);
+                             const std::optional<StressField>& in_situ = std::nullopt,
+                             int cut_threads = 1);
 
 /// The world blocks of a sliced rock mass, each with its per-plane joint laws (indices into the
 /// scenario's joint laws; -1 for a plane without one) and the boundary conditions applied.
@@ -62,6 +64,7 @@ struct RockMassBlocks {
   /// The names of the blocks inside each excavation, by excavation name.
   std::map<std::string, std::vector<std::string>> excavated;
 };
-RockMassBlocks make_rock_mass_blocks(const RockMassModel& model);
+/// Made on `threads` threads (0: OpenMP's default); the blocks are the same for any number.
+RockMassBlocks make_rock_mass_blocks(const RockMassModel& model, int threads = 0);
 
 }  // namespace blockdem

@@ -3,12 +3,18 @@
 #include "blockdem/rockmass/rock_mass_output.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <omp.h>
 
 #include "blockdem/io/csv.hpp"
 #include "blockdem/io/output_error.hpp"
+#include "blockdem/rockmass/shares.hpp"
 
 namespace blockdem {
 namespace {
@@ -22,38 +28,110 @@ std::vector<int> excavation_of_blocks(const RockMassModel& m) {
   return out;
 }
 
-void write_vtk(const RockMassModel& m, const std::filesystem::path& path) {
-  std::ofstream f(path);
+// Writes the text of items [0, n) in their order through `sink`, formatted on `threads` threads
+// in pieces of kPer items (`piece(begin, end, text)` appends the text of items [begin, end)). A
+// round of pieces is formatted at once and written before the next: the file is never held whole.
+template <class Piece, class Sink>
+void write_in_pieces(std::size_t n, int threads, Piece piece, Sink sink) {
+  constexpr std::size_t kPer = 256;
+  const std::size_t pieces = (n + kPer - 1) / kPer;
+  const std::size_t round = 4 * static_cast<std::size_t>(std::max(threads, 1));
+  std::vector<std::string> text(round);
+  for (std::size_t first = 0; first < pieces; first += round) {
+    const auto count = static_cast<std::int64_t>(std::min(round, pieces - first));
+    for_each_share(count, count, threads, [&](std::int64_t k, std::int64_t, std::int64_t) {
+      std::string& t = text[static_cast<std::size_t>(k)];
+      t.clear();
+      const std::size_t begin = (first + static_cast<std::size_t>(k)) * kPer;
+      piece(begin, std::min(n, begin + kPer), t);
+    });
+    for (std::int64_t k = 0; k < count; ++k) sink(text[static_cast<std::size_t>(k)]);
+  }
+}
+
+// A CSV file of the rows of items [0, n) (`rows_of(i, writer)` writes item i's), formatted in
+// pieces by writers into memory and added to the file in order.
+template <class Rows>
+void write_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
+               std::size_t n, int threads, Rows rows_of) {
+  CsvWriter csv(path, columns);
+  write_in_pieces(
+      n, threads,
+      [&](std::size_t begin, std::size_t end, std::string& t) {
+        CsvWriter rows(columns.size());
+        for (std::size_t i = begin; i < end; ++i) rows_of(i, rows);
+        t = rows.take();
+      },
+      [&](const std::string& t) { csv.raw(t); });
+  csv.flush();
+}
+
+// A number as a stream at precision 12 writes it (printf's "%.12g"), and an integer.
+void append_number(std::string& t, double v) {
+  char buf[40];
+  t.append(buf, write_general12(buf, v));
+}
+void append_number(std::string& t, long long v) {
+  char buf[24];
+  t.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+void write_vtk(const RockMassModel& m, const std::filesystem::path& path, int threads) {
+  std::ofstream f(path, std::ios::binary);
   if (!f) throw OutputError("cannot write " + path.string());
   const auto& blocks = m.rock_mass.blocks;
   std::size_t points = 0, faces = 0, refs = 0;
-  for (const auto& b : blocks) {
+  std::vector<std::size_t> base(blocks.size());  // each block's first point
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const auto& b = blocks[i];
+    base[i] = points;
     points += b.vertices().size();
     faces += b.faces().size();
     for (const auto& fc : b.faces()) refs += fc.vertices.size() + 1;
   }
-  f.precision(12);
+  auto sink = [&](const std::string& t) {
+    f.write(t.data(), static_cast<std::streamsize>(t.size()));
+  };
+  auto each_block = [&](auto text_of) {
+    write_in_pieces(
+        blocks.size(), threads,
+        [&](std::size_t begin, std::size_t end, std::string& t) {
+          for (std::size_t i = begin; i < end; ++i) text_of(i, t);
+        },
+        sink);
+  };
   f << "# vtk DataFile Version 3.0\nblockdem rock mass\nASCII\nDATASET POLYDATA\n";
   f << "POINTS " << points << " double\n";
-  for (const auto& b : blocks) {
-    for (const auto& v : b.vertices()) f << v.x() << " " << v.y() << " " << v.z() << "\n";
-  }
-  f << "POLYGONS " << faces << " " << refs << "\n";
-  std::size_t base = 0;
-  for (const auto& b : blocks) {
-    for (const auto& fc : b.faces()) {
-      f << fc.vertices.size();
-      for (int v : fc.vertices) f << " " << base + static_cast<std::size_t>(v);
-      f << "\n";
+  each_block([&](std::size_t i, std::string& t) {
+    for (const auto& v : blocks[i].vertices()) {
+      append_number(t, v.x());
+      t += ' ';
+      append_number(t, v.y());
+      t += ' ';
+      append_number(t, v.z());
+      t += '\n';
     }
-    base += b.vertices().size();
-  }
+  });
+  f << "POLYGONS " << faces << " " << refs << "\n";
+  each_block([&](std::size_t i, std::string& t) {
+    for (const auto& fc : blocks[i].faces()) {
+      append_number(t, static_cast<long long>(fc.vertices.size()));
+      for (int v : fc.vertices) {
+        t += ' ';
+        append_number(t, static_cast<long long>(base[i] + static_cast<std::size_t>(v)));
+      }
+      t += '\n';
+    }
+  });
   const std::vector<int> exc = excavation_of_blocks(m);
   auto cell_ints = [&](const char* name, auto value) {
     f << "SCALARS " << name << " int 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      for (const auto& fc : blocks[i].faces()) f << value(i, fc) << "\n";
-    }
+    each_block([&](std::size_t i, std::string& t) {
+      for (const auto& fc : blocks[i].faces()) {
+        append_number(t, static_cast<long long>(value(i, fc)));
+        t += '\n';
+      }
+    });
   };
   f << "CELL_DATA " << faces << "\n";
   cell_ints("block_index", [](std::size_t i, const CellFace&) { return static_cast<long>(i); });
@@ -146,35 +224,34 @@ nlohmann::json rock_mass_summary(const RockMassModel& m) {
   return j;
 }
 
-void write_rock_mass(const RockMassModel& m, const std::filesystem::path& out) {
+void write_rock_mass(const RockMassModel& m, const std::filesystem::path& out, int threads) {
+  if (threads <= 0) threads = omp_get_max_threads();
   std::filesystem::create_directories(out);
-  write_vtk(m, out / "blocks.vtk");
+  write_vtk(m, out / "blocks.vtk", threads);
   const std::vector<int> exc = excavation_of_blocks(m);
-  {
-    CsvWriter csv(out / "blocks.csv", {"block", "volume_m3", "centroid_x_m", "centroid_y_m",
-                                       "centroid_z_m", "faces", "aspect_ratio", "excavation"});
-    for (std::size_t i = 0; i < m.rock_mass.blocks.size(); ++i) {
-      const auto& b = m.rock_mass.blocks[i];
-      csv.cell(RockMassModel::block_name(i)).cell(b.volume());
-      csv.cell(b.centroid().x()).cell(b.centroid().y()).cell(b.centroid().z());
-      csv.cell(static_cast<long long>(b.faces().size())).cell(b.aspect_ratio());
-      csv.cell(exc[i] >= 0 ? m.spec.excavations[exc[i]].name : std::string());
-      csv.end_row();
-    }
-  }
-  {
-    CsvWriter csv(out / "faces.csv", {"block", "face", "tag", "bonded", "area_m2"});
-    for (std::size_t i = 0; i < m.rock_mass.blocks.size(); ++i) {
-      const auto& b = m.rock_mass.blocks[i];
-      for (int f = 0; f < static_cast<int>(b.faces().size()); ++f) {
-        const auto poly = b.face_polygon(f);
-        const double area = polygon_area(poly, b.faces()[f].plane.normal);
-        csv.cell(RockMassModel::block_name(i)).cell(f).cell(m.label(b.faces()[f].tag));
-        csv.cell(b.faces()[f].tag.bonded ? 1 : 0).cell(area);
-        csv.end_row();
-      }
-    }
-  }
+  const auto& blocks = m.rock_mass.blocks;
+  write_csv(out / "blocks.csv",
+            {"block", "volume_m3", "centroid_x_m", "centroid_y_m", "centroid_z_m", "faces",
+             "aspect_ratio", "excavation"},
+            blocks.size(), threads, [&](std::size_t i, CsvWriter& rows) {
+              const auto& b = blocks[i];
+              rows.cell(RockMassModel::block_name(i)).cell(b.volume());
+              rows.cell(b.centroid().x()).cell(b.centroid().y()).cell(b.centroid().z());
+              rows.cell(static_cast<long long>(b.faces().size())).cell(b.aspect_ratio());
+              rows.cell(exc[i] >= 0 ? m.spec.excavations[exc[i]].name : std::string());
+              rows.end_row();
+            });
+  write_csv(out / "faces.csv", {"block", "face", "tag", "bonded", "area_m2"}, blocks.size(),
+            threads, [&](std::size_t i, CsvWriter& rows) {
+              const auto& b = blocks[i];
+              for (int f = 0; f < static_cast<int>(b.faces().size()); ++f) {
+                const auto poly = b.face_polygon(f);
+                const double area = polygon_area(poly, b.faces()[f].plane.normal);
+                rows.cell(RockMassModel::block_name(i)).cell(f).cell(m.label(b.faces()[f].tag));
+                rows.cell(b.faces()[f].tag.bonded ? 1 : 0).cell(area);
+                rows.end_row();
+              }
+            });
   std::ofstream j(out / "rock_mass.json");
   j << rock_mass_summary(m).dump(2) << "\n";
   if (!j) throw OutputError("cannot write " + (out / "rock_mass.json").string());

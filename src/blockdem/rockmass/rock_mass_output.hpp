@@ -13,7 +13,8 @@ namespace blockdem {
 nlohmann::json rock_mass_summary(const RockMassModel& model);
 
 /// Writes blocks.vtk, faces.csv, blocks.csv and rock_mass.json into `out` (created if
-/// missing). Throws std::runtime_error when a file cannot be written.
-void write_rock_mass(const RockMassModel& model, const std::filesystem::path& out);
+/// missing), formatted on `threads` threads (0: OpenMP's default; the bytes are the same for any
+/// number). Throws std::runtime_error when a file cannot be written.
+void write_rock_mass(const RockMassModel& model, const std::filesystem::path& out, int threads = 0);
 
 }  // namespace blockdem

@@ -13,7 +13,10 @@
 #include <numeric>
 #include <stdexcept>
 
+#include <omp.h>
+
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/rockmass/shares.hpp"
 #include "blockdem/rockmass/slicing_bounds.hpp"
 
 namespace blockdem {
@@ -181,15 +184,26 @@ std::vector<PlanarExtent> outline_facets(const Excavation& ex, const ConvexCell&
   return out;
 }
 
+// What the cuts of a share of the cells leave behind: the parts, in the order the cells came,
+// and the merged or removed parts' counts and volumes. The volumes are kept one by one so that
+// the shares' tallies sum in the order of one pass over every cell (bit-identical sums for any
+// number of threads).
+struct CutTally {
+  std::vector<ConvexCell> done;
+  int merged_cuts = 0;
+  int removed_blocks = 0;
+  std::vector<double> merged_volumes, removed_volumes;
+};
+
 class Slicer {
  public:
-  Slicer(const SlicingSettings& s, double tol, RockMass& out) : s_(s), tol_(tol), out_(out) {}
+  Slicer(const SlicingSettings& s, double tol, CutTally& out) : s_(s), tol_(tol), out_(out) {}
 
   // Cuts `cell` by the sorted parallel joints (normal n) in [first, last) that cross it, and
-  // appends the parts to `done`.
+  // appends the parts to the tally's `done`.
   void cut_by_set(ConvexCell cell, const Eigen::Vector3d& n, const std::vector<Joint>& joints,
-                  const std::vector<PlanarExtent>* extents, FaceTag tag,
-                  std::vector<ConvexCell>& done) {
+                  const std::vector<PlanarExtent>* extents, FaceTag tag) {
+    std::vector<ConvexCell>& done = out_.done;
     auto [lo, hi] = cell.extent_along(n);
     auto it = std::upper_bound(joints.begin(), joints.end(), lo + tol_,
                                [](double v, const Joint& j) { return v < j.offset; });
@@ -209,7 +223,7 @@ class Slicer {
       if (small_below || small_above) {
         if (s_.small_blocks == SlicingSettings::SmallBlocks::merge) {
           ++out_.merged_cuts;
-          out_.merged_volume += std::min(parts->below.volume(), parts->above.volume());
+          out_.merged_volumes.push_back(std::min(parts->below.volume(), parts->above.volume()));
           continue;
         }
         if (small_below) remove(parts->below);
@@ -227,17 +241,6 @@ class Slicer {
     if (alive) done.push_back(std::move(cell));
   }
 
-  // Cuts every cell crossed by one bounded facet.
-  void cut_by_facet(std::vector<ConvexCell>& cells, const PlanarExtent& facet, FaceTag tag) {
-    if (facet.polygon.empty()) return;
-    std::vector<ConvexCell> next;
-    next.reserve(cells.size() + 16);
-    const std::vector<Joint> one{Joint{facet.plane.offset, false, facet.centre}};
-    const std::vector<PlanarExtent> ext{facet};
-    for (auto& c : cells) cut_by_set(std::move(c), facet.plane.normal, one, &ext, tag, next);
-    cells = std::move(next);
-  }
-
  private:
   double snap() const { return 1e-3 * tol_; }
   bool too_small(const ConvexCell& c) const {
@@ -246,13 +249,45 @@ class Slicer {
   }
   void remove(const ConvexCell& c) {
     ++out_.removed_blocks;
-    out_.removed_volume += c.volume();
+    out_.removed_volumes.push_back(c.volume());
   }
 
   const SlicingSettings& s_;
   double tol_;
-  RockMass& out_;
+  CutTally& out_;
 };
+
+// Cuts every cell by the joints (normal n) on `threads` threads: each takes a contiguous share of
+// the cells, and the shares' parts and tallies are joined in the cells' order, so the parts, their
+// order and the sums are those of one thread.
+void cut_cells(std::vector<ConvexCell>& cells, const SlicingSettings& settings, double tol,
+               const Eigen::Vector3d& n, const std::vector<Joint>& joints,
+               const std::vector<PlanarExtent>* extents, const FaceTag& tag, int threads,
+               RockMass& rm) {
+  const std::int64_t count = static_cast<std::int64_t>(cells.size());
+  const std::int64_t shares = share_count(count, threads, 8);
+  std::vector<CutTally> tally(static_cast<std::size_t>(shares));
+  for_each_share(shares, count, threads, [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
+    CutTally& t = tally[static_cast<std::size_t>(k)];
+    t.done.reserve(static_cast<std::size_t>(2 * (end - begin)));
+    Slicer slicer(settings, tol, t);
+    for (std::int64_t i = begin; i < end; ++i)
+      slicer.cut_by_set(std::move(cells[static_cast<std::size_t>(i)]), n, joints, extents, tag);
+  });
+  std::size_t parts = 0;
+  for (const auto& t : tally) parts += t.done.size();
+  std::vector<ConvexCell> next;
+  next.reserve(parts);
+  for (auto& t : tally) {
+    for (auto& c : t.done) next.push_back(std::move(c));
+    std::vector<ConvexCell>().swap(t.done);
+    rm.merged_cuts += t.merged_cuts;
+    rm.removed_blocks += t.removed_blocks;
+    for (double v : t.merged_volumes) rm.merged_volume += v;
+    for (double v : t.removed_volumes) rm.removed_volume += v;
+  }
+  cells = std::move(next);
+}
 
 }  // namespace
 
@@ -318,7 +353,7 @@ RockMass slice_rock_mass(const RockMassSpec& spec) {
   // Before any joint is placed: what does not fit in memory or time is refused.
   check_slicing_work(spec, region);
 
-  Slicer slicer(spec.settings, tol, rm);
+  const int threads = spec.settings.threads > 0 ? spec.settings.threads : omp_get_max_threads();
   std::vector<ConvexCell> cells{region};
   for (std::size_t s = 0; s < spec.joint_sets.size(); ++s) {
     const JointSet& set = spec.joint_sets[s];
@@ -332,12 +367,8 @@ RockMass slice_rock_mass(const RockMassSpec& spec) {
       throw std::invalid_argument("joint_sets[" + std::to_string(s + 1) + "]." + e.what());
     }
     const FaceTag tag{FaceSource::joint, static_cast<int>(s), -1, false};
-    std::vector<ConvexCell> next;
-    next.reserve(cells.size() * 2);
     const auto* ext = set.extent ? &rm.joint_extents.back() : nullptr;
-    for (auto& c : cells)
-      slicer.cut_by_set(std::move(c), set.normal(), rm.joints.back(), ext, tag, next);
-    cells = std::move(next);
+    cut_cells(cells, spec.settings, tol, set.normal(), rm.joints.back(), ext, tag, threads, rm);
   }
   for (std::size_t e = 0; e < spec.excavations.size(); ++e) {
     rm.facets.push_back(outline_facets(spec.excavations[e], region, 1e-3 * tol));
@@ -348,26 +379,36 @@ RockMass slice_rock_mass(const RockMassSpec& spec) {
       fail("excavations[" + std::to_string(e + 1) + "]",
            "the excavation \"" + spec.excavations[e].name + "\" has no outline inside the region");
     }
+    // Each facet cuts every cell it crosses: one joint, bounded by the facet's polygon.
     for (std::size_t j = 0; j < facets.size(); ++j) {
-      slicer.cut_by_facet(
-          cells, facets[j],
-          FaceTag{FaceSource::excavation, static_cast<int>(e), static_cast<int>(j), false});
+      const PlanarExtent& facet = facets[j];
+      if (facet.polygon.empty()) continue;
+      const std::vector<Joint> one{Joint{facet.plane.offset, false, facet.centre}};
+      const std::vector<PlanarExtent> ext{facet};
+      cut_cells(cells, spec.settings, tol, facet.plane.normal, one, &ext,
+                FaceTag{FaceSource::excavation, static_cast<int>(e), static_cast<int>(j), false},
+                threads, rm);
     }
   }
   // Bonded faces: a cut face of a non-persistent joint or an outline facet is an open joint only
-  // where the face lies wholly inside the joint's extent; elsewhere it is intact rock.
-  for (auto& c : cells) {
-    for (int f = 0; f < static_cast<int>(c.faces().size()); ++f) {
-      FaceTag& t = c.faces()[f].tag;
-      const PlanarExtent* ext = nullptr;
-      if (t.source == FaceSource::joint && spec.joint_sets[t.index].extent)
-        ext = &rm.joint_extents[t.index][t.joint];
-      if (t.source == FaceSource::excavation) ext = &rm.facets[t.index][t.joint];
-      if (ext) t.bonded = overlap(c.face_polygon(f), *ext, tol) != Overlap::inside;
-    }
-  }
-  // The cells are kept with the rock mass: no spare capacity from the cuts' push_backs.
-  for (auto& c : cells) c.shrink_to_fit();
+  // where the face lies wholly inside the joint's extent; elsewhere it is intact rock. The cells
+  // are kept with the rock mass: no spare capacity from the cuts' push_backs.
+  const std::int64_t count = static_cast<std::int64_t>(cells.size());
+  for_each_share(share_count(count, threads, 64), count, threads,
+                 [&](std::int64_t, std::int64_t begin, std::int64_t end) {
+                   for (std::int64_t i = begin; i < end; ++i) {
+                     ConvexCell& c = cells[static_cast<std::size_t>(i)];
+                     for (int f = 0; f < static_cast<int>(c.faces().size()); ++f) {
+                       FaceTag& t = c.faces()[f].tag;
+                       const PlanarExtent* ext = nullptr;
+                       if (t.source == FaceSource::joint && spec.joint_sets[t.index].extent)
+                         ext = &rm.joint_extents[t.index][t.joint];
+                       if (t.source == FaceSource::excavation) ext = &rm.facets[t.index][t.joint];
+                       if (ext) t.bonded = overlap(c.face_polygon(f), *ext, tol) != Overlap::inside;
+                     }
+                     c.shrink_to_fit();
+                   }
+                 });
   rm.blocks = std::move(cells);
   for (std::size_t e = 0; e < spec.excavations.size(); ++e) {
     if (rm.blocks_inside(spec, static_cast<int>(e)).empty())

@@ -45,6 +45,9 @@ struct SlicingSettings {
   /// joint sets together, and the estimated joints of one non-persistent set.
   std::int64_t max_blocks = 2000000;
   std::int64_t max_joints = 1000000;
+  /// Threads that cut the cells (not a scenario key; the parts are the same for any number):
+  /// 0, OpenMP's default (OMP_NUM_THREADS, else every core).
+  int threads = 0;
 };
 
 struct RockMassSpec {

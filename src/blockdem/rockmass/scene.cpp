@@ -21,20 +21,20 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   for (std::size_t i = 0; i < sc.joint_laws.size(); ++i)
     laws[sc.joint_laws[i].name] = static_cast<int>(i);
   auto scene = std::make_shared<RockMassScene>();
-  scene->model = read_rock_mass(root, sc.materials, laws, sc.in_situ);
+  scene->model = read_rock_mass(root, sc.materials, laws, sc.in_situ, cut_threads_);
   if (scene->model.default_law < 0 && sc.joint_laws.size() > 1) {
     root.fail("rock_mass.law",
               "several joint laws: name the law of faces without one of their own (e.g. the "
               "excavation outline)");
   }
-  // The blocks are made on a thread of their own: glibc's allocator gives a new thread an arena
-  // of its own, so the blocks' shapes, planes and names do not fill the holes that the cut's
-  // temporaries left among the sliced cells. A run frees the cells before it builds its world
-  // (their pages then go back to the system whole, not held by a block's data in each); made
-  // among them, the 1e5-block rock mass of bench/memory_ranks.sh kept 65 MB of freed cells
-  // resident (bench/scaling-log.md, "The set-up without every pair, and blocks made apart from
-  // the cells"; `blockdem generate`, which holds both, peaks 4 % higher). Another allocator
-  // changes only where the bytes are.
+  // The blocks are made on a thread of their own (and the threads it starts for them): glibc's
+  // allocator gives a new thread an arena of its own, so the blocks' shapes, planes and names do
+  // not fill the holes that the cut's temporaries left among the sliced cells. A run frees the
+  // cells before it builds its world (their pages then go back to the system whole, not held by a
+  // block's data in each); made among them, the 1e5-block rock mass of bench/memory_ranks.sh kept
+  // 65 MB of freed cells resident (bench/scaling-log.md, "The set-up without every pair, and
+  // blocks made apart from the cells"; `blockdem generate`, which holds both, peaks 4 % higher).
+  // Another allocator changes only where the bytes are.
   RockMassBlocks made;
   std::exception_ptr error;
   std::thread([&] {
@@ -51,6 +51,14 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
   // Rock-mass names are distinct (rock_1, rock_2, ...): only the blocks given by hand can clash.
   std::unordered_set<std::string> hand_names;
   for (const auto& b : sc.blocks) hand_names.insert(b.name);
+  const std::size_t rock_blocks = made.blocks.size();
+  if (sc.blocks.empty()) {
+    // The rock mass alone: its lists become the scenario's (no copy of a million blocks).
+    sc.blocks = std::move(made.blocks);
+    sc.face_laws = std::move(made.face_laws);
+    sc.face_sets = std::move(made.face_sets);
+    made.blocks.clear();
+  }
   sc.blocks.reserve(sc.blocks.size() + made.blocks.size());
   sc.face_laws.reserve(sc.blocks.size() + made.blocks.size());
   sc.face_sets.reserve(sc.blocks.size() + made.blocks.size());
@@ -63,7 +71,6 @@ void RockMassSceneBuilder::build_from_root(const CheckedTable& root, Scenario& s
     sc.face_laws.push_back(std::move(made.face_laws[i]));
     sc.face_sets.push_back(std::move(made.face_sets[i]));
   }
-  const std::size_t rock_blocks = made.blocks.size();
   for (auto& [name, blocks] : made.excavated) {
     // Removing nothing is refused when the rock mass is cut; removing every block leaves a run
     // with no rock (a half-space of the wrong sign does that).

@@ -19,6 +19,12 @@ Scenario load_scenario(const std::string& path) {
   return load_scenario(path, scene_builders());
 }
 
+Scenario load_scenario(const std::string& path, int cut_threads) {
+  static const VoussoirSceneBuilder voussoir;
+  const RockMassSceneBuilder rock_mass(cut_threads);
+  return load_scenario(path, SceneBuilders{&voussoir, &rock_mass});
+}
+
 Scenario parse_scenario(const std::string& toml_text, const std::string& file) {
   return parse_scenario(toml_text, file, scene_builders());
 }

@@ -17,6 +17,9 @@ const SceneBuilders& scene_builders();
 
 /// Reads and checks a scenario file with every built-in builder (throws ScenarioError).
 Scenario load_scenario(const std::string& path);
+/// The same with a rock mass cut on `cut_threads` threads (0: OpenMP's default; the blocks are
+/// the same for any number). `load_scenario` cuts on one (see RockMassSceneBuilder).
+Scenario load_scenario(const std::string& path, int cut_threads);
 /// The same from TOML text; `file` is used in messages.
 Scenario parse_scenario(const std::string& toml_text, const std::string& file);
 
