@@ -9,7 +9,6 @@
 #include "blockdem/rockmass/rock_mass_output.hpp"
 #include "blockdem/rockmass/scene.hpp"
 #include "blockdem/run/scene_builders.hpp"
-#include "blockdem/world/world.hpp"
 #include "commands.hpp"
 #include "figures.hpp"
 
@@ -25,11 +24,7 @@ struct GenerateOptions {
 };
 
 int generate(const GenerateOptions& opt) {
-  if (opt.threads > thread_limit()) {
-    std::cerr << "blockdem: error: --threads: at most " << thread_limit()
-              << " on this machine (64 per core, at most 1024), got " << opt.threads << "\n";
-    return 2;
-  }
+  check_thread_count(opt.threads);
   // The cut and the files' text on this many threads (the same blocks and bytes for any).
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   using Clock = std::chrono::steady_clock;

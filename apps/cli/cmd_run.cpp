@@ -132,10 +132,7 @@ int run_one(RunOptions opt, const MpiSession& mpi);
 /// The options checked against this machine: a bad one is an input error (exit code 2)
 /// before anything is written.
 void check_options(const RunOptions& opt) {
-  if (opt.threads > thread_limit())
-    throw std::invalid_argument("--threads: at most " + std::to_string(thread_limit()) +
-                                " on this machine (64 per core, at most 1024), got " +
-                                std::to_string(opt.threads));
+  check_thread_count(opt.threads);
 }
 
 int run(const RunOptions& opt) {

@@ -3,6 +3,10 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "blockdem/world/world.hpp"
 
 namespace blockdem::cli {
 namespace {
@@ -17,6 +21,13 @@ int exit_code() {
 }
 void set_exit_code(int code) {
   g_exit_code = code;
+}
+
+void check_thread_count(int threads) {
+  if (threads > thread_limit())
+    throw std::invalid_argument("--threads: at most " + std::to_string(thread_limit()) +
+                                " on this machine (64 per core, at most 1024), got " +
+                                std::to_string(threads));
 }
 
 CLI::Validator positive_number(const std::string& what) {

@@ -17,6 +17,10 @@ void set_exit_code(int code);
 /// An option's check: a finite number > 0 ("a finite positive number of WHAT, got TEXT"; CLI11's
 /// own PositiveNumber lets nan and inf through and prints its range to 300 digits).
 CLI::Validator positive_number(const std::string& what);
+/// A --threads of `threads` checked against this machine (0: the default): more than
+/// thread_limit() is an input error, std::invalid_argument (exit code 2, before anything is
+/// written).
+void check_thread_count(int threads);
 
 void register_run(CLI::App& app);
 void register_reproduce(CLI::App& app);

@@ -18,31 +18,23 @@
 #include "blockdem/rockmass/rock_mass_output.hpp"
 #include "blockdem/rockmass/rock_slicer.hpp"
 #include "blockdem/rockmass/shares.hpp"
+#include "support/joint_sets.hpp"
 #include "support/temp_path.hpp"
 
 namespace blockdem {
 namespace {
 
-JointSet joint_set(const std::string& name, double dip, double dir, double spacing,
-                   const Eigen::Vector3d& origin) {
-  JointSet s;
-  s.name = name;
-  s.dip_deg = dip;
-  s.dip_direction_deg = dir;
-  s.spacing.mean = spacing;
-  s.origin = origin;
-  return s;
-}
+using test::persistent_set;
 
 // Three oblique persistent sets, one of random discs (bonded and open cut faces) and a box
 // excavation (outline facets), with small parts merged back or removed: every path of the cut.
 RockMassSpec spec(SlicingSettings::SmallBlocks small) {
   RockMassSpec s;
   s.region = Region::box({0, 0, 0}, {16, 12, 10});
-  s.joint_sets.push_back(joint_set("J1", 80, 10, 1.1, {0.3, 0.2, 0.1}));
-  s.joint_sets.push_back(joint_set("J2", 70, 230, 1.7, {3, 4, 5}));
-  s.joint_sets.push_back(joint_set("J3", 25, 120, 1.3, {7, 1, 2}));
-  JointSet discs = joint_set("D", 55, 300, 2.0, {6, 5, 4});
+  s.joint_sets.push_back(persistent_set("J1", 80, 10, 1.1, {0.3, 0.2, 0.1}));
+  s.joint_sets.push_back(persistent_set("J2", 70, 230, 1.7, {3, 4, 5}));
+  s.joint_sets.push_back(persistent_set("J3", 25, 120, 1.3, {7, 1, 2}));
+  JointSet discs = persistent_set("D", 55, 300, 2.0, {6, 5, 4});
   JointExtent disc;
   disc.radius = 2.5;
   discs.extent = disc;

@@ -12,20 +12,12 @@
 #include <stdexcept>
 
 #include "blockdem/geometry/polyhedron.hpp"
+#include "support/joint_sets.hpp"
 
 namespace blockdem {
 namespace {
 
-JointSet persistent(const std::string& name, double dip, double dir, double spacing,
-                    const Eigen::Vector3d& origin) {
-  JointSet s;
-  s.name = name;
-  s.dip_deg = dip;
-  s.dip_direction_deg = dir;
-  s.spacing.mean = spacing;
-  s.origin = origin;
-  return s;
-}
+using test::persistent_set;
 
 // Width of the slab of [0, L] cut at origin + k*spacing that contains x.
 double slab_width(double x, double first_cut, double spacing, double length) {
@@ -45,9 +37,9 @@ TEST(RockSlicer, ThreeOrthogonalPersistentSetsGiveExactCountAndVolumes) {
   // 150 blocks, each the product of its three slab widths (closed form), to 1e-12 relative.
   RockMassSpec spec;
   spec.region = Region::box({0, 0, 0}, {10, 6, 4});
-  spec.joint_sets.push_back(persistent("J1", 90, 90, 2.0, {1, 0, 0}));
-  spec.joint_sets.push_back(persistent("J2", 90, 0, 1.5, {0, 0.75, 0}));
-  spec.joint_sets.push_back(persistent("J3", 0, 0, 1.0, {0, 0, 0.5}));
+  spec.joint_sets.push_back(persistent_set("J1", 90, 90, 2.0, {1, 0, 0}));
+  spec.joint_sets.push_back(persistent_set("J2", 90, 0, 1.5, {0, 0.75, 0}));
+  spec.joint_sets.push_back(persistent_set("J3", 0, 0, 1.0, {0, 0, 0.5}));
   const RockMass rm = slice_rock_mass(spec);
   ASSERT_EQ(rm.blocks.size(), 150u);
   for (const auto& b : rm.blocks) {
@@ -91,9 +83,9 @@ void expect_valid_blocks(const RockMass& rm, double min_volume) {
 RockMassSpec oblique_spec() {
   RockMassSpec spec;
   spec.region = Region::box({0, 0, 0}, {20, 20, 10});
-  spec.joint_sets.push_back(persistent("J1", 35, 120, 2.3, {10, 10, 5}));
-  spec.joint_sets.push_back(persistent("J2", 70, 230, 3.1, {3, 4, 5}));
-  spec.joint_sets.push_back(persistent("J3", 85, 10, 2.7, {7, 1, 2}));
+  spec.joint_sets.push_back(persistent_set("J1", 35, 120, 2.3, {10, 10, 5}));
+  spec.joint_sets.push_back(persistent_set("J2", 70, 230, 3.1, {3, 4, 5}));
+  spec.joint_sets.push_back(persistent_set("J3", 85, 10, 2.7, {7, 1, 2}));
   spec.settings.min_block_volume = 0.05;
   return spec;
 }
@@ -123,7 +115,7 @@ TEST(RockSlicer, AspectRatioLimitMergesThinSlabs) {
   // Slabs 0.1 m thick in a 2 m cube have aspect ratio 20; with a limit of 5 no block exceeds 5.
   RockMassSpec spec;
   spec.region = Region::box({0, 0, 0}, {2, 2, 2});
-  spec.joint_sets.push_back(persistent("J1", 90, 90, 0.1, {0.05, 0, 0}));
+  spec.joint_sets.push_back(persistent_set("J1", 90, 90, 0.1, {0.05, 0, 0}));
   spec.settings.max_aspect_ratio = 5.0;
   const RockMass rm = slice_rock_mass(spec);
   EXPECT_GT(rm.merged_cuts, 0);
@@ -158,7 +150,7 @@ TEST(RockSlicer, RandomSpacingMeanMatchesWithinItsStatisticalError) {
                        Case{Spacing::Distribution::lognormal, 2.0, 1.0}}) {
     RockMassSpec spec;
     spec.region = Region::box({0, 0, 0}, {2, 2, 600});
-    JointSet s = persistent("J", 0, 0, c.mean, {1, 1, 300});
+    JointSet s = persistent_set("J", 0, 0, c.mean, {1, 1, 300});
     s.spacing.distribution = c.dist;
     s.spacing.sd = c.sd;
     s.spacing.seed = 12345;
@@ -197,7 +189,7 @@ TEST(RockSlicer, SameSeedSameBlocksOtherSeedOtherBlocks) {
 }
 
 JointSet disc_joint(const Eigen::Vector3d& centre, double radius) {
-  JointSet s = persistent("D", 30, 45, 1.0, centre);
+  JointSet s = persistent_set("D", 30, 45, 1.0, centre);
   JointExtent e;
   e.radius = radius;
   s.extent = e;
@@ -240,7 +232,7 @@ TEST(RockSlicer, DiscJointCutsOnlyTheBlocksItPassesThrough) {
   // Two blocks (x < 2, x > 2); a disc of radius 0.4 m centred in the second cuts it alone: 3.
   RockMassSpec spec;
   spec.region = Region::box({0, 0, 0}, {4, 2, 2});
-  spec.joint_sets.push_back(persistent("J1", 90, 90, 10.0, {2, 0, 0}));
+  spec.joint_sets.push_back(persistent_set("J1", 90, 90, 10.0, {2, 0, 0}));
   spec.joint_sets.push_back(disc_joint({3, 1, 1}, 0.4));
   const RockMass rm = slice_rock_mass(spec);
   EXPECT_EQ(rm.blocks.size(), 3u);
@@ -289,13 +281,13 @@ void expect_error(const RockMassSpec& spec, const std::string& key) {
 TEST(RockSlicer, BadInputNamesTheKey) {
   RockMassSpec spec;
   spec.region = Region::box({0, 0, 0}, {4, 4, 4});
-  spec.joint_sets.push_back(persistent("J1", 95, 0, 1, {0, 0, 0}));
+  spec.joint_sets.push_back(persistent_set("J1", 95, 0, 1, {0, 0, 0}));
   expect_error(spec, "joint_sets[1].dip_deg");
-  spec.joint_sets[0] = persistent("J1", 45, 360, 1, {0, 0, 0});
+  spec.joint_sets[0] = persistent_set("J1", 45, 360, 1, {0, 0, 0});
   expect_error(spec, "joint_sets[1].dip_direction_deg");
-  spec.joint_sets[0] = persistent("J1", 45, 0, 0, {0, 0, 0});
+  spec.joint_sets[0] = persistent_set("J1", 45, 0, 0, {0, 0, 0});
   expect_error(spec, "joint_sets[1].spacing");
-  spec.joint_sets[0] = persistent("J1", 45, 0, 1, {0, 0, 0});
+  spec.joint_sets[0] = persistent_set("J1", 45, 0, 1, {0, 0, 0});
   spec.joint_sets[0].spacing.distribution = Spacing::Distribution::exponential;
   expect_error(spec, "joint_sets[1].spacing.seed");
   spec.joint_sets.clear();
