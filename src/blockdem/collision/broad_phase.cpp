@@ -48,32 +48,35 @@ void SweepAndPrune::update_order(const std::vector<Eigen::Vector3d>& box_min,
 namespace {
 
 // Sorts each body's pairs by j in place: body i's pairs are [ends[i - 1], ends[i]) (from 0 for
-// body 0). Most bodies have a few (insertion sort), a large one (a base plate) many.
+// body 0).
 void sort_each_body(std::vector<std::pair<int, int>>& pairs, const std::size_t* ends,
                     std::size_t bodies) {
   std::size_t begin = 0;
   for (std::size_t i = 0; i < bodies; ++i) {
-    const std::size_t end = ends[i];
-    if (end - begin > 32) {
-      std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
-                pairs.begin() + static_cast<std::ptrdiff_t>(end));
-      begin = end;
-      continue;
-    }
-    for (std::size_t k = begin + 1; k < end; ++k) {
-      const auto v = pairs[k];
-      std::size_t m = k;
-      while (m > begin && pairs[m - 1].second > v.second) {
-        pairs[m] = pairs[m - 1];
-        --m;
-      }
-      pairs[m] = v;
-    }
-    begin = end;
+    PairSorter::sort_one_body(pairs, begin, ends[i]);
+    begin = ends[i];
   }
 }
 
 }  // namespace
+
+void PairSorter::sort_one_body(std::vector<std::pair<int, int>>& pairs, std::size_t begin,
+                               std::size_t end) {
+  if (end - begin > 32) {
+    std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+              pairs.begin() + static_cast<std::ptrdiff_t>(end));
+    return;
+  }
+  for (std::size_t k = begin + 1; k < end; ++k) {
+    const auto v = pairs[k];
+    std::size_t m = k;
+    while (m > begin && pairs[m - 1].second > v.second) {
+      pairs[m] = pairs[m - 1];
+      --m;
+    }
+    pairs[m] = v;
+  }
+}
 
 void PairSorter::sort(std::vector<std::pair<int, int>>& pairs, std::size_t bodies) {
   // Counting sort on the first body: starts_[i] is where body i's pairs begin.

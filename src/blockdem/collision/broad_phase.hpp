@@ -64,6 +64,10 @@ class PairSorter {
   /// in memory with a scratch list besides.
   void sort_parts(std::vector<std::vector<std::pair<int, int>>>& parts,
                   std::vector<std::pair<int, int>>& pairs, std::size_t bodies);
+  /// Sorts one body's pairs [begin, end) (all with the same i) by j: mostly a few (insertion
+  /// sort), a large body's (a base plate) many.
+  static void sort_one_body(std::vector<std::pair<int, int>>& pairs, std::size_t begin,
+                            std::size_t end);
   /// Frees the buffers (a large scene's scratch list is as long as its list of pairs).
   void release() {
     std::vector<std::pair<int, int>>().swap(scratch_);

@@ -50,17 +50,11 @@ void UniformGrid::build(const BoxView& boxes) {
     for (int a = 0; a < 3; ++a)
       dims_[a] = static_cast<std::int64_t>((top[a] - origin_[a]) / cell_) + 1;
   }
-  coords_.assign(3 * n, 0);
   std::vector<std::uint64_t> body_key(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (!ordinary_[i]) continue;
-    std::int64_t c[3];
-    for (int a = 0; a < 3; ++a) {
-      c[a] = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>((boxes.lo(i)[a] - origin_[a]) / cell_), 0, dims_[a] - 1);
-      coords_[3 * i + static_cast<std::size_t>(a)] = c[a];
-    }
-    body_key[i] = key(c[0], c[1], c[2]);
+    const auto lo = boxes.lo(i);
+    body_key[i] = key(cell_of(lo[0], 0), cell_of(lo[1], 1), cell_of(lo[2], 2));
   }
   if (dense_) {
     // Counting sort of the boxes by cell.
@@ -91,7 +85,6 @@ void UniformGrid::build(const BoxView& boxes) {
 }
 
 void UniformGrid::release() {
-  std::vector<std::int64_t>().swap(coords_);
   std::vector<std::uint8_t>().swap(ordinary_);
   std::vector<std::size_t>().swap(cell_start_);
   std::vector<std::uint64_t>().swap(keys_);

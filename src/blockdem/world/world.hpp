@@ -269,6 +269,14 @@ class World {
   /// Candidate pairs of the last step (contacts and near pairs whose narrow-phase warm start is
   /// kept), sorted by (a, b).
   std::size_t candidate_pair_count() const { return slots_.size(); }
+  /// How a one-process step's broad phase gave its pairs (world_pairs.cpp), counted per step:
+  /// by ranges, the slots' own pairs (no list); by ranges, a list closed up in place; by ranges,
+  /// a list of its own (a range outgrew its room); the threads' lists joined (the first step, a
+  /// scene with a large box, a distributed step).
+  struct PairListCounts {
+    std::int64_t slots_own = 0, in_place = 0, own_list = 0, joined = 0;
+  };
+  const PairListCounts& pair_list_counts() const { return pair_list_counts_; }
   /// The number of threads a step uses (settings().threads, or OpenMP's default when 0).
   int thread_count() const;
 
@@ -467,6 +475,13 @@ class World {
   void refresh_blocks(StepScratch& s);
   void contact_passes(StepScratch& s);
   void find_step_pairs(StepScratch& s);
+  /// One process's broad phase in ranges of blocks, each range's pairs compared with its
+  /// slots where they are found (world_pairs.cpp). Returns false, having done nothing, where
+  /// the grid has a large box. Else `open` is the number of slots keeping an open bond
+  /// (keeps_bond_pair), `slots_pairs` whether the pairs are the slots' own (pairs_ is then left
+  /// empty), and otherwise pairs_ holds them.
+  bool find_pairs_by_range(int threads, const std::vector<char>& breakable, std::int64_t& open,
+                           bool& slots_pairs);
   void evaluate_step_pairs(StepScratch& s);
   void scatter_step_loads(StepScratch& s);
   void integrate_blocks(StepScratch& s);
@@ -609,6 +624,7 @@ class World {
   /// Each bolt's loads of this step, kept between steps for their room (world_support.cpp).
   std::vector<std::vector<BoltLoad>> bolt_loads_;
   std::vector<std::pair<int, int>> pairs_;
+  PairListCounts pair_list_counts_;
 
   // Per-block stiffness sums of this step, for the automatic time step.
   std::vector<double> stiffness_, rotational_stiffness_;
