@@ -70,6 +70,15 @@ class UniformGrid {
   }
   /// Range [begin, end) in bodies_ of the cell with this key.
   std::pair<std::size_t, std::size_t> cell_range(std::uint64_t k) const;
+  /// Whether boxes i and j overlap on all three axes (touching counts).
+  static bool overlap(const BoxView& boxes, int i, int j) {
+    const auto ilo = boxes.lo(static_cast<std::size_t>(i)),
+               ihi = boxes.hi(static_cast<std::size_t>(i));
+    const auto jlo = boxes.lo(static_cast<std::size_t>(j)),
+               jhi = boxes.hi(static_cast<std::size_t>(j));
+    return !(jlo.x() > ihi.x() || ilo.x() > jhi.x() || jlo.y() > ihi.y() || ilo.y() > jhi.y() ||
+             jlo.z() > ihi.z() || ilo.z() > jhi.z());
+  }
   /// Appends ordinary box i's pairs (i, j > i) with ordinary boxes for which want(i, j).
   template <class Want>
   void ordinary_pairs(const BoxView& boxes, std::int64_t i, Want& want,
@@ -100,14 +109,6 @@ void UniformGrid::find_pairs(const BoxView& boxes, Want&& want,
   // calls); several write their own lists, joined in thread order.
   chunks_.resize(threads > 1 ? static_cast<std::size_t>(threads) : 0);
   for (auto& c : chunks_) c.clear();
-  auto overlap = [&](int i, int j) {
-    const auto ilo = boxes.lo(static_cast<std::size_t>(i)),
-               ihi = boxes.hi(static_cast<std::size_t>(i));
-    const auto jlo = boxes.lo(static_cast<std::size_t>(j)),
-               jhi = boxes.hi(static_cast<std::size_t>(j));
-    return !(jlo.x() > ihi.x() || ilo.x() > jhi.x() || jlo.y() > ihi.y() || ilo.y() > jhi.y() ||
-             jlo.z() > ihi.z() || ilo.z() > jhi.z());
-  };
   // The region's body, run by each thread of a team, or alone outside any region for one thread
   // (its work-sharing loops then run every iteration; a team of one would still cost a futex
   // call at its end).
@@ -130,7 +131,7 @@ void UniformGrid::find_pairs(const BoxView& boxes, Want&& want,
       for (int j = 0; j < static_cast<int>(n); ++j) {
         if (j == i || (!ordinary_[static_cast<std::size_t>(j)] && j < i)) continue;
         const int a = std::min(i, j), b = std::max(i, j);
-        if (overlap(a, b) && want(a, b)) out.emplace_back(a, b);
+        if (overlap(boxes, a, b) && want(a, b)) out.emplace_back(a, b);
       }
     }
   };
@@ -168,11 +169,8 @@ void UniformGrid::ordinary_pairs(const BoxView& boxes, std::int64_t i, Want& wan
         for (std::size_t k = begin; k < end; ++k) {
           const int j = bodies_[k];
           if (j <= i) continue;
-          const auto jlo = boxes.lo(static_cast<std::size_t>(j)),
-                     jhi = boxes.hi(static_cast<std::size_t>(j));
-          const bool overlap = !(jlo.x() > ihi.x() || ilo.x() > jhi.x() || jlo.y() > ihi.y() ||
-                                 ilo.y() > jhi.y() || jlo.z() > ihi.z() || ilo.z() > jhi.z());
-          if (overlap && want(static_cast<int>(i), j)) out.emplace_back(static_cast<int>(i), j);
+          if (overlap(boxes, static_cast<int>(i), j) && want(static_cast<int>(i), j))
+            out.emplace_back(static_cast<int>(i), j);
         }
       }
     }
