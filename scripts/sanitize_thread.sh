@@ -16,8 +16,8 @@ llvm=$(ls -d /usr/lib/llvm-*/lib | sort -V | tail -1)
 # threaded pair search, and the worlds distributed over threads standing in for processes (their
 # exchanges, stages, checkpoints and a failure inside a step), and a rock mass cut, made into
 # blocks and written on several threads, and the one-process step's pairs found by ranges of
-# blocks on several threads. A file that gains a threaded test is added here.
-threaded='/(parallel_determinism|parallel_cut|restart|restart_signal|world_state|broad_phase|distributed_step|distributed_stage|step_failure|pair_ranges)_test[.]cpp$'
+# blocks on several threads and the pair store merged from their changes. A file that gains a threaded test is added here.
+threaded='/(parallel_determinism|parallel_cut|restart|restart_signal|world_state|broad_phase|distributed_step|distributed_stage|step_failure|pair_ranges|pair_changes)_test[.]cpp$'
 # -O1 and line tables only, as in scripts/sanitize.sh: reports still name file and line.
 export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"  # as scripts/build.sh
 CXX=clang++ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLOCKDEM_BUILD_BENCH=OFF \

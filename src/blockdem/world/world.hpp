@@ -38,6 +38,7 @@
 namespace blockdem {
 
 struct StressField;
+struct PairChanges;
 
 /// How contacts are detected and turned into forces.
 enum class ContactMode {
@@ -270,11 +271,12 @@ class World {
   /// kept), sorted by (a, b).
   std::size_t candidate_pair_count() const { return slots_.size(); }
   /// How a one-process step's broad phase gave its pairs (world_pairs.cpp), counted per step:
-  /// by ranges, the slots' own pairs (no list); by ranges, a list closed up in place; by ranges,
-  /// a list of its own (a range outgrew its room); the threads' lists joined (the first step, a
-  /// scene with a large box, a distributed step).
+  /// by ranges, none changed (the store stays); by ranges, the store merged from the ranges'
+  /// changes; by ranges, a list of every pair made after all (a prestressed joint the boxes
+  /// missed, a large shift); the threads' lists joined (the first step, a scene with a large
+  /// box, a distributed step).
   struct PairListCounts {
-    std::int64_t slots_own = 0, in_place = 0, own_list = 0, joined = 0;
+    std::int64_t unchanged = 0, changed = 0, listed = 0, joined = 0;
   };
   const PairListCounts& pair_list_counts() const { return pair_list_counts_; }
   /// The number of threads a step uses (settings().threads, or OpenMP's default when 0).
@@ -477,11 +479,21 @@ class World {
   void find_step_pairs(StepScratch& s);
   /// One process's broad phase in ranges of blocks, each range's pairs compared with its
   /// slots where they are found (world_pairs.cpp). Returns false, having done nothing, where
-  /// the grid has a large box. Else `open` is the number of slots keeping an open bond
-  /// (keeps_bond_pair), `slots_pairs` whether the pairs are the slots' own (pairs_ is then left
-  /// empty), and otherwise pairs_ holds them.
-  bool find_pairs_by_range(int threads, const std::vector<char>& breakable, std::int64_t& open,
-                           bool& slots_pairs);
+  /// there are no slots yet or the grid has a large box. Else `changes` holds each range's
+  /// change of the store (a slot holding an open bond keeps its pair: keep_open_bonds), and
+  /// `missed` the prestressed joints that no pair covers, sorted.
+  bool find_pairs_by_range(int threads, const std::vector<char>& breakable, PairChanges& changes,
+                           std::vector<std::pair<int, int>>& missed);
+  /// pairs_: every pair of the store changed by `changes`, in order.
+  void list_changed_pairs(const PairChanges& changes);
+  /// The store rearranged by `changes` (merge_changes, else the list merged serially).
+  void merge_pair_changes(const PairChanges& changes);
+  /// pairs_ with the prestressed joints' pairs that it misses (sorted) merged in.
+  void merge_joints(const std::vector<std::pair<int, int>>& missed);
+  /// A new candidate pair's slot.
+  PairSlot fresh_slot(int a, int b) const;
+  /// The slots' group rules' laws looked up again where the rules changed since.
+  void refresh_group_laws();
   void evaluate_step_pairs(StepScratch& s);
   void scatter_step_loads(StepScratch& s);
   void integrate_blocks(StepScratch& s);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "blockdem/response/contact_damping.hpp"
+#include "blockdem/world/pair_changes.hpp"
 #include "blockdem/world/pass_support.hpp"
 #include "blockdem/world/world.hpp"
 
@@ -179,20 +180,33 @@ bool merge_in_parallel(std::vector<Slot>& slots, const std::vector<std::pair<int
 void World::find_step_pairs(StepScratch& s) {
   const int threads = s.threads;
   const std::vector<char> breakable = breakable_laws();
-  // One process: the pairs by ranges of blocks, compared with the slots as they are found
-  // (world_pairs.cpp); where the pairs are the slots' own no list of them is made.
-  std::int64_t open = 0;
-  bool slots_pairs = false;
-  const bool by_range =
-      !s.distributed && find_pairs_by_range(threads, breakable, open, slots_pairs);
-  if (!by_range) ++pair_list_counts_.joined;
-  // The slots' own pairs as the list, where a step needs it after all.
-  const auto list_slots_pairs = [&] {
-    pairs_.reserve(slots_.size());
-    pass_support::prefer_huge_pages(pairs_.data(), pairs_.capacity() * sizeof(pairs_[0]));
-    for (const PairSlot& slot : slots_) pairs_.emplace_back(slot.a, slot.b);
-    slots_pairs = false;
-  };
+  // One process: the pairs by ranges of blocks, each range compared with its slots as it is
+  // found, and only the changes kept (world_pairs.cpp): no list of every pair is made.
+  PairChanges changes;
+  std::vector<std::pair<int, int>> missed;  // prestressed joints the broad phase missed
+  const bool by_range = !s.distributed && find_pairs_by_range(threads, breakable, changes, missed);
+  if (by_range) {
+    if (missed.empty()) {
+      take_primed_slots();  // drops the set-up's narrow phase (the store has slots)
+      if (changes.none()) {
+        // The common case of a settled scene: no range changed, the slots stay as they are.
+        ++pair_list_counts_.unchanged;
+        refresh_group_laws();
+      } else {
+        merge_pair_changes(changes);
+      }
+      return;
+    }
+    // A missed joint: the list after all (the ranges' pairs hold the open bonds' already).
+    ++pair_list_counts_.listed;
+    list_changed_pairs(changes);
+    merge_joints(missed);
+    take_primed_slots();
+    merge_pairs();
+    std::vector<std::pair<int, int>>().swap(pairs_);
+    return;
+  }
+  ++pair_list_counts_.joined;
   if (!by_range && !s.distributed) {
     // Broad phase: pairs where at least one block can move, sorted by (a, b). The list was
     // freed after the last merge: room for as many pairs as then, in one allocation.
@@ -226,43 +240,23 @@ void World::find_step_pairs(StepScratch& s) {
   // Prestressed joints keep their pairs: blocks that share an axis-aligned face may have boxes
   // that miss each other by round-off, and the joint is closed without the blocks overlapping.
   // Both lists are sorted by (a, b): one walk finds the joints' pairs the broad phase missed
-  // (usually none), and only those are merged in, so that no second list of every pair is held
-  // (86 MB for a million-block rock mass, at the step's peak). Where the pairs are the slots'
-  // own, the walk is over the slots.
+  // (usually none), and only those are merged in, so that no second list of every pair is held.
   if (!preloads_.empty()) {
-    std::vector<std::pair<int, int>> missed;
-    const std::size_t count = slots_pairs ? slots_.size() : pairs_.size();
-    const auto pair_at = [&](std::size_t k) {
-      return slots_pairs ? std::pair<int, int>{slots_[k].a, slots_[k].b} : pairs_[k];
-    };
     std::size_t at = 0;
     for (const ContactPreload& p : preloads_.all()) {
       if (s.distributed && !keeps_pairs_of(p.a) && !keeps_pairs_of(p.b)) continue;
       const std::pair<int, int> pair{p.a, p.b};
-      while (at < count && pair_at(at) < pair) ++at;
-      if (at == count || pair_at(at) != pair) missed.push_back(pair);
+      while (at < pairs_.size() && pairs_[at] < pair) ++at;
+      if (at == pairs_.size() || pairs_[at] != pair) missed.push_back(pair);
     }
-    if (!missed.empty()) {
-      if (slots_pairs) list_slots_pairs();  // to merge the missed ones in
-      std::vector<std::pair<int, int>> all;
-      all.reserve(pairs_.size() + missed.size());
-      pass_support::prefer_huge_pages(all.data(), all.capacity() * sizeof(all[0]));
-      std::merge(pairs_.begin(), pairs_.end(), missed.begin(), missed.end(),
-                 std::back_inserter(all));
-      pairs_.swap(all);
-    }
+    merge_joints(missed);
   }
   // The common case of a settled scene, found in one pass over the slots (the pair store is
   // the largest array: each pass over it costs memory traffic that a second core barely
   // shortens): no open bond, and the same pairs as last step, whose slots then stay as they are.
-  // Else no more passes than the open bonds' count and the merge's own comparison. By ranges,
-  // the pass was the ranges' own.
+  // Else no more passes than the open bonds' count and the merge's own comparison.
   bool same = false, no_open = false;
-  if (by_range) {
-    no_open = open == 0 && !slots_.empty();
-    same = no_open && slots_pairs && slots_rules_version_ == rules_version_;
-    if (!same && slots_pairs) list_slots_pairs();  // for the merge below
-  } else if (!slots_.empty() && pairs_.size() == slots_.size()) {
+  if (!slots_.empty() && pairs_.size() == slots_.size()) {
     const auto [opened, differ] = count_open_and_moved(slots_, pairs_, threads, [&](std::size_t k) {
       return keeps_bond_pair(slots_[k], breakable);
     });
@@ -285,6 +279,15 @@ void World::find_step_pairs(StepScratch& s) {
   // The slots now hold these pairs, in order: the list is not read again before the next broad
   // phase refills it, and freed it is not held through the step's peak (8 bytes per pair).
   if (!s.distributed) std::vector<std::pair<int, int>>().swap(pairs_);
+}
+
+void World::merge_joints(const std::vector<std::pair<int, int>>& missed) {
+  if (missed.empty()) return;
+  std::vector<std::pair<int, int>> all;
+  all.reserve(pairs_.size() + missed.size());
+  pass_support::prefer_huge_pages(all.data(), all.capacity() * sizeof(all[0]));
+  std::merge(pairs_.begin(), pairs_.end(), missed.begin(), missed.end(), std::back_inserter(all));
+  pairs_.swap(all);
 }
 
 bool World::keeps_bond_pair(const PairSlot& s, const std::vector<char>& breakable) const {
@@ -330,22 +333,11 @@ void World::merge_pairs() {
     };
     same = count_in_parallel(pairs_.size(), thread_count(), differs) == 0;
   }
-  // A new candidate pair: the joint law is looked up once, when the pair appears. Its contact
-  // state (none yet) stays where it was: settle_contacts drops it. Bonds (rock bridges) join
-  // only blocks that were candidates at the start: a pair that becomes one later has never
-  // been bonded and gets the residual strength.
-  const auto fresh_slot = [&](int a, int b) {
-    PairSlot fresh;
-    fresh.a = a;
-    fresh.b = b;
-    fresh.group_law = law_for(a, b);
-    if (step_count_ > 0) fresh.bond = BondState::unbonded;
-    return fresh;
-  };
+  const auto fresh = [&](int a, int b) { return fresh_slot(a, b); };
   const int threads = thread_count();
   bool merged = same;
   if (!merged && threads > 1 && pairs_.size() >= 256)
-    merged = merge_in_parallel(slots_, pairs_, threads, fresh_slot);
+    merged = merge_in_parallel(slots_, pairs_, threads, fresh);
   if (!merged) {
     // Both lists are sorted by (a, b). First drop the slots whose pair is gone, compacting in
     // place (forward); then open the slots of new pairs, moving kept ones back (backward).
@@ -374,10 +366,26 @@ void World::merge_pairs() {
     }
     slots_.resize(pairs_.size());
   }
-  if (slots_rules_version_ != rules_version_) {
-    for (auto& s : slots_) s.group_law = law_for(s.a, s.b);
-    slots_rules_version_ = rules_version_;
-  }
+  refresh_group_laws();
+}
+
+World::PairSlot World::fresh_slot(int a, int b) const {
+  // A new candidate pair: the joint law is looked up once, when the pair appears. Its contact
+  // state (none yet) stays where it was: settle_contacts drops it. Bonds (rock bridges) join
+  // only blocks that were candidates at the start: a pair that becomes one later has never
+  // been bonded and gets the residual strength.
+  PairSlot fresh;
+  fresh.a = a;
+  fresh.b = b;
+  fresh.group_law = law_for(a, b);
+  if (step_count_ > 0) fresh.bond = BondState::unbonded;
+  return fresh;
+}
+
+void World::refresh_group_laws() {
+  if (slots_rules_version_ == rules_version_) return;
+  for (auto& s : slots_) s.group_law = law_for(s.a, s.b);
+  slots_rules_version_ = rules_version_;
 }
 
 Contact World::fresh_contact(const PairSlot& slot) const {

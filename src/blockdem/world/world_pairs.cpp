@@ -1,123 +1,99 @@
-// A one-process step's broad phase without a second list of every pair. The grid hands over the
-// pairs of each range of blocks (UniformGrid::find_pairs_by_range), and the slots hold last
-// step's pairs sorted by (a, b), so a range's pairs are its slots' exactly when the two sorted
-// runs are equal. A range that differs writes its pairs straight into the pair list, in a window
-// as long as its slots plus some room; the windows are then closed up in order. A million-block
-// rock mass (10.7 million candidate pairs, most ranges gaining or losing a few each step) held
-// the list (86 MB) and, while the threads' lists were joined into it, those lists too, at the
-// step's peak. The room is 5 % of the list there (a thirty-second of each range's slots and 64
-// pairs); the windows are written whole, so the list is as resident as a list of every pair.
+// A one-process step's broad phase without a list of every pair. The grid hands over the pairs
+// of each range of blocks (UniformGrid::find_pairs_by_range) and the slots hold last step's pairs
+// sorted by (a, b), so each range's pairs are compared with its run of slots where they are found,
+// and only what changed is kept (pair_changes.hpp); merge_pair_changes then rearranges the store
+// from the changes.
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
-#include "blockdem/world/pass_support.hpp"
+#include "blockdem/world/pair_changes.hpp"
 #include "blockdem/world/world.hpp"
 
 namespace blockdem {
 
-bool World::find_pairs_by_range(int threads, const std::vector<char>& breakable, std::int64_t& open,
-                                bool& slots_pairs) {
-  // The first step (no slots yet) has no windows to size: the threads' lists, joined.
+bool World::find_pairs_by_range(int threads, const std::vector<char>& breakable,
+                                PairChanges& changes, std::vector<std::pair<int, int>>& missed) {
+  // The first step (no slots yet) has nothing to compare with: the threads' lists, joined.
   if (slots_.empty()) return false;
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   const std::int64_t size = UniformGrid::kRangeBoxes;
   const auto ranges = static_cast<std::size_t>((n + size - 1) / size);
   // Where each range's slots start: the first slot whose block a is the range's first (the
-  // last range's end is the store's end, so that every slot is in a range). Its window in the
-  // list: its slots' count and a thirty-second more, plus 64 pairs.
-  std::vector<std::size_t> slot_at(ranges + 1, slots_.size());
-  std::vector<std::size_t> window_at(ranges + 1, 0);
+  // last range's end is the store's end, so that every slot is in a range).
+  changes.slot_at.assign(ranges + 1, slots_.size());
   for (std::size_t r = 0; r < ranges; ++r) {
     const int first = static_cast<int>(static_cast<std::int64_t>(r) * size);
-    slot_at[r] = static_cast<std::size_t>(
+    changes.slot_at[r] = static_cast<std::size_t>(
         std::lower_bound(slots_.begin(), slots_.end(), first,
                          [](const PairSlot& s, int a) { return s.a < a; }) -
         slots_.begin());
   }
-  for (std::size_t r = 0; r < ranges; ++r) {
-    const std::size_t count = slot_at[r + 1] - slot_at[r];
-    window_at[r + 1] = window_at[r] + count + count / 32 + 64;
+  changes.ranges.assign(ranges, RangeChange{});
+  // Each range's prestressed joints (sorted by (a, b) as the pairs), and those of them that the
+  // range's new pairs miss (find_step_pairs: blocks that share an axis-aligned face may have
+  // boxes that miss each other by round-off).
+  const std::span<const ContactPreload> joints = preloads_.all();
+  std::vector<std::size_t> joint_at(ranges + 1, joints.size());
+  for (std::size_t r = 0; r < ranges && !joints.empty(); ++r) {
+    const int first = static_cast<int>(static_cast<std::int64_t>(r) * size);
+    joint_at[r] = static_cast<std::size_t>(
+        std::lower_bound(joints.begin(), joints.end(), first,
+                         [](const ContactPreload& p, int a) { return p.a < a; }) -
+        joints.begin());
   }
-  pairs_.clear();
-  pairs_.reserve(window_at[ranges]);
-  pass_support::prefer_huge_pages(pairs_.data(), pairs_.capacity() * sizeof(pairs_[0]));
-  pairs_.resize(window_at[ranges]);
-  // Per range: -1 when its pairs are its slots', else their count (in its window, or in
-  // `overflow` when more than the window holds).
-  std::vector<std::int64_t> count_of(ranges, -1);
-  std::vector<std::vector<std::pair<int, int>>> overflow(ranges);
-  std::vector<std::int64_t> open_of(static_cast<std::size_t>(std::max(threads, 1)), 0);
+  std::vector<std::vector<std::pair<int, int>>> missed_of(ranges);
+  // A slot whose boxes parted keeps its pair while it holds an open bond (keep_open_bonds).
+  const auto keep = [&](const PairSlot& s) { return keeps_bond_pair(s, breakable); };
   const auto take = [&](std::int64_t begin, std::int64_t, const auto& pairs) {
     const auto r = static_cast<std::size_t>(begin / size);
-    const std::size_t lo = slot_at[r], hi = slot_at[r + 1];
-    // One walk over the range's slots: the open bonds (counted over every slot, as the step's
-    // other passes count them) and whether the slots are these pairs.
-    bool equal = hi - lo == pairs.size();
-    std::int64_t opened = 0;
-    for (std::size_t k = lo; k < hi; ++k) {
-      const PairSlot& slot = slots_[k];
-      opened += keeps_bond_pair(slot, breakable) ? 1 : 0;
-      if (equal) equal = slot.a == pairs[k - lo].first && slot.b == pairs[k - lo].second;
-    }
-    open_of[static_cast<std::size_t>(pass_support::team_rank())] += opened;
-    if (equal) return;
-    count_of[r] = static_cast<std::int64_t>(pairs.size());
-    if (pairs.size() > window_at[r + 1] - window_at[r]) {
-      overflow[r] = pairs;
-    } else {
-      std::copy(pairs.begin(), pairs.end(),
-                pairs_.begin() + static_cast<std::ptrdiff_t>(window_at[r]));
-    }
+    const std::size_t lo = changes.slot_at[r], hi = changes.slot_at[r + 1];
+    // The joints before each new pair that no pair matched, then those after the last.
+    std::size_t j = joint_at[r];
+    const auto pass = [&](int a, int b) {
+      for (; j < joint_at[r + 1]; ++j) {
+        const std::pair<int, int> joint{joints[j].a, joints[j].b}, pair{a, b};
+        if (pair < joint) return;
+        if (joint < pair) missed_of[r].push_back(joint);
+      }
+    };
+    diff_range(slots_.data() + lo, hi - lo, pairs, keep, pass, changes.ranges[r]);
+    pass(std::numeric_limits<int>::max(), std::numeric_limits<int>::max());
   };
   if (!broad_phase_.find_pairs_by_range(
           block_boxes(), [&](int a, int b) { return steps_pair(a, b); }, take, threads)) {
-    std::vector<std::pair<int, int>>().swap(pairs_);
+    changes = PairChanges{};
     return false;
   }
-  open = 0;
-  for (const std::int64_t o : open_of) open += o;
-  slots_pairs = std::all_of(count_of.begin(), count_of.end(), [](std::int64_t c) { return c < 0; });
-  if (slots_pairs) {
-    pairs_.clear();
-    ++pair_list_counts_.slots_own;
-    return true;
-  }
-  const bool overflowed =
-      std::any_of(overflow.begin(), overflow.end(), [](const auto& o) { return !o.empty(); });
-  // Every pair, in order: a range that differs gives its own pairs, another its slots' pairs.
-  const auto range_into = [&](std::size_t r, std::pair<int, int>* to) {
-    if (count_of[r] < 0) {
-      for (std::size_t k = slot_at[r]; k < slot_at[r + 1]; ++k) *to++ = {slots_[k].a, slots_[k].b};
-      return slot_at[r + 1] - slot_at[r];
-    }
-    const auto count = static_cast<std::size_t>(count_of[r]);
-    const std::pair<int, int>* from =
-        overflow[r].empty() ? pairs_.data() + window_at[r] : overflow[r].data();
-    if (from != to) std::copy(from, from + count, to);  // down: overlapping is safe
-    std::vector<std::pair<int, int>>().swap(overflow[r]);
-    return count;
-  };
-  if (!overflowed) {
-    // In place: a range's pairs end no later than its window ends, so moving them down in order
-    // overwrites only windows already read.
-    std::size_t at = 0;
-    for (std::size_t r = 0; r < ranges; ++r) at += range_into(r, pairs_.data() + at);
-    pairs_.resize(at);
-    ++pair_list_counts_.in_place;
-    return true;
-  }
-  // A range gained more pairs than its room (a large rearrangement): a list of its own.
-  std::size_t total = 0;
-  for (std::size_t r = 0; r < ranges; ++r)
-    total += count_of[r] < 0 ? slot_at[r + 1] - slot_at[r] : static_cast<std::size_t>(count_of[r]);
-  std::vector<std::pair<int, int>> all(total);
-  std::size_t at = 0;
-  for (std::size_t r = 0; r < ranges; ++r) at += range_into(r, all.data() + at);
-  pairs_.swap(all);
-  ++pair_list_counts_.own_list;
+  for (const auto& m : missed_of) missed.insert(missed.end(), m.begin(), m.end());
   return true;
+}
+
+void World::list_changed_pairs(const PairChanges& changes) {
+  std::size_t total = 0;
+  for_each_changed_pair(slots_, changes, [&](int, int) { ++total; });
+  pairs_.clear();
+  pairs_.reserve(total);
+  pass_support::prefer_huge_pages(pairs_.data(), pairs_.capacity() * sizeof(pairs_[0]));
+  for_each_changed_pair(slots_, changes, [&](int a, int b) { pairs_.emplace_back(a, b); });
+}
+
+void World::merge_pair_changes(const PairChanges& changes) {
+  const auto fresh = [&](int a, int b) { return fresh_slot(a, b); };
+  if (merge_changes(slots_, changes, thread_count(), fresh)) {
+    ++pair_list_counts_.changed;
+    refresh_group_laws();
+    return;
+  }
+  // A large shift (more than an eighth of the slots would cross between the threads' places):
+  // the list, merged serially.
+  ++pair_list_counts_.listed;
+  list_changed_pairs(changes);
+  merge_pairs();
+  std::vector<std::pair<int, int>>().swap(pairs_);
 }
 
 }  // namespace blockdem

@@ -1,0 +1,228 @@
+// A step's candidate pairs as changes of the last step's, range by range, and the merge of the
+// pair store that reads them (world_pairs.cpp finds them). The broad phase hands over the pairs
+// of each range of blocks (UniformGrid::find_pairs_by_range); the store holds last step's pairs
+// sorted by (a, b), so a range's slots are one run of the store. Each range keeps only what
+// changed: the places of its slots whose pair is gone and its new pairs with their places. A
+// settled million-block rock mass (10.7 million pairs, each range gaining or losing a few a
+// step) held a list of every pair (86 MB) and the merge's source of each place (43 MB) at the
+// step's peak; its changes take a few hundred kilobytes.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "blockdem/world/pass_support.hpp"
+
+namespace blockdem {
+
+/// One range's pairs against its slots. Both lists empty: the range's pairs are its slots'.
+struct RangeChange {
+  /// Places (from the range's first slot) of the slots whose pair is gone, increasing.
+  std::vector<std::uint32_t> gone;
+  /// A pair the slots did not have, and its place in the range's new run.
+  struct Added {
+    std::uint32_t at = 0;
+    int a = -1, b = -1;
+  };
+  std::vector<Added> added;  ///< by place, increasing
+  bool none() const { return gone.empty() && added.empty(); }
+};
+
+/// The step's pairs as every range's change of the store.
+struct PairChanges {
+  /// Where each range's slots start in the store, and the store's end (ranges + 1 entries).
+  std::vector<std::size_t> slot_at;
+  std::vector<RangeChange> ranges;
+  std::size_t range_count() const { return ranges.size(); }
+  bool none() const {
+    return std::all_of(ranges.begin(), ranges.end(), [](const RangeChange& c) { return c.none(); });
+  }
+  /// Where each range's new run starts, and the new store's size (ranges + 1 entries).
+  std::vector<std::size_t> new_at() const {
+    std::vector<std::size_t> at(ranges.size() + 1, 0);
+    for (std::size_t r = 0; r < ranges.size(); ++r) {
+      const RangeChange& c = ranges[r];
+      at[r + 1] = at[r] + (slot_at[r + 1] - slot_at[r]) - c.gone.size() + c.added.size();
+    }
+    return at;
+  }
+  /// The sources of range r's new run, in order: a slot's place in the store (>= 0), or
+  /// -1 - k for the range's k-th added pair.
+  void sources(std::size_t r, std::vector<std::int64_t>& out) const {
+    const RangeChange& c = ranges[r];
+    const std::size_t old = slot_at[r + 1] - slot_at[r];
+    const std::size_t count = old - c.gone.size() + c.added.size();
+    out.resize(count);
+    std::size_t k = 0, g = 0, n = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+      if (n < c.added.size() && c.added[n].at == j) {
+        out[j] = -1 - static_cast<std::int64_t>(n++);
+        continue;
+      }
+      while (g < c.gone.size() && c.gone[g] == k) ++g, ++k;
+      out[j] = static_cast<std::int64_t>(slot_at[r] + k++);
+    }
+  }
+};
+
+/// Range r's change: the merge walk of its slots [slots, slots + count) (sorted by (a, b)) and
+/// its pairs (sorted, no repeats). A slot whose pair is gone stays when keep(slot) says so (an
+/// open bond keeps its pair after the boxes part: World::keep_open_bonds). on_pair(a, b) is
+/// called for each pair of the range's new run, in order.
+template <class Slot, class Keep, class OnPair>
+void diff_range(const Slot* slots, std::size_t count, const std::vector<std::pair<int, int>>& pairs,
+                Keep&& keep, OnPair&& on_pair, RangeChange& out) {
+  out.gone.clear();
+  out.added.clear();
+  std::size_t k = 0, i = 0;
+  std::uint32_t at = 0;  // the next place of the new run
+  const auto less = [](int a0, int b0, int a1, int b1) { return a0 < a1 || (a0 == a1 && b0 < b1); };
+  while (k < count || i < pairs.size()) {
+    if (i == pairs.size() ||
+        (k < count && less(slots[k].a, slots[k].b, pairs[i].first, pairs[i].second))) {
+      if (keep(slots[k])) {
+        on_pair(slots[k].a, slots[k].b);
+        ++at;
+      } else {
+        out.gone.push_back(static_cast<std::uint32_t>(k));
+      }
+      ++k;
+    } else {
+      on_pair(pairs[i].first, pairs[i].second);
+      if (k == count || less(pairs[i].first, pairs[i].second, slots[k].a, slots[k].b)) {
+        out.added.push_back({at, pairs[i].first, pairs[i].second});
+      } else {
+        ++k;
+      }
+      ++at, ++i;
+    }
+  }
+}
+
+/// Every pair of the new store in order: f(a, b), from the slots and the changes.
+template <class Slot, class F>
+void for_each_changed_pair(const std::vector<Slot>& slots, const PairChanges& changes, F&& f) {
+  std::vector<std::int64_t> source;
+  for (std::size_t r = 0; r < changes.range_count(); ++r) {
+    if (changes.ranges[r].none()) {
+      for (std::size_t k = changes.slot_at[r]; k < changes.slot_at[r + 1]; ++k)
+        f(slots[k].a, slots[k].b);
+      continue;
+    }
+    changes.sources(r, source);
+    for (const std::int64_t s : source) {
+      if (s >= 0) {
+        f(slots[static_cast<std::size_t>(s)].a, slots[static_cast<std::size_t>(s)].b);
+      } else {
+        const RangeChange::Added& p = changes.ranges[r].added[static_cast<std::size_t>(-1 - s)];
+        f(p.a, p.b);
+      }
+    }
+  }
+}
+
+/// The store rearranged into the new pairs' order in place: each kept slot moved once, an added
+/// pair's slot fresh(a, b). The arrangement is the sorted merge's for any thread count: the
+/// store holds the new pairs sorted by (a, b). As merge_in_parallel (world_contacts.cpp), but
+/// the source of each place comes from the changes when it is needed instead of a list of
+/// them: each thread owns a range of new places, copies aside the slots it takes from outside
+/// it and, after a barrier, moves the slots of its places, those going down in increasing
+/// order, then those going up in decreasing order (both sorted runs: no slot is overwritten
+/// before it moves). Returns false, having changed nothing, if more than an eighth of the
+/// slots would be copied aside (the caller then merges a list serially).
+template <class Slot, class Fresh>
+bool merge_changes(std::vector<Slot>& slots, const PairChanges& changes, int threads,
+                   Fresh&& fresh) {
+  const std::vector<std::size_t> new_at = changes.new_at();
+  const std::size_t ranges = changes.range_count();
+  const std::size_t n_new = new_at[ranges];
+  const auto runs = static_cast<std::size_t>(std::max(threads, 1));
+  std::vector<std::size_t> aside_count(runs, 0);
+  std::vector<std::vector<std::pair<std::size_t, Slot>>> aside(runs);
+  bool too_many = false;
+#pragma omp parallel num_threads(static_cast <int>(runs))
+  {
+    const auto t = static_cast<std::size_t>(pass_support::team_rank());
+    const auto team = static_cast<std::size_t>(pass_support::team_size());
+    const std::size_t begin = t * n_new / team, end = (t + 1) * n_new / team;
+    const auto inside = [&](std::int64_t k) {
+      return k >= static_cast<std::int64_t>(begin) && k < static_cast<std::int64_t>(end);
+    };
+    std::vector<std::int64_t> source;  // one range's, where it changed
+    // f(w, source, range) for the places w of [begin, end), in increasing or decreasing order.
+    const auto visit = [&](bool increasing, auto&& f) {
+      if (begin == end) return;
+      const std::size_t first = static_cast<std::size_t>(
+          std::upper_bound(new_at.begin(), new_at.end(), begin) - new_at.begin() - 1);
+      std::size_t last = first;
+      while (last + 1 < ranges && new_at[last + 1] < end) ++last;
+      for (std::size_t i = 0; i <= last - first; ++i) {
+        const std::size_t r = increasing ? first + i : last - i;
+        const std::size_t lo = std::max(begin, new_at[r]), hi = std::min(end, new_at[r + 1]);
+        const bool same = changes.ranges[r].none();
+        if (!same) changes.sources(r, source);
+        const auto source_of = [&](std::size_t w) {
+          return same ? static_cast<std::int64_t>(w - new_at[r] + changes.slot_at[r])
+                      : source[w - new_at[r]];
+        };
+        if (increasing) {
+          for (std::size_t w = lo; w < hi; ++w) f(w, source_of(w), r);
+        } else {
+          for (std::size_t w = hi; w-- > lo;) f(w, source_of(w), r);
+        }
+      }
+    };
+    // 1. The slots this thread takes from outside its places (the store is only read).
+    std::size_t outside = 0;
+    visit(true, [&](std::size_t, std::int64_t s, std::size_t) {
+      if (s >= 0 && !inside(s)) ++outside;
+    });
+    aside_count[t] = outside;
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t total = 0;
+      for (const std::size_t c : aside_count) total += c;
+      too_many = total > n_new / 8;
+      // Room for every place (the places past the old end are moved into or made fresh).
+      if (!too_many && n_new > slots.size()) {
+        if (n_new > slots.capacity()) slots.reserve(n_new + n_new / 8);
+        slots.resize(n_new);
+      }
+    }
+    if (!too_many) {
+      // 2. Those slots, aside.
+      aside[t].reserve(aside_count[t]);
+      visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
+        if (s >= 0 && !inside(s))
+          aside[t].emplace_back(w, std::move(slots[static_cast<std::size_t>(s)]));
+      });
+#pragma omp barrier
+      // 3. Within the places: down in increasing order, then up in decreasing order.
+      visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
+        if (inside(s) && static_cast<std::size_t>(s) > w)
+          slots[w] = std::move(slots[static_cast<std::size_t>(s)]);
+      });
+      visit(false, [&](std::size_t w, std::int64_t s, std::size_t) {
+        if (inside(s) && static_cast<std::size_t>(s) < w)
+          slots[w] = std::move(slots[static_cast<std::size_t>(s)]);
+      });
+      // 4. The slots set aside, and the added pairs' slots.
+      for (auto& [place, slot] : aside[t]) slots[place] = std::move(slot);
+      std::vector<std::pair<std::size_t, Slot>>().swap(aside[t]);
+      visit(true, [&](std::size_t w, std::int64_t s, std::size_t r) {
+        if (s >= 0) return;
+        const RangeChange::Added& p = changes.ranges[r].added[static_cast<std::size_t>(-1 - s)];
+        slots[w] = fresh(p.a, p.b);
+      });
+    }
+  }
+  if (too_many) return false;
+  slots.resize(n_new);
+  return true;
+}
+
+}  // namespace blockdem
