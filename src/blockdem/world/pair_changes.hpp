@@ -18,6 +18,14 @@
 
 namespace blockdem {
 
+/// A pair (a, b) of block indices (>= 0) as one number that sorts as (a, b) does.
+inline std::uint64_t pair_key(int a, int b) {
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32 |
+         static_cast<std::uint32_t>(b);
+}
+/// Above every pair's key.
+inline constexpr std::uint64_t kNoPair = ~std::uint64_t{0};
+
 /// One range's pairs against its slots. Both lists empty: the range's pairs are its slots'.
 struct RangeChange {
   /// Places (from the range's first slot) of the slots whose pair is gone, increasing.
@@ -79,10 +87,11 @@ void diff_range(const Slot* slots, std::size_t count, const std::vector<std::pai
   out.added.clear();
   std::size_t k = 0, i = 0;
   std::uint32_t at = 0;  // the next place of the new run
-  const auto less = [](int a0, int b0, int a1, int b1) { return a0 < a1 || (a0 == a1 && b0 < b1); };
   while (k < count || i < pairs.size()) {
-    if (i == pairs.size() ||
-        (k < count && less(slots[k].a, slots[k].b, pairs[i].first, pairs[i].second))) {
+    const std::uint64_t slot = k < count ? pair_key(slots[k].a, slots[k].b) : kNoPair;
+    const std::uint64_t pair =
+        i < pairs.size() ? pair_key(pairs[i].first, pairs[i].second) : kNoPair;
+    if (slot < pair) {
       if (keep(slots[k])) {
         on_pair(slots[k].a, slots[k].b);
         ++at;
@@ -90,15 +99,15 @@ void diff_range(const Slot* slots, std::size_t count, const std::vector<std::pai
         out.gone.push_back(static_cast<std::uint32_t>(k));
       }
       ++k;
-    } else {
-      on_pair(pairs[i].first, pairs[i].second);
-      if (k == count || less(pairs[i].first, pairs[i].second, slots[k].a, slots[k].b)) {
-        out.added.push_back({at, pairs[i].first, pairs[i].second});
-      } else {
-        ++k;
-      }
-      ++at, ++i;
+      continue;
     }
+    on_pair(pairs[i].first, pairs[i].second);
+    if (pair < slot) {
+      out.added.push_back({at, pairs[i].first, pairs[i].second});
+    } else {
+      ++k;
+    }
+    ++at, ++i;
   }
 }
 

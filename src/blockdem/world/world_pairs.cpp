@@ -51,13 +51,17 @@ bool World::find_pairs_by_range(int threads, const std::vector<char>& breakable,
   const auto take = [&](std::int64_t begin, std::int64_t, const auto& pairs) {
     const auto r = static_cast<std::size_t>(begin / size);
     const std::size_t lo = changes.slot_at[r], hi = changes.slot_at[r + 1];
-    // The joints before each new pair that no pair matched, then those after the last.
+    // The joints before each new pair that no pair matched, then those after the last (pairs
+    // and joints compared by their keys).
     std::size_t j = joint_at[r];
+    const std::size_t j_end = joint_at[r + 1];
+    std::uint64_t next = j < j_end ? pair_key(joints[j].a, joints[j].b) : kNoPair;
     const auto pass = [&](int a, int b) {
-      for (; j < joint_at[r + 1]; ++j) {
-        const std::pair<int, int> joint{joints[j].a, joints[j].b}, pair{a, b};
-        if (pair < joint) return;
-        if (joint < pair) missed_of[r].push_back(joint);
+      const std::uint64_t pair = pair_key(a, b);
+      while (next <= pair) {
+        if (next < pair) missed_of[r].emplace_back(joints[j].a, joints[j].b);
+        ++j;
+        next = j < j_end ? pair_key(joints[j].a, joints[j].b) : kNoPair;
       }
     };
     diff_range(slots_.data() + lo, hi - lo, pairs, keep, pass, changes.ranges[r]);
