@@ -272,9 +272,9 @@ class World {
   std::size_t candidate_pair_count() const { return slots_.size(); }
   /// How a one-process step's broad phase gave its pairs (world_pairs.cpp), counted per step:
   /// by ranges, none changed (the store stays); by ranges, the store merged from the ranges'
-  /// changes; by ranges, a list of every pair made after all (a prestressed joint the boxes
-  /// missed, a large shift); the threads' lists joined (the first step, a scene with a large
-  /// box, a distributed step).
+  /// changes; by ranges, a list of every pair made after all (a prestressed joint without a
+  /// slot that the boxes missed, a large shift); the threads' lists joined (the first step, a scene
+  /// with a large box, a distributed step).
   struct PairListCounts {
     std::int64_t unchanged = 0, changed = 0, listed = 0, joined = 0;
   };
@@ -480,8 +480,9 @@ class World {
   /// One process's broad phase in ranges of blocks, each range's pairs compared with its
   /// slots where they are found (world_pairs.cpp). Returns false, having done nothing, where
   /// there are no slots yet or the grid has a large box. Else `changes` holds each range's
-  /// change of the store (a slot holding an open bond keeps its pair: keep_open_bonds), and
-  /// `missed` the prestressed joints that no pair covers, sorted.
+  /// change of the store (a slot holding an open bond keeps its pair, as keep_open_bonds, and
+  /// so does a prestressed joint's slot), and `missed` the prestressed joints that neither a
+  /// pair nor a slot covers, sorted.
   bool find_pairs_by_range(int threads, const std::vector<char>& breakable, PairChanges& changes,
                            std::vector<std::pair<int, int>>& missed);
   /// pairs_: every pair of the store changed by `changes`, in order.

@@ -183,7 +183,8 @@ void World::find_step_pairs(StepScratch& s) {
   // One process: the pairs by ranges of blocks, each range compared with its slots as it is
   // found, and only the changes kept (world_pairs.cpp): no list of every pair is made.
   PairChanges changes;
-  std::vector<std::pair<int, int>> missed;  // prestressed joints the broad phase missed
+  // Prestressed joints that neither the broad phase nor a slot covers (a joint keeps its slot).
+  std::vector<std::pair<int, int>> missed;
   const bool by_range = !s.distributed && find_pairs_by_range(threads, breakable, changes, missed);
   if (by_range) {
     if (missed.empty()) {
@@ -197,7 +198,8 @@ void World::find_step_pairs(StepScratch& s) {
       }
       return;
     }
-    // A missed joint: the list after all (the ranges' pairs hold the open bonds' already).
+    // A missed joint without a slot: the list after all (the ranges' pairs hold the open bonds'
+    // and the other joints' already).
     ++pair_list_counts_.listed;
     list_changed_pairs(changes);
     merge_joints(missed);

@@ -46,15 +46,26 @@ bool World::find_pairs_by_range(int threads, const std::vector<char>& breakable,
         joints.begin());
   }
   std::vector<std::vector<std::pair<int, int>>> missed_of(ranges);
-  // A slot whose boxes parted keeps its pair while it holds an open bond (keep_open_bonds).
-  const auto keep = [&](const PairSlot& s) { return keeps_bond_pair(s, breakable); };
   const auto take = [&](std::int64_t begin, std::int64_t, const auto& pairs) {
     const auto r = static_cast<std::size_t>(begin / size);
     const std::size_t lo = changes.slot_at[r], hi = changes.slot_at[r + 1];
-    // The joints before each new pair that no pair matched, then those after the last (pairs
-    // and joints compared by their keys).
-    std::size_t j = joint_at[r];
     const std::size_t j_end = joint_at[r + 1];
+    // A slot whose boxes parted keeps its pair while it holds an open bond (keep_open_bonds),
+    // and a prestressed joint's slot keeps its pair always, as the joined list merges the
+    // joints in: its pair is then among the range's new run, not missed. The slots come in
+    // increasing order, so one cursor over the range's joints finds each.
+    std::size_t kept_joint = joint_at[r];
+    const auto keep = [&](const PairSlot& s) {
+      const std::uint64_t key = pair_key(s.a, s.b);
+      while (kept_joint < j_end && pair_key(joints[kept_joint].a, joints[kept_joint].b) < key)
+        ++kept_joint;
+      if (kept_joint < j_end && pair_key(joints[kept_joint].a, joints[kept_joint].b) == key)
+        return true;
+      return keeps_bond_pair(s, breakable);
+    };
+    // The joints before each new pair that no pair matched, then those after the last (pairs
+    // and joints compared by their keys): those without a slot.
+    std::size_t j = joint_at[r];
     std::uint64_t next = j < j_end ? pair_key(joints[j].a, joints[j].b) : kNoPair;
     const auto pass = [&](int a, int b) {
       const std::uint64_t pair = pair_key(a, b);
