@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -133,21 +134,22 @@ void for_each_changed_pair(const std::vector<Slot>& slots, const PairChanges& ch
   }
 }
 
-/// The store rearranged into the new pairs' order in place: each kept slot moved once, an added
-/// pair's slot fresh(a, b). The arrangement is the sorted merge's for any thread count: the
-/// store holds the new pairs sorted by (a, b). As merge_in_parallel (world_contacts.cpp), but
-/// the source of each place comes from the changes when it is needed instead of a list of
-/// them: each thread owns a range of new places, copies aside the slots it takes from outside
-/// it and, after a barrier, moves the slots of its places, those going down in increasing
-/// order, then those going up in decreasing order (both sorted runs: no slot is overwritten
-/// before it moves). Returns false, having changed nothing, if more than an eighth of the
-/// slots would be copied aside (the caller then merges a list serially).
-template <class Slot, class Fresh>
-bool merge_changes(std::vector<Slot>& slots, const PairChanges& changes, int threads,
-                   Fresh&& fresh) {
-  const std::vector<std::size_t> new_at = changes.new_at();
-  const std::size_t ranges = changes.range_count();
-  const std::size_t n_new = new_at[ranges];
+/// The store's slots moved into their new places in place, on `threads` threads, each kept slot
+/// moved once: the parallel part of the pair merge, whatever lists the new places. Each thread
+/// owns a range [begin, end) of the n_new new places; plan(begin, end) makes, on that thread
+/// and while the store is only read, its walk: an object whose visit(increasing, f) calls
+/// f(w, source, key) for each place w of the range in increasing or decreasing order (source:
+/// the old place of w's slot, or < 0 for a pair without a slot; key: what the walk's
+/// make(source, key) needs to make that pair's slot). The thread copies aside the slots it
+/// takes from outside its range and, after a barrier (no thread reads outside its range again),
+/// moves the slots of its range: those going down in increasing order, then those going up in
+/// decreasing order. As both the old and the new places are sorted by pair, a slot going down
+/// never lands where one going up still is, and the reverse, so no slot is overwritten before it
+/// moves. Returns false, having changed nothing, if more than an eighth of the slots would be
+/// copied aside (a large shift, as after a big rearrangement: the caller then merges serially,
+/// which needs no room for them).
+template <class Slot, class Plan>
+bool move_slots(std::vector<Slot>& slots, std::size_t n_new, int threads, Plan&& plan) {
   const auto runs = static_cast<std::size_t>(std::max(threads, 1));
   std::vector<std::size_t> aside_count(runs, 0);
   std::vector<std::vector<std::pair<std::size_t, Slot>>> aside(runs);
@@ -160,33 +162,10 @@ bool merge_changes(std::vector<Slot>& slots, const PairChanges& changes, int thr
     const auto inside = [&](std::int64_t k) {
       return k >= static_cast<std::int64_t>(begin) && k < static_cast<std::int64_t>(end);
     };
-    std::vector<std::int64_t> source;  // one range's, where it changed
-    // f(w, source, range) for the places w of [begin, end), in increasing or decreasing order.
-    const auto visit = [&](bool increasing, auto&& f) {
-      if (begin == end) return;
-      const std::size_t first = static_cast<std::size_t>(
-          std::upper_bound(new_at.begin(), new_at.end(), begin) - new_at.begin() - 1);
-      std::size_t last = first;
-      while (last + 1 < ranges && new_at[last + 1] < end) ++last;
-      for (std::size_t i = 0; i <= last - first; ++i) {
-        const std::size_t r = increasing ? first + i : last - i;
-        const std::size_t lo = std::max(begin, new_at[r]), hi = std::min(end, new_at[r + 1]);
-        const bool same = changes.ranges[r].none();
-        if (!same) changes.sources(r, source);
-        const auto source_of = [&](std::size_t w) {
-          return same ? static_cast<std::int64_t>(w - new_at[r] + changes.slot_at[r])
-                      : source[w - new_at[r]];
-        };
-        if (increasing) {
-          for (std::size_t w = lo; w < hi; ++w) f(w, source_of(w), r);
-        } else {
-          for (std::size_t w = hi; w-- > lo;) f(w, source_of(w), r);
-        }
-      }
-    };
+    auto walk = plan(begin, end);
     // 1. The slots this thread takes from outside its places (the store is only read).
     std::size_t outside = 0;
-    visit(true, [&](std::size_t, std::int64_t s, std::size_t) {
+    walk.visit(true, [&](std::size_t, std::int64_t s, std::size_t) {
       if (s >= 0 && !inside(s)) ++outside;
     });
     aside_count[t] = outside;
@@ -205,33 +184,94 @@ bool merge_changes(std::vector<Slot>& slots, const PairChanges& changes, int thr
     if (!too_many) {
       // 2. Those slots, aside.
       aside[t].reserve(aside_count[t]);
-      visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
+      walk.visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
         if (s >= 0 && !inside(s))
           aside[t].emplace_back(w, std::move(slots[static_cast<std::size_t>(s)]));
       });
 #pragma omp barrier
       // 3. Within the places: down in increasing order, then up in decreasing order.
-      visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
+      walk.visit(true, [&](std::size_t w, std::int64_t s, std::size_t) {
         if (inside(s) && static_cast<std::size_t>(s) > w)
           slots[w] = std::move(slots[static_cast<std::size_t>(s)]);
       });
-      visit(false, [&](std::size_t w, std::int64_t s, std::size_t) {
+      walk.visit(false, [&](std::size_t w, std::int64_t s, std::size_t) {
         if (inside(s) && static_cast<std::size_t>(s) < w)
           slots[w] = std::move(slots[static_cast<std::size_t>(s)]);
       });
-      // 4. The slots set aside, and the added pairs' slots.
+      // 4. The slots set aside, and the slots of the pairs that had none.
       for (auto& [place, slot] : aside[t]) slots[place] = std::move(slot);
       std::vector<std::pair<std::size_t, Slot>>().swap(aside[t]);
-      visit(true, [&](std::size_t w, std::int64_t s, std::size_t r) {
-        if (s >= 0) return;
-        const RangeChange::Added& p = changes.ranges[r].added[static_cast<std::size_t>(-1 - s)];
-        slots[w] = fresh(p.a, p.b);
+      walk.visit(true, [&](std::size_t w, std::int64_t s, std::size_t key) {
+        if (s < 0) slots[w] = walk.make(s, key);
       });
     }
   }
   if (too_many) return false;
   slots.resize(n_new);
   return true;
+}
+
+/// merge_changes's walk over one thread's new places, range by range: a range that did not
+/// change has its slots shifted, another its sources worked out from its changes when the walk
+/// reaches it (move_slots's plan).
+template <class Fresh>
+class ChangesWalk {
+ public:
+  ChangesWalk(const PairChanges& changes, const std::vector<std::size_t>& new_at, Fresh& fresh,
+              std::size_t begin, std::size_t end)
+      : changes_(changes), new_at_(new_at), fresh_(fresh), begin_(begin), end_(end) {}
+  template <class F>
+  void visit(bool increasing, F&& f) {
+    if (begin_ == end_) return;
+    const std::size_t ranges = changes_.range_count();
+    const std::size_t first = static_cast<std::size_t>(
+        std::upper_bound(new_at_.begin(), new_at_.end(), begin_) - new_at_.begin() - 1);
+    std::size_t last = first;
+    while (last + 1 < ranges && new_at_[last + 1] < end_) ++last;
+    for (std::size_t i = 0; i <= last - first; ++i) {
+      const std::size_t r = increasing ? first + i : last - i;
+      const std::size_t lo = std::max(begin_, new_at_[r]), hi = std::min(end_, new_at_[r + 1]);
+      const bool same = changes_.ranges[r].none();
+      if (!same) changes_.sources(r, source_);
+      const auto source_of = [&](std::size_t w) {
+        return same ? static_cast<std::int64_t>(w - new_at_[r] + changes_.slot_at[r])
+                    : source_[w - new_at_[r]];
+      };
+      if (increasing) {
+        for (std::size_t w = lo; w < hi; ++w) f(w, source_of(w), r);
+      } else {
+        for (std::size_t w = hi; w-- > lo;) f(w, source_of(w), r);
+      }
+    }
+  }
+  /// The slot of range r's added pair -1 - s.
+  auto make(std::int64_t s, std::size_t r) const {
+    const RangeChange::Added& p = changes_.ranges[r].added[static_cast<std::size_t>(-1 - s)];
+    return fresh_(p.a, p.b);
+  }
+
+ private:
+  const PairChanges& changes_;
+  const std::vector<std::size_t>& new_at_;
+  Fresh& fresh_;
+  std::size_t begin_, end_;
+  std::vector<std::int64_t> source_;  // one changed range's
+};
+
+/// The store rearranged into the new pairs' order in place (move_slots): each kept slot moved
+/// once, an added pair's slot fresh(a, b). The arrangement is the sorted merge's for any thread
+/// count: the store holds the new pairs sorted by (a, b). As merge_in_parallel
+/// (world_contacts.cpp), but the source of each place comes from the changes when it is needed
+/// instead of a list of them. Returns false, having changed nothing, if more than an eighth of
+/// the slots would be copied aside (the caller then merges a list serially).
+template <class Slot, class Fresh>
+bool merge_changes(std::vector<Slot>& slots, const PairChanges& changes, int threads,
+                   Fresh&& fresh) {
+  const std::vector<std::size_t> new_at = changes.new_at();
+  return move_slots(
+      slots, new_at[changes.range_count()], threads, [&](std::size_t begin, std::size_t end) {
+        return ChangesWalk<std::remove_reference_t<Fresh>>(changes, new_at, fresh, begin, end);
+      });
 }
 
 }  // namespace blockdem

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 #include "blockdem/response/contact_damping.hpp"
 #include "blockdem/world/pair_changes.hpp"
@@ -77,92 +78,57 @@ std::pair<std::int64_t, std::int64_t> count_open_and_moved(
 // The pair merge in parallel: the slots of `pairs` (sorted by (a, b), no repeats) take their
 // places in `slots` (sorted, the pairs of the last step), each kept slot moved once; a pair
 // that had no slot gets fresh(a, b). The arrangement is the serial merge's, for any thread
-// count. Each thread owns a range of new places. It finds where each place's slot is now (a
-// binary search for its first pair, then a merge walk), copies aside the slots it takes from
-// outside its range, and after a barrier (no thread reads outside its range again) moves the
-// slots of its range: those going down in increasing order, those going up in decreasing
-// order. As both lists are sorted, a slot going down never lands where one going up still is,
-// and the reverse, so no slot is overwritten before it is moved. Returns false, having changed
-// nothing, if more than an eighth of the slots would be copied aside (a large shift, as after
-// a big rearrangement: the serial merge needs no room for them). `Index` holds a place of the
-// old store and -1 (merge_in_parallel chooses the narrowest that does).
+// count (move_slots, pair_changes.hpp). Each thread finds where each of its places' slot is now
+// (a binary search for its first pair, then a merge walk) into a list of sources; `Index` holds
+// a place of the old store and -1 (merge_in_parallel chooses the narrowest that does). Returns
+// false, having changed nothing, after a large shift (the serial merge then).
+template <typename Index, typename Fresh>
+class ListWalk {
+ public:
+  ListWalk(const std::vector<Index>& source, const std::vector<std::pair<int, int>>& pairs,
+           Fresh& fresh, std::size_t begin, std::size_t end)
+      : source_(source), pairs_(pairs), fresh_(fresh), begin_(begin), end_(end) {}
+  template <class F>
+  void visit(bool increasing, F&& f) const {
+    if (increasing) {
+      for (std::size_t w = begin_; w < end_; ++w) f(w, std::int64_t{source_[w]}, w);
+    } else {
+      for (std::size_t w = end_; w-- > begin_;) f(w, std::int64_t{source_[w]}, w);
+    }
+  }
+  auto make(std::int64_t, std::size_t w) const { return fresh_(pairs_[w].first, pairs_[w].second); }
+
+ private:
+  const std::vector<Index>& source_;
+  const std::vector<std::pair<int, int>>& pairs_;
+  Fresh& fresh_;
+  std::size_t begin_, end_;
+};
+
 template <typename Index, typename Slot, typename Fresh>
 bool merge_in_parallel_as(std::vector<Slot>& slots, const std::vector<std::pair<int, int>>& pairs,
                           int threads, Fresh&& fresh) {
   const std::size_t n_old = slots.size(), n_new = pairs.size();
-  const auto runs = static_cast<std::size_t>(threads);
   std::vector<Index> source(n_new);  // where each place's slot is now (-1: a new pair)
-  std::vector<std::size_t> aside_count(runs, 0);
-  std::vector<std::vector<std::pair<std::size_t, Slot>>> aside(runs);
-  bool too_many = false;
   const auto slot_less = [](const Slot& s, const std::pair<int, int>& p) {
     return less_pair(s.a, s.b, p.first, p.second);
   };
-#pragma omp parallel num_threads(threads)
-  {
-    const auto t = static_cast<std::size_t>(team_rank());
-    const std::size_t team = static_cast<std::size_t>(team_size());
-    const std::size_t begin = t * n_new / team, end = (t + 1) * n_new / team;
-    const auto inside = [&](std::int64_t k) {
-      return k >= static_cast<std::int64_t>(begin) && k < static_cast<std::int64_t>(end);
-    };
-    // 1. The sources of the range's places (the slots are only read).
+  return move_slots(slots, n_new, threads, [&](std::size_t begin, std::size_t end) {
+    // The sources of the thread's places (the slots are only read).
     std::size_t k = n_old;
     if (begin < end) {
       k = static_cast<std::size_t>(
-          std::lower_bound(slots.begin(), slots.end(), pairs[begin], slot_less) - slots.begin());
+          std::lower_bound(slots.begin(), slots.begin() + static_cast<std::ptrdiff_t>(n_old),
+                           pairs[begin], slot_less) -
+          slots.begin());
     }
-    std::size_t outside = 0;
     for (std::size_t w = begin; w < end; ++w) {
       while (k < n_old && slot_less(slots[k], pairs[w])) ++k;
-      if (k < n_old && slots[k].a == pairs[w].first && slots[k].b == pairs[w].second) {
-        source[w] = static_cast<Index>(k++);
-        if (!inside(source[w])) ++outside;
-      } else {
-        source[w] = -1;
-      }
+      const bool kept = k < n_old && slots[k].a == pairs[w].first && slots[k].b == pairs[w].second;
+      source[w] = kept ? static_cast<Index>(k++) : Index{-1};
     }
-    aside_count[t] = outside;
-#pragma omp barrier
-#pragma omp single
-    {
-      std::size_t total = 0;
-      for (std::size_t c : aside_count) total += c;
-      too_many = total > n_new / 8;
-      // Room for every place (the slots past the old end are moved into or made fresh).
-      if (!too_many && n_new > n_old) {
-        if (n_new > slots.capacity()) slots.reserve(n_new + n_new / 8);
-        slots.resize(n_new);
-      }
-    }
-    if (!too_many) {
-      // 2. The slots taken from outside the range, aside.
-      aside[t].reserve(aside_count[t]);
-      for (std::size_t w = begin; w < end; ++w) {
-        if (source[w] >= 0 && !inside(source[w]))
-          aside[t].emplace_back(w, std::move(slots[static_cast<std::size_t>(source[w])]));
-      }
-#pragma omp barrier
-      // 3. Within the range: down in increasing order, then up in decreasing order.
-      for (std::size_t w = begin; w < end; ++w) {
-        if (inside(source[w]) && static_cast<std::size_t>(source[w]) > w)
-          slots[w] = std::move(slots[static_cast<std::size_t>(source[w])]);
-      }
-      for (std::size_t w = end; w-- > begin;) {
-        if (inside(source[w]) && static_cast<std::size_t>(source[w]) < w)
-          slots[w] = std::move(slots[static_cast<std::size_t>(source[w])]);
-      }
-      // 4. The slots set aside, and the new pairs' slots.
-      for (auto& [place, slot] : aside[t]) slots[place] = std::move(slot);
-      std::vector<std::pair<std::size_t, Slot>>().swap(aside[t]);
-      for (std::size_t w = begin; w < end; ++w) {
-        if (source[w] < 0) slots[w] = fresh(pairs[w].first, pairs[w].second);
-      }
-    }
-  }
-  if (too_many) return false;
-  slots.resize(n_new);
-  return true;
+    return ListWalk<Index, std::remove_reference_t<Fresh>>(source, pairs, fresh, begin, end);
+  });
 }
 
 // The merge's list of sources in 4 bytes a place where the old store's places fit (at the step's
