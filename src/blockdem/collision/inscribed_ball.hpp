@@ -54,7 +54,9 @@ InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes);
 /// feasible. Otherwise the primal active-set method restarts from `previous.center` (`restarted`).
 /// Any `previous` is safe (an unrelated one only costs time). The optimum radius is the same as a
 /// cold solve gives (to round-off, within 1e-13 of the planes' extent); the centre may differ where
-/// it is not unique.
+/// it is not unique. As a check of that, a warm result whose radius is below the previous centre's
+/// (a feasible point's radius, so a lower bound of the optimum) by more than 1e-10 of the planes'
+/// offsets is replaced by the cold solve (`restarted`).
 InscribedBall largest_inscribed_ball(std::span<const Halfspace> planes,
                                      const InscribedBall& previous);
 

@@ -520,5 +520,46 @@ TEST(InscribedBall, WarmStartFromUnrelatedSolutionIsSafe) {
   EXPECT_NEAR(largest_inscribed_ball(pair, InscribedBall{}).radius, cold.radius, 1e-13);
 }
 
+// A pressed joint of the settled million-block rock mass (bench/README.md, "The in-situ scene's
+// store kept in place"), recorded at the step where the warm start went wrong: block A (6 planes,
+// its J3 face moved out by the in-situ closure, a tunnel outline facet) and block B (6 planes),
+// whose J1 and J2 faces are coplanar with A's and whose J3 faces overlap by 0.24 mm over 1 m².
+// Every plane comes in a parallel or coplanar pair: a degenerate vertex. Warm-started from the
+// previous step's vertex, the solver ended at r = -1.89 m (the joint taken for open, its shear
+// history forgotten) where the optimum is +0.12 mm. Oracle: CLP; the warm result must match it.
+TEST(InscribedBall, WarmStartAtAPressedJointsDegenerateVertexKeepsTheOptimum) {
+  const auto plane = [](double x, double y, double z, double d) {
+    Halfspace h;
+    h.normal = Eigen::Vector3d(x, y, z);
+    h.offset = d;
+    return h;
+  };
+  const Planes pair = {
+      plane(-0.17101007166264021, -0.96984631039300273, -0.17364817766685159, -108.48636668708747),
+      plane(0.17101007166264021, 0.96984631039300273, 0.17364817766685159, 109.48636668708747),
+      plane(-0.95125124256433358, 0.16773125949626494, -0.25881904510218778, -40.635826807195102),
+      plane(0.95125124256433358, -0.16773125949626494, 0.25881904510218778, 41.635826807195102),
+      plane(-0.13302222155911167, -0.11161889704896596, 0.9848077530122572, 40.170478761030232),
+      plane(0.5555702330193083, 1.3061079995324576e-13, -0.83146961230274163, -22.918339936913558),
+      plane(-0.17101007168868493, -0.96984631039229019, -0.17364817764518126, -108.48636668691594),
+      plane(0.17101007168868493, 0.96984631039229019, 0.17364817764518126, 109.48636668691594),
+      plane(-0.95125124256197013, 0.16773125951510331, -0.25881904509866732, -40.63582680511167),
+      plane(0.95125124256197013, -0.16773125951510331, 0.25881904509866732, 41.63582680511167),
+      plane(0.13302222155466298, 0.11161889702485228, -0.98480775301559165, -40.170238328591793),
+      plane(-0.13302222155466298, -0.11161889702485228, 0.98480775301559165, 41.170238328591793)};
+  InscribedBall previous;
+  previous.radius = 0.00012021755573243809;
+  previous.center = Eigen::Vector3d(43.813422338752531, 94.876502316897174, 57.461497118061715);
+  previous.active = {10, 8, 4, 7};
+  previous.num_active = 4;
+  const InscribedBall clp = oracle::clp_inscribed_ball(pair);
+  ASSERT_TRUE(clp.bounded);
+  EXPECT_NEAR(clp.radius, 1.2e-4, 1e-6);  // half the 0.24 mm overlap
+  const InscribedBall warm = largest_inscribed_ball(pair, previous);
+  EXPECT_NEAR(warm.radius, clp.radius, 1e-9);
+  EXPECT_NEAR(largest_inscribed_ball(pair).radius, clp.radius, 1e-9);
+  EXPECT_GE(min_slack(pair, warm.center), warm.radius - 1e-9);
+}
+
 }  // namespace
 }  // namespace blockdem
