@@ -62,6 +62,11 @@ void read_settings(const CheckedTable& t, WorldSettings& s, bool& allow_initial_
   if (t.has("twist")) s.twist = t.boolean("twist", s.twist_enabled());
   s.max_speed = t.positive("max_speed", s.max_speed);
   s.max_overlap_fraction = t.positive("max_overlap_fraction", s.max_overlap_fraction);
+  // A divergence checkpoint larger than this (MiB) is kept in a scratch file; 0: always.
+  const double checkpoint_mib = t.positive(
+      "checkpoint_memory_mib", static_cast<double>(s.checkpoint_memory_limit) / 1048576.0, true);
+  if (checkpoint_mib > 1e9) t.fail("checkpoint_memory_mib", "must be at most 1e9 (MiB)");
+  s.checkpoint_memory_limit = static_cast<std::size_t>(checkpoint_mib * 1048576.0);
   allow_initial_overlap = t.choice("initial_overlap", "refuse", {"refuse", "allow"}) == "allow";
   // Ground water from the start (a stage may set another table or make the model dry).
   s.water = read_water(t, false).water;

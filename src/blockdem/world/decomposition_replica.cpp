@@ -105,6 +105,7 @@ void Decomposition::save_checkpoint_part(World& world) {
   world.checkpoint_.energy = world.energy_;
   world.checkpoint_.valid = true;
   world.checkpoint_.partial = true;
+  world.checkpoint_.file.reset();  // a part is kept in memory
 }
 
 std::vector<char> Decomposition::checkpoint_part(World& world) {

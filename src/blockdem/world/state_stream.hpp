@@ -55,6 +55,11 @@ class StateWriter {
     if (sink_ && bytes_.size() >= chunk_) flush();
   }
   void size(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
+  /// Appends bytes another StateWriter wrote (a section kept apart), as they are.
+  void raw(std::string_view b) {
+    bytes_.insert(bytes_.end(), b.begin(), b.end());
+    if (sink_ && bytes_.size() >= chunk_) flush();
+  }
 
   /// With a sink: hands the bytes held on to it (none are held after). Without: nothing.
   void flush() {

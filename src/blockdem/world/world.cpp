@@ -461,16 +461,6 @@ EquilibriumMeasures World::equilibrium() const {
 
 void World::save_checkpoint() {
   decomposition_.require_replica("save_checkpoint");
-  checkpoint_.blocks.resize(blocks_.size());
-  checkpoint_.motions.resize(blocks_.size());
-  checkpoint_.servos.clear();
-  for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    const Block& b = blocks_[i];
-    checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
-                             b.orientation};
-    checkpoint_.motions[i] = b.motion;
-    if (!same_bits(b.servo(), Servo{})) checkpoint_.servos.emplace_back(i, b.servo());
-  }
   // Every slot that a fresh one would not reproduce: contacts, contacts with a history, and
   // candidate pairs whose bond is intact or broken (a pair that reappears later is unbonded).
   // Counted first and reserved exactly: near pairs with an intact bond count too, and a vector
@@ -482,18 +472,50 @@ void World::save_checkpoint() {
     if (!checkpoint_history(s)) continue;
     (s.contact < 0 ? bond_only : with_state) += 1;
   }
-  std::vector<ContactHistory>().swap(checkpoint_.contacts);
-  std::vector<BondHistory>().swap(checkpoint_.bonds);
-  checkpoint_.contacts.reserve(with_state);
-  checkpoint_.bonds.reserve(bond_only);
-  for (const auto& s : slots_) keep_slot(s, checkpoint_.contacts, checkpoint_.bonds);
+  const std::size_t bytes = blocks_.size() * (sizeof(BlockState) + sizeof(Motion)) +
+                            with_state * sizeof(ContactHistory) + bond_only * sizeof(BondHistory);
+  if (bytes > settings_.checkpoint_memory_limit) {
+    // A large checkpoint (a million-block rock mass's takes 0.7 GB) goes to a scratch file,
+    // written from the world as save_divergence_checkpoint would write it: read back only to
+    // roll back or to write a restart file. The last checkpoint stays until this one is written.
+    auto file = SpillFile::write(
+        [&](StateWriter& w) { write_checkpoint_of_world(w, with_state + bond_only); });
+    checkpoint_.release_records();
+    checkpoint_.file = std::move(file);
+  } else {
+    checkpoint_.file.reset();
+    checkpoint_.blocks.resize(blocks_.size());
+    checkpoint_.motions.resize(blocks_.size());
+    checkpoint_.servos.clear();
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      const Block& b = blocks_[i];
+      checkpoint_.blocks[i] = {b.position, b.velocity, b.angular_velocity, b.angular_momentum,
+                               b.orientation};
+      checkpoint_.motions[i] = b.motion;
+      if (!same_bits(b.servo(), Servo{})) checkpoint_.servos.emplace_back(i, b.servo());
+    }
+    std::vector<ContactHistory>().swap(checkpoint_.contacts);
+    std::vector<BondHistory>().swap(checkpoint_.bonds);
+    checkpoint_.contacts.reserve(with_state);
+    checkpoint_.bonds.reserve(bond_only);
+    for (const auto& s : slots_) keep_slot(s, checkpoint_.contacts, checkpoint_.bonds);
+    checkpoint_.energy = energy_;
+  }
   checkpoint_.time = time_;
   checkpoint_.step_count = step_count_;
   checkpoint_.broken_bonds = broken_bonds_;
   checkpoint_.broken_by_set = broken_by_set_;
   checkpoint_.bolts = bolts_;
-  checkpoint_.energy = energy_;
   checkpoint_.valid = true;
+}
+
+void World::Checkpoint::release_records() {
+  std::vector<BlockState>().swap(blocks);
+  std::vector<Motion>().swap(motions);
+  std::vector<std::pair<std::size_t, Servo>>().swap(servos);
+  std::vector<ContactHistory>().swap(contacts);
+  std::vector<BondHistory>().swap(bonds);
+  energy = EnergyLedger{};
 }
 
 std::optional<World::ContactHistory> World::checkpoint_history(const PairSlot& s) const {
@@ -560,6 +582,17 @@ std::optional<World::BondHistory> World::BondHistory::of(const ContactHistory& h
 
 void World::restore_checkpoint() {
   if (!checkpoint_.valid) return;
+  // A checkpoint in a file is read back for the restore (the store, replaced below, let go
+  // first), then left there again.
+  const std::shared_ptr<const SpillFile> file = checkpoint_.file;
+  if (file) {
+    std::vector<PairSlot>().swap(slots_);
+    std::vector<Contact>().swap(contacts_);
+    file->read([&](StateReader& r) {
+      load_divergence_checkpoint(r);
+      checkpoint_.energy.load_state(r, settings_.contact_damping > 0.0);
+    });
+  }
   std::size_t servo = 0;  // the next of checkpoint_.servos
   for (std::size_t i = 0; i < blocks_.size() && i < checkpoint_.blocks.size(); ++i) {
     Block& b = blocks_[i];
@@ -615,7 +648,13 @@ void World::restore_checkpoint() {
   broken_bonds_ = checkpoint_.broken_bonds;
   broken_by_set_ = checkpoint_.broken_by_set;
   bolts_ = checkpoint_.bolts;
-  energy_ = checkpoint_.energy;
+  if (file) {
+    energy_ = std::move(checkpoint_.energy);
+    checkpoint_.release_records();
+    checkpoint_.file = file;
+  } else {
+    energy_ = checkpoint_.energy;
+  }
   // The checkpoint is whole on every process: so is the world now.
   decomposition_.reset_whole();
 }

@@ -32,6 +32,7 @@
 #include "blockdem/world/decomposition.hpp"
 #include "blockdem/world/distribution.hpp"
 #include "blockdem/world/energy_budget.hpp"
+#include "blockdem/world/spill_file.hpp"
 #include "blockdem/world/state_stream.hpp"
 #include "blockdem/world/step_scratch.hpp"
 
@@ -126,6 +127,9 @@ struct WorldSettings {
   double max_speed = 100.0;
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).
   double max_overlap_fraction = 0.25;
+  /// A divergence checkpoint larger than this (bytes) is kept in a scratch file in $TMPDIR
+  /// (else /tmp) instead of memory (World::checkpoint_in_file); 0: always in a file.
+  std::size_t checkpoint_memory_limit = std::size_t{256} << 20;
   /// Scene origin in the user's coordinates (m): block positions inside the world are relative
   /// to it (full precision at map coordinates); outputs add it back.
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
@@ -357,8 +361,16 @@ class World {
   /// Saves / restores the block states and contact histories (the "last good state"). The
   /// snapshot is compact: block states and, per contact, its pair and shear history; a restore
   /// re-derives the contacts' geometry and normal forces at the restored pose.
+  /// One larger than settings().checkpoint_memory_limit goes to a scratch file (SpillFile) and
+  /// is read back from it to restore or to write a restart file; throws std::runtime_error (the
+  /// folder and the reason) if that file cannot be written, the last checkpoint kept.
   void save_checkpoint();
   void restore_checkpoint();
+  /// Whether the last checkpoint is kept in a scratch file, and its size there (bytes; 0: in
+  /// memory).
+  std::size_t checkpoint_file_bytes() const {
+    return checkpoint_.file ? checkpoint_.file->size() : 0;
+  }
 
   /// The complete dynamic state (block states, every pair slot with its history and warm
   /// start, counters, the divergence checkpoint) as bytes, for restart files (world_state.cpp).
@@ -748,6 +760,12 @@ class World {
     std::vector<int> part_blocks;
     std::vector<double> part_resting;  ///< the resting blocks' loads' terms (gather_checkpoint)
     bool partial = false;
+    /// Set: the blocks, kept slots and energy are not in the vectors above (left empty) but in
+    /// this file, in save_divergence_checkpoint's layout (a checkpoint larger than
+    /// settings().checkpoint_memory_limit). The header fields, bolts and broken_by_set stay here.
+    std::shared_ptr<const SpillFile> file;
+    /// Empties the vectors that a checkpoint in a file leaves empty, giving back their memory.
+    void release_records();
   } checkpoint_;
   /// Appends checkpoint_history(s), if any, to the list it belongs in.
   void keep_slot(const PairSlot& s, std::vector<ContactHistory>& contacts,
@@ -760,6 +778,9 @@ class World {
   void save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const;
   void save_counters(StateWriter& w, std::int64_t overlap_violation) const;
   void save_divergence_checkpoint(StateWriter& w) const;
+  /// What save_divergence_checkpoint writes for a checkpoint save_checkpoint would take now, from
+  /// the world itself (`kept`: the slots checkpoint_history keeps), for a checkpoint in a file.
+  void write_checkpoint_of_world(StateWriter& w, std::size_t kept) const;
   // load_state's sections, in the order save_state writes them (world_state.cpp).
   void load_blocks(StateReader& r);
   void load_counters(StateReader& r);

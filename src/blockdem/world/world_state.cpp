@@ -28,6 +28,35 @@ std::vector<double> read_doubles(StateReader& r) {
   return v;
 }
 
+struct CheckpointHead {
+  bool valid;
+  double time;
+  std::int64_t step_count, broken_bonds;
+};
+
+// The divergence checkpoint's layout (restart files, and a checkpoint kept in a scratch file):
+// its header, each block's record, the kept slots' histories in (a, b) order, the energy ledger.
+// `each_block(record)` calls record(state, motion, servo) for every block in order, `each_kept`
+// record(history) for every kept slot: a checkpoint in memory and the world itself give the same
+// bytes.
+template <class EachBlock, class EachKept>
+void write_checkpoint_section(StateWriter& w, const CheckpointHead& head, std::size_t blocks,
+                              EachBlock each_block, std::size_t kept, EachKept each_kept,
+                              const EnergyLedger& energy, bool dashpots) {
+  Saver ar(w);
+  w.pod(static_cast<std::uint8_t>(head.valid));
+  w.pod(head.time);
+  w.pod(head.step_count);
+  w.pod(head.broken_bonds);
+  w.size(blocks);
+  each_block([&](const auto& state, const Motion& motion, const Servo& servo) {
+    checkpoint_block_record(ar, state, motion, servo);
+  });
+  w.size(kept);
+  each_kept([&](const auto& history) { history_record(ar, history); });
+  energy.save_state(w, dashpots);
+}
+
 }  // namespace
 
 void World::save_state(StateWriter& w) const {
@@ -101,22 +130,37 @@ void World::save_slot(StateWriter& w, const PairSlot& s, const Contact* contact)
 
 void World::save_divergence_checkpoint(StateWriter& w) const {
   // The divergence checkpoint, so that a blow-up after a restart rolls back to the same state.
-  Saver ar(w);
-  w.pod(static_cast<std::uint8_t>(checkpoint_.valid));
-  w.pod(checkpoint_.time);
-  w.pod(checkpoint_.step_count);
-  w.pod(checkpoint_.broken_bonds);
-  w.size(checkpoint_.blocks.size());
-  std::size_t servo = 0;  // the next of checkpoint_.servos (the others are Servo{})
-  for (std::size_t i = 0; i < checkpoint_.blocks.size(); ++i) {
-    const auto& servos = checkpoint_.servos;
-    const Servo& s =
-        servo < servos.size() && servos[servo].first == i ? servos[servo++].second : Servo{};
-    checkpoint_block_record(ar, checkpoint_.blocks[i], checkpoint_.motions[i], s);
+  if (checkpoint_.file) {
+    checkpoint_.file->copy_to(w);  // written in this layout by write_checkpoint_of_world
+    return;
   }
-  w.size(checkpoint_.kept_slots());
-  checkpoint_.for_each_kept_slot([&](const ContactHistory& h) { history_record(ar, h); });
-  checkpoint_.energy.save_state(w, settings_.contact_damping > 0.0);
+  const Checkpoint& cp = checkpoint_;
+  write_checkpoint_section(
+      w, {cp.valid, cp.time, cp.step_count, cp.broken_bonds}, cp.blocks.size(),
+      [&](const auto& record) {
+        std::size_t servo = 0;  // the next of cp.servos (the others are Servo{})
+        for (std::size_t i = 0; i < cp.blocks.size(); ++i) {
+          const bool listed = servo < cp.servos.size() && cp.servos[servo].first == i;
+          record(cp.blocks[i], cp.motions[i], listed ? cp.servos[servo++].second : Servo{});
+        }
+      },
+      cp.kept_slots(), [&](const auto& record) { cp.for_each_kept_slot(record); }, cp.energy,
+      settings_.contact_damping > 0.0);
+}
+
+void World::write_checkpoint_of_world(StateWriter& w, std::size_t kept) const {
+  write_checkpoint_section(
+      w, {true, time_, step_count_, broken_bonds_}, blocks_.size(),
+      [&](const auto& record) {
+        for (const Block& b : blocks_) record(b, b.motion, b.servo());
+      },
+      kept,
+      [&](const auto& record) {
+        for (const PairSlot& s : slots_) {
+          if (const auto h = checkpoint_history(s)) record(*h);
+        }
+      },
+      energy_, settings_.contact_damping > 0.0);
 }
 
 void World::load_state(StateReader& r) {
@@ -279,6 +323,7 @@ void World::load_divergence_checkpoint(StateReader& r) {
   };
   checkpoint_.valid = r.pod<std::uint8_t>() != 0;
   checkpoint_.partial = false;  // a restart file holds the whole checkpoint
+  checkpoint_.file.reset();     // and is read into memory
   std::vector<int>().swap(checkpoint_.part_blocks);
   r.pod(checkpoint_.time);
   r.pod(checkpoint_.step_count);

@@ -4,6 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -193,6 +196,84 @@ TEST(WorldState, ADivergenceCheckpointOfNearBondedPairsComesBackWhole) {
     restarted.step();
   }
   EXPECT_EQ(saved(restarted), saved(w));
+}
+
+// A checkpoint larger than settings().checkpoint_memory_limit is kept in a scratch file (here
+// every one: the limit 0). Oracle: the same world with its checkpoints in memory: the saved state
+// (which holds the checkpoint) after the checkpoint is taken, after both return to it, and after
+// the checkpoint of step 200; a copy of the world shares the file and keeps it when its own next
+// checkpoint goes to a file of its own. Tolerance: none (byte for byte).
+TEST(WorldState, ACheckpointKeptInAFileIsTheCheckpointKeptInMemory) {
+  World memory = near_cubes(1);
+  World filed = near_cubes(1);
+  filed.settings().checkpoint_memory_limit = 0;
+  for (int k = 0; k < 20; ++k) {
+    memory.step();
+    filed.step();
+  }
+  memory.save_checkpoint();
+  filed.save_checkpoint();
+  EXPECT_EQ(memory.checkpoint_file_bytes(), 0u);
+  ASSERT_GT(filed.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(saved(filed), saved(memory));
+  World copy = filed;
+  for (int k = 0; k < 30; ++k) {
+    for (World* x : {&memory, &filed, &copy}) x->step();
+  }
+  copy.save_checkpoint();  // step 50, in a new file
+  for (World* x : {&memory, &filed}) {
+    x->restore_checkpoint();
+    EXPECT_EQ(x->step_count(), 20);
+  }
+  EXPECT_EQ(saved(filed), saved(memory));
+  EXPECT_GT(filed.checkpoint_file_bytes(), 0u);  // left in its file after the restore
+  copy.restore_checkpoint();
+  EXPECT_EQ(copy.step_count(), 50);
+  for (int k = 0; k < 200; ++k) {
+    memory.step();
+    filed.step();
+  }
+  ASSERT_GT(filed.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(saved(filed), saved(memory));  // the checkpoint of step 200 in both
+  // A restart reads the checkpoint into memory; its next one goes to a file again.
+  World restarted = near_cubes(1);
+  restarted.settings().checkpoint_memory_limit = 0;
+  load(restarted, saved(filed));
+  EXPECT_EQ(restarted.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(saved(restarted), saved(filed));
+  restarted.save_checkpoint();
+  memory.save_checkpoint();
+  EXPECT_GT(restarted.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(saved(restarted), saved(memory));
+}
+
+// A checkpoint file that cannot be made stops with the folder and the reason, and the last
+// checkpoint is kept: the world returns to it. Oracle: the step it was taken at.
+TEST(WorldState, ACheckpointFileThatCannotBeMadeIsAnErrorAndTheLastOneStays) {
+  World w = near_cubes(1);
+  w.settings().checkpoint_memory_limit = 0;
+  for (int k = 0; k < 20; ++k) w.step();
+  w.save_checkpoint();
+  const char* old = std::getenv("TMPDIR");
+  const std::string kept = old ? old : "";
+  ::setenv("TMPDIR", "/nonexistent-blockdem-folder", 1);
+  for (int k = 0; k < 10; ++k) w.step();
+  try {
+    w.save_checkpoint();
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-blockdem-folder"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("No such file or directory"), std::string::npos)
+        << e.what();
+  }
+  if (old) {
+    ::setenv("TMPDIR", kept.c_str(), 1);
+  } else {
+    ::unsetenv("TMPDIR");
+  }
+  w.restore_checkpoint();
+  EXPECT_EQ(w.step_count(), 20);
 }
 
 TEST(WorldState, RemovedBlocksAreRemovedAgainByName) {
