@@ -145,6 +145,12 @@ class EnergyLedger {
     return {budget_.water_work, budget_.seismic_work, water_pending_, seismic_pending_};
   }
   std::size_t records() const { return previous_.size(); }
+  /// The bytes its per-block records take (what a copy of the ledger holds).
+  std::size_t record_bytes() const {
+    return previous_.size() * sizeof(Previous) + loads_.size() * sizeof(loads_[0]) + free_.size() +
+           dormant_.size() * sizeof(Impulses) +
+           (level_velocity_.size() + level_angular_velocity_.size()) * sizeof(Eigen::Vector3d);
+  }
 
   const EnergyBudget& budget() const { return budget_; }
   /// The whole ledger (budget, previous step, level velocities), for a bit-identical restart;

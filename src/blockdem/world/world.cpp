@@ -473,7 +473,8 @@ void World::save_checkpoint() {
     (s.contact < 0 ? bond_only : with_state) += 1;
   }
   const std::size_t bytes = blocks_.size() * (sizeof(BlockState) + sizeof(Motion)) +
-                            with_state * sizeof(ContactHistory) + bond_only * sizeof(BondHistory);
+                            with_state * sizeof(ContactHistory) + bond_only * sizeof(BondHistory) +
+                            energy_.record_bytes();
   if (bytes > settings_.checkpoint_memory_limit) {
     // A large checkpoint (a million-block rock mass's takes 0.7 GB) goes to a scratch file,
     // written from the world as save_divergence_checkpoint would write it: read back only to
