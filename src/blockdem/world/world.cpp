@@ -472,10 +472,8 @@ void World::save_checkpoint() {
     if (!checkpoint_history(s)) continue;
     (s.contact < 0 ? bond_only : with_state) += 1;
   }
-  const std::size_t bytes = blocks_.size() * (sizeof(BlockState) + sizeof(Motion)) +
-                            with_state * sizeof(ContactHistory) + bond_only * sizeof(BondHistory) +
-                            energy_.record_bytes();
-  if (bytes > settings_.checkpoint_memory_limit) {
+  if (checkpoint_bytes(blocks_.size(), with_state, bond_only, energy_) >
+      settings_.checkpoint_memory_limit) {
     // A large checkpoint (a million-block rock mass's takes 0.7 GB) goes to a scratch file,
     // written from the world as save_divergence_checkpoint would write it: read back only to
     // roll back or to write a restart file. The last checkpoint stays until this one is written.
@@ -508,6 +506,22 @@ void World::save_checkpoint() {
   checkpoint_.broken_by_set = broken_by_set_;
   checkpoint_.bolts = bolts_;
   checkpoint_.valid = true;
+}
+
+std::size_t World::checkpoint_bytes(std::size_t blocks, std::size_t with_state,
+                                    std::size_t bond_only, const EnergyLedger& energy) {
+  return blocks * (sizeof(BlockState) + sizeof(Motion)) + with_state * sizeof(ContactHistory) +
+         bond_only * sizeof(BondHistory) + energy.record_bytes();
+}
+
+void World::spill_loaded_checkpoint() {
+  Checkpoint& cp = checkpoint_;
+  if (cp.file || checkpoint_bytes(cp.blocks.size(), cp.contacts.size(), cp.bonds.size(),
+                                  cp.energy) <= settings_.checkpoint_memory_limit)
+    return;
+  auto file = SpillFile::write([&](StateWriter& w) { save_divergence_checkpoint(w); });
+  cp.release_records();
+  cp.file = std::move(file);
 }
 
 void World::Checkpoint::release_records() {

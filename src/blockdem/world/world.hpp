@@ -778,6 +778,13 @@ class World {
   void save_slot(StateWriter& w, const PairSlot& s, const Contact* contact) const;
   void save_counters(StateWriter& w, std::int64_t overlap_violation) const;
   void save_divergence_checkpoint(StateWriter& w) const;
+  /// What a checkpoint of these records takes in memory (bytes), to weigh against
+  /// settings_.checkpoint_memory_limit.
+  static std::size_t checkpoint_bytes(std::size_t blocks, std::size_t with_state,
+                                      std::size_t bond_only, const EnergyLedger& energy);
+  /// A checkpoint read into memory (a restart file's) larger than the limit: to its file, as
+  /// save_checkpoint would have kept it.
+  void spill_loaded_checkpoint();
   /// What save_divergence_checkpoint writes for a checkpoint save_checkpoint would take now, from
   /// the world itself (`kept`: the slots checkpoint_history keeps), for a checkpoint in a file.
   void write_checkpoint_of_world(StateWriter& w, std::size_t kept) const;

@@ -178,6 +178,7 @@ void World::load_state(StateReader& r) {
   checkpoint_.bolts = load_bolts(r, blocks_.size());
   load_divergence_checkpoint(r);
   checkpoint_.energy.load_state(r, settings_.contact_damping > 0.0);
+  spill_loaded_checkpoint();
   dashpot_restored_ = ExactSum{};
   if (settings_.contact_damping > 0.0) {
     std::array<std::int64_t, ExactSum::kLimbs> limbs{};

@@ -235,12 +235,17 @@ TEST(WorldState, ACheckpointKeptInAFileIsTheCheckpointKeptInMemory) {
   }
   ASSERT_GT(filed.checkpoint_file_bytes(), 0u);
   EXPECT_EQ(saved(filed), saved(memory));  // the checkpoint of step 200 in both
-  // A restart reads the checkpoint into memory; its next one goes to a file again.
+  // A restart's checkpoint goes to a file too, and so does its next one. With the default limit
+  // it stays in memory.
   World restarted = near_cubes(1);
   restarted.settings().checkpoint_memory_limit = 0;
   load(restarted, saved(filed));
-  EXPECT_EQ(restarted.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(restarted.checkpoint_file_bytes(), filed.checkpoint_file_bytes());
   EXPECT_EQ(saved(restarted), saved(filed));
+  World in_memory = near_cubes(1);
+  load(in_memory, saved(filed));
+  EXPECT_EQ(in_memory.checkpoint_file_bytes(), 0u);
+  EXPECT_EQ(saved(in_memory), saved(filed));
   restarted.save_checkpoint();
   memory.save_checkpoint();
   EXPECT_GT(restarted.checkpoint_file_bytes(), 0u);
