@@ -474,8 +474,8 @@ void World::save_checkpoint() {
   }
   if (checkpoint_bytes(blocks_.size(), with_state, bond_only, energy_) >
       settings_.checkpoint_memory_limit) {
-    // A large checkpoint (a million-block rock mass's takes 0.7 GB) goes to a scratch file,
-    // written from the world as save_divergence_checkpoint would write it: read back only to
+    // A large checkpoint (a million-block rock mass's held 0.7 GB of memory) goes to a scratch
+    // file, written from the world as save_divergence_checkpoint would write it: read back only to
     // roll back or to write a restart file. The last checkpoint stays until this one is written.
     auto file = SpillFile::write(
         [&](StateWriter& w) { write_checkpoint_of_world(w, with_state + bond_only); });
