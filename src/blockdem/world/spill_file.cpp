@@ -15,9 +15,13 @@
 namespace blockdem {
 namespace {
 
+// $TMPDIR, else /var/tmp, else /tmp: /var/tmp is on disk where /tmp may be a tmpfs (Debian 13's
+// default), whose files take memory, which the file is there to save.
 std::string scratch_folder() {
   const char* dir = std::getenv("TMPDIR");
-  return dir && *dir ? std::string(dir) : std::string("/tmp");
+  if (dir && *dir) return dir;
+  if (::access("/var/tmp", W_OK | X_OK) == 0) return "/var/tmp";
+  return "/tmp";
 }
 
 [[noreturn]] void fail(const std::string& folder, const std::string& what, int err) {

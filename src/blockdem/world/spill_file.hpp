@@ -11,9 +11,9 @@
 
 namespace blockdem {
 
-/// An unnamed file in $TMPDIR (else /tmp): made and unlinked at once, so that its space is given
-/// back when the last owner lets it go, or when the process ends however it ends. Shared between
-/// copies of a world (a stability search's trials): it never changes once written.
+/// An unnamed file in $TMPDIR (else /var/tmp, else /tmp): made and unlinked at once, so that its
+/// space is given back when the last owner lets it go, or when the process ends however it ends.
+/// Shared between copies of a world (a stability search's trials): it never changes once written.
 class SpillFile {
  public:
   /// A new file holding what `fill` writes to the StateWriter it is given. Throws
