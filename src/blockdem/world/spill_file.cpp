@@ -5,11 +5,13 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
-#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace blockdem {
@@ -24,11 +26,14 @@ std::string scratch_folder() {
   return "/tmp";
 }
 
+// A filesystem_error: the system's refusal (a full disk, a folder that is not there), which the
+// program reports as such (exit code 4), not as a defect.
 [[noreturn]] void fail(const std::string& folder, const std::string& what, int err) {
-  throw std::runtime_error("cannot " + what + " the divergence checkpoint's scratch file in " +
-                           folder + ": " + std::strerror(err) +
-                           " (set TMPDIR to a folder with room, or raise checkpoint_memory_mib "
-                           "to keep the checkpoint in memory)");
+  throw std::filesystem::filesystem_error(
+      "cannot " + what + " the divergence checkpoint's scratch file in " + folder +
+          " (set TMPDIR to a folder with room, or raise checkpoint_memory_mib to keep the "
+          "checkpoint in memory)",
+      std::filesystem::path(folder), std::error_code(err, std::generic_category()));
 }
 
 }  // namespace

@@ -17,8 +17,8 @@ namespace blockdem {
 class SpillFile {
  public:
   /// A new file holding what `fill` writes to the StateWriter it is given. Throws
-  /// std::runtime_error naming the folder and the reason if the file cannot be made or written
-  /// (nothing is left behind).
+  /// std::filesystem::filesystem_error naming the folder and the reason if the file cannot be
+  /// made or written (nothing is left behind).
   static std::shared_ptr<const SpillFile> write(const std::function<void(StateWriter&)>& fill);
 
   SpillFile(const SpillFile&) = delete;

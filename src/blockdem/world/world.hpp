@@ -362,8 +362,9 @@ class World {
   /// snapshot is compact: block states and, per contact, its pair and shear history; a restore
   /// re-derives the contacts' geometry and normal forces at the restored pose.
   /// One larger than settings().checkpoint_memory_limit goes to a scratch file (SpillFile) and
-  /// is read back from it to restore or to write a restart file; throws std::runtime_error (the
-  /// folder and the reason) if that file cannot be written, the last checkpoint kept.
+  /// is read back from it to restore or to write a restart file; throws
+  /// std::filesystem::filesystem_error (the folder and the reason) if that file cannot be
+  /// written, the last checkpoint kept.
   void save_checkpoint();
   void restore_checkpoint();
   /// Whether the last checkpoint is kept in a scratch file, and its size there (bytes; 0: in
