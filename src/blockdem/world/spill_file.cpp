@@ -43,7 +43,8 @@ std::shared_ptr<const SpillFile> SpillFile::write(const std::function<void(State
   std::string name = folder + "/blockdem-checkpoint-XXXXXX";
   std::vector<char> path(name.begin(), name.end());
   path.push_back('\0');
-  const int fd = ::mkstemp(path.data());
+  // Closed on exec: a program the run starts (the figures' scripts) does not keep it.
+  const int fd = ::mkostemp(path.data(), O_CLOEXEC);
   if (fd < 0) fail(folder, "make", errno);
   // Unlinked at once: the open descriptor keeps the file until it is closed.
   ::unlink(path.data());
