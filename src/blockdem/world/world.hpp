@@ -128,7 +128,8 @@ struct WorldSettings {
   /// ... or when an overlap exceeds this fraction of the smaller block's bounding radius (-).
   double max_overlap_fraction = 0.25;
   /// A divergence checkpoint larger than this (bytes) is kept in a scratch file in $TMPDIR
-  /// (else /var/tmp, else /tmp) instead of memory (World::checkpoint_in_file); 0: always in a file.
+  /// (else /var/tmp, else /tmp) instead of memory (World::checkpoint_file_bytes); 0: always in a
+  /// file.
   std::size_t checkpoint_memory_limit = std::size_t{64} << 20;
   /// Scene origin in the user's coordinates (m): block positions inside the world are relative
   /// to it (full precision at map coordinates); outputs add it back.
