@@ -28,8 +28,8 @@ int face_law_for_contact(const Block& a, const std::vector<int>& laws_a, const B
                          const std::vector<int>& laws_b, const ContactGeometry& g, int group_law) {
   if (laws_a.empty() && laws_b.empty()) return group_law;
   // The contact point lies inside the overlap, within its depth of both contact faces.
-  const double reach =
-      2.0 * g.overlap + 1e-9 * (a.shape.bounding_radius() + b.shape.bounding_radius());
+  // The blocks' copies of their shapes' radii (refreshed with the world planes read below).
+  const double reach = 2.0 * g.overlap + 1e-9 * (a.bounding_radius + b.bounding_radius);
   int law_a = -1, law_b = -1;
   double dot_a = -2.0, dot_b = -2.0;
   if (!laws_a.empty()) {

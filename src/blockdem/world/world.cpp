@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <string_view>
 #include <thread>
 #include <unordered_map>
+#include <vector>
 
 #include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/numerics/number_text.hpp"
@@ -110,14 +112,15 @@ int World::add_block(Block block) {
   box_min_.emplace_back();
   box_max_.emplace_back();
   block.update_world_geometry(box_min_.back(), box_max_.back());
-  max_face_area_.push_back(largest_face_area(block.shape));
+  const double radius = block.shape.bounding_radius();
+  a_priori_shape_.push_back({largest_face_area(block.shape), radius * radius});
   blocks_.push_back(std::move(block));
   return blocks_.back().index;
 }
 
 void World::reserve_blocks(std::size_t count) {
   blocks_.reserve(count);
-  max_face_area_.reserve(count);
+  a_priori_shape_.reserve(count);
   box_min_.reserve(count);
   box_max_.reserve(count);
 }
@@ -244,27 +247,50 @@ double World::law_stiffness_bound() const {
 std::array<double, 2> World::a_priori_block_steps(std::size_t i, double k_law,
                                                   bool inertial) const {
   const Block& b = blocks_[i];
-  // Shapes are rigid: the largest face area is kept per block from add_block.
-  const double area = i < max_face_area_.size() ? max_face_area_[i] : largest_face_area(b.shape);
+  // Shapes are rigid: the largest face area and the bounding radius are kept per block from
+  // add_block.
+  const APrioriShape& shape = a_priori_shape_[i];
+  const double area = shape.max_face_area;
   const double k = k_law * area;
-  const double r2 = b.shape.bounding_radius() * b.shape.bounding_radius();
   const double mass = inertial ? b.inertial_mass() : b.mass;
   const double moment = inertial ? b.inertial_moments().minCoeff() : b.inertia.minCoeff();
-  return {std::sqrt(mass / k), std::sqrt(moment / (k * (r2 + area / 12.0)))};
+  return {std::sqrt(mass / k), std::sqrt(moment / (k * (shape.radius_squared + area / 12.0)))};
 }
 
 double World::a_priori_time_step() const {
   // Before contacts form: each block against one contact of its largest face, at the joint
-  // laws' stiffness at zero closure (normal) and zero stress (shear).
+  // laws' stiffness at zero closure (normal) and zero stress (shear). Read every step: over the
+  // threads for a large world, each its share's minimum, then the least of those (a minimum is
+  // exact in any order: the same bits for any thread count).
   const double k_law = law_stiffness_bound();
   if (k_law == 0.0) return std::numeric_limits<double>::infinity();
+  const auto n = static_cast<std::int64_t>(blocks_.size());
+  const auto least_in = [&](std::int64_t begin, std::int64_t end) {
+    double dt = std::numeric_limits<double>::infinity();
+    for (std::int64_t i = begin; i < end; ++i) {
+      if (!blocks_[static_cast<std::size_t>(i)].is_dynamic()) continue;
+      const std::array<double, 2> own =
+          a_priori_block_steps(static_cast<std::size_t>(i), k_law, true);
+      dt = std::min(dt, own[0]);
+      dt = std::min(dt, own[1]);
+    }
+    return dt;
+  };
   double dt = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    if (!blocks_[i].is_dynamic()) continue;
-    const std::array<double, 2> own = a_priori_block_steps(i, k_law, true);
-    dt = std::min(dt, own[0]);
-    dt = std::min(dt, own[1]);
+#ifdef _OPENMP
+  const int threads = thread_count();
+  if (threads > 1 && n >= 8192) {
+    std::vector<double> part(static_cast<std::size_t>(threads), dt);
+#pragma omp parallel num_threads(threads)
+    {
+      const std::int64_t t = omp_get_thread_num(), team = omp_get_num_threads();
+      part[static_cast<std::size_t>(t)] = least_in(n * t / team, n * (t + 1) / team);
+    }
+    for (const double p : part) dt = std::min(dt, p);
+    return settings_.safety_factor * dt;
   }
+#endif
+  dt = least_in(0, n);
   return settings_.safety_factor * dt;
 }
 
@@ -362,18 +388,47 @@ void World::apply_servos(double dt, const std::vector<char>* only) {
   }
 }
 
+std::size_t World::first_diverged_block() const {
+  const auto diverged = [&](const Block& b) {
+    return !b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
+           !b.orientation.coeffs().allFinite() || b.velocity.norm() > settings_.max_speed;
+  };
+  const std::size_t n = blocks_.size();
+  const auto first_in = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (diverged(blocks_[i])) return i;
+    }
+    return n;
+  };
+#ifdef _OPENMP
+  // Read every step: over the threads for a large world, each its share's first, then the first
+  // of those (the same block for any thread count).
+  const int threads = thread_count();
+  if (threads > 1 && n >= 8192) {
+    std::vector<std::size_t> part(static_cast<std::size_t>(threads), n);
+#pragma omp parallel num_threads(threads)
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto team = static_cast<std::size_t>(omp_get_num_threads());
+      part[t] = first_in(n * t / team, n * (t + 1) / team);
+    }
+    return *std::min_element(part.begin(), part.end());
+  }
+#endif
+  return first_in(0, n);
+}
+
 void World::check_divergence() {
   std::ostringstream why;
-  for (const auto& b : blocks_) {
+  const std::size_t first = first_diverged_block();
+  if (first < blocks_.size()) {
+    const Block& b = blocks_[first];
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angular_velocity.allFinite() ||
         !b.orientation.coeffs().allFinite()) {
       why << "block '" << b.name << "' has a non-finite position or velocity";
-      break;
-    }
-    if (b.velocity.norm() > settings_.max_speed) {
+    } else {
       why << "block '" << b.name << "' moves at " << b.velocity.norm() << " m/s (limit "
           << settings_.max_speed << " m/s)";
-      break;
     }
   }
   if (why.str().empty() && overlap_violation_ >= 0) {

@@ -608,11 +608,20 @@ class World {
   /// Block i's own critical steps before contacts form, translation and rotation (s), for a
   /// contact stiffness k_law per unit area; `inertial`: with the density-scaled mass and moments.
   std::array<double, 2> a_priori_block_steps(std::size_t i, double k_law, bool inertial) const;
+  /// The first block (index order) with a non-finite state or a speed above max_speed, or the
+  /// block count when none.
+  std::size_t first_diverged_block() const;
   bool density_scaled_ = false;
 
   WorldSettings settings_;
   std::vector<Block> blocks_;
-  std::vector<double> max_face_area_;  ///< per block, for the a-priori time step (m^2)
+  /// Per block, what the a-priori time step reads of its rigid shape: kept beside the block
+  /// records so that the step's pass over every block does not visit the shapes.
+  struct APrioriShape {
+    double max_face_area = 0.0;   ///< the largest face's area (m^2)
+    double radius_squared = 0.0;  ///< the shape's bounding radius, squared (m^2)
+  };
+  std::vector<APrioriShape> a_priori_shape_;
   std::vector<JointLaw> laws_;
   std::vector<JointRule> rules_;
   int rules_version_ = 0;          ///< counts add_joint_rule calls
