@@ -415,12 +415,6 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
           prefetch_planes(blocks_[static_cast<std::size_t>(ahead.b)]);
           if (ahead.a != slots_[i + kPrefetchPlanes - 1].a)
             prefetch_planes(blocks_[static_cast<std::size_t>(ahead.a)]);
-          // A contact's record kept apart (a face-integrated contact's force values), which the
-          // pair's response reads first thing.
-          if (ahead.contact >= 0) {
-            if (const ContactDetail* d = contact_of(ahead).detail_record())
-              __builtin_prefetch(d, 1);
-          }
         }
         if (only != nullptr && (*only)[i] == 0) continue;
         PairSlot& slot = slots_[i];
