@@ -404,15 +404,21 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
       const std::size_t end = std::min(n, begin + pending_run_);
       std::vector<PendingContact> formed;
       for (std::size_t i = begin; i < end; ++i) {
+        // With a block's record its list of face laws, and with its planes the laws themselves
+        // (a rock mass's blocks have them; a pile's none).
         if (i + kPrefetchRecord < end) {
           const PairSlot& ahead = slots_[i + kPrefetchRecord];
           prefetch_record(blocks_[static_cast<std::size_t>(ahead.b)]);
+          if (face_laws_.size() > static_cast<std::size_t>(ahead.b))
+            __builtin_prefetch(&face_laws_[static_cast<std::size_t>(ahead.b)]);
           if (ahead.a != slots_[i + kPrefetchRecord - 1].a)
             prefetch_record(blocks_[static_cast<std::size_t>(ahead.a)]);
         }
         if (i + kPrefetchPlanes < end) {
           const PairSlot& ahead = slots_[i + kPrefetchPlanes];
           prefetch_planes(blocks_[static_cast<std::size_t>(ahead.b)]);
+          if (face_laws_.size() > static_cast<std::size_t>(ahead.b))
+            __builtin_prefetch(face_laws_[static_cast<std::size_t>(ahead.b)].data());
           if (ahead.a != slots_[i + kPrefetchPlanes - 1].a)
             prefetch_planes(blocks_[static_cast<std::size_t>(ahead.a)]);
         }
