@@ -55,6 +55,31 @@ inline void prefetch_record(const Block& b) {
   __builtin_prefetch(p + 119);
 }
 
+// The refresh of blocks in index order: the records follow each other, but each block's shape
+// and its planes, vertices and world planes lie elsewhere on the heap, a chain of waits per block.
+// Some blocks ahead the shape's record is asked for; fewer blocks ahead, once it is near, the
+// arrays it points to and the block's world planes.
+constexpr std::size_t kPrefetchShape = 8;   // blocks ahead: the shape's record
+constexpr std::size_t kPrefetchArrays = 4;  // blocks ahead: its planes and vertices
+inline void prefetch_shape(const Block& b) {
+  __builtin_prefetch(b.shape.record_address());
+}
+inline void prefetch_shape_arrays(const Block& b) {
+  const auto lines = [](const void* p, std::size_t bytes, int write) {
+    const char* c = static_cast<const char*>(p);
+    for (std::size_t o = 0; o < bytes; o += 64) {
+      if (write != 0) {
+        __builtin_prefetch(c + o, 1);
+      } else {
+        __builtin_prefetch(c + o);
+      }
+    }
+  };
+  lines(b.shape.planes().data(), b.shape.planes().size() * sizeof(Halfspace), 0);
+  lines(b.shape.vertices().data(), b.shape.vertices().size() * sizeof(Eigen::Vector3d), 0);
+  lines(b.world_planes.data(), b.world_planes.size() * sizeof(Halfspace), 1);
+}
+
 // The fields the loads' scatter reads and writes: bytes [0, 200) of the record.
 inline void prefetch_loads(const Block& b) {
   const char* p = reinterpret_cast<const char*>(&b);

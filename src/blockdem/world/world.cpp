@@ -17,6 +17,7 @@
 #include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/numerics/number_text.hpp"
 #include "blockdem/numerics/units.hpp"
+#include "blockdem/world/pass_support.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -226,12 +227,20 @@ void World::update_geometry(int threads) {
   const std::int64_t n = static_cast<std::int64_t>(blocks_.size());
   box_min_.resize(blocks_.size());
   box_max_.resize(blocks_.size());
+  const auto refresh = [&](std::int64_t i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (k + pass_support::kPrefetchShape < blocks_.size())
+      pass_support::prefetch_shape(blocks_[k + pass_support::kPrefetchShape]);
+    if (k + pass_support::kPrefetchArrays < blocks_.size())
+      pass_support::prefetch_shape_arrays(blocks_[k + pass_support::kPrefetchArrays]);
+    refresh_block(k);
+  };
   // No parallel region for one thread: a team of one still costs a futex call at its end.
   if (threads > 1 && n > 256) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) refresh_block(static_cast<std::size_t>(i));
+    for (std::int64_t i = 0; i < n; ++i) refresh(i);
   } else {
-    for (std::int64_t i = 0; i < n; ++i) refresh_block(static_cast<std::size_t>(i));
+    for (std::int64_t i = 0; i < n; ++i) refresh(i);
   }
 }
 
