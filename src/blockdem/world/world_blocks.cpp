@@ -52,7 +52,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
   }
   std::vector<Block> kept;
   std::vector<std::vector<int>> kept_laws;
-  std::vector<APrioriShape> kept_face_area;
+  std::vector<APrioriShape> kept_a_priori;
   std::vector<std::vector<int>> kept_sets;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     if (new_index[i] < 0) continue;
@@ -60,7 +60,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
     kept.push_back(std::move(blocks_[i]));
     kept.back().index = new_index[i];
     kept_laws.push_back(i < face_laws_.size() ? std::move(face_laws_[i]) : std::vector<int>{});
-    kept_face_area.push_back(a_priori_shape_[i]);
+    kept_a_priori.push_back(a_priori_shape_[i]);
     kept_sets.push_back(i < face_sets_.size() ? std::move(face_sets_[i]) : std::vector<int>{});
   }
   blocks_ = std::move(kept);
@@ -75,7 +75,7 @@ void World::remove_blocks(const std::vector<int>& indices) {
   energy_.restart();  // the removed blocks' energy leaves the budget
   face_laws_ = std::move(kept_laws);
   face_sets_ = std::move(kept_sets);
-  a_priori_shape_ = std::move(kept_face_area);
+  a_priori_shape_ = std::move(kept_a_priori);
   // Pairs with a removed block go; the others keep their history under the new indices. The
   // renumbering keeps the order of the blocks, so the slots stay sorted by (a, b).
   std::size_t kept_slots = 0;
