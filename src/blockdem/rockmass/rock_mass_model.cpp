@@ -9,9 +9,9 @@
 #include <omp.h>
 
 #include "blockdem/geometry/geometry_error.hpp"
+#include "blockdem/numerics/shares.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/rockmass/excavation_shapes.hpp"
-#include "blockdem/rockmass/shares.hpp"
 #include "blockdem/scenario/in_situ_input.hpp"
 
 namespace blockdem {

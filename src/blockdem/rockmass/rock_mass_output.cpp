@@ -14,7 +14,7 @@
 
 #include "blockdem/io/csv.hpp"
 #include "blockdem/io/output_error.hpp"
-#include "blockdem/rockmass/shares.hpp"
+#include "blockdem/numerics/shares.hpp"
 
 namespace blockdem {
 namespace {

@@ -16,7 +16,7 @@
 #include <omp.h>
 
 #include "blockdem/geometry/geometry_error.hpp"
-#include "blockdem/rockmass/shares.hpp"
+#include "blockdem/numerics/shares.hpp"
 #include "blockdem/rockmass/slicing_bounds.hpp"
 
 namespace blockdem {

@@ -16,6 +16,7 @@
 
 #include "blockdem/dynamics/integrator.hpp"
 #include "blockdem/numerics/number_text.hpp"
+#include "blockdem/numerics/shares.hpp"
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/world/pass_support.hpp"
 
@@ -285,22 +286,13 @@ double World::a_priori_time_step() const {
     }
     return dt;
   };
-  double dt = std::numeric_limits<double>::infinity();
-#ifdef _OPENMP
   const int threads = thread_count();
-  if (threads > 1 && n >= 8192) {
-    std::vector<double> part(static_cast<std::size_t>(threads), dt);
-#pragma omp parallel num_threads(threads)
-    {
-      const std::int64_t t = omp_get_thread_num(), team = omp_get_num_threads();
-      part[static_cast<std::size_t>(t)] = least_in(n * t / team, n * (t + 1) / team);
-    }
-    for (const double p : part) dt = std::min(dt, p);
-    return settings_.safety_factor * dt;
-  }
-#endif
-  dt = least_in(0, n);
-  return settings_.safety_factor * dt;
+  const std::int64_t shares = threads > 1 && n >= 8192 ? threads : 1;
+  std::vector<double> part(static_cast<std::size_t>(shares));
+  for_each_share(shares, n, threads, [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
+    part[static_cast<std::size_t>(k)] = least_in(begin, end);
+  });
+  return settings_.safety_factor * *std::min_element(part.begin(), part.end());
 }
 
 std::vector<double> World::own_critical_steps() const {
@@ -409,22 +401,17 @@ std::size_t World::first_diverged_block() const {
     }
     return n;
   };
-#ifdef _OPENMP
-  // Read every step: over the threads for a large world, each its share's first, then the first
-  // of those (the same block for any thread count).
+  // Read every step: over the threads for a large world, each share's first, then the first of
+  // those (the same block for any thread count).
   const int threads = thread_count();
-  if (threads > 1 && n >= 8192) {
-    std::vector<std::size_t> part(static_cast<std::size_t>(threads), n);
-#pragma omp parallel num_threads(threads)
-    {
-      const auto t = static_cast<std::size_t>(omp_get_thread_num());
-      const auto team = static_cast<std::size_t>(omp_get_num_threads());
-      part[t] = first_in(n * t / team, n * (t + 1) / team);
-    }
-    return *std::min_element(part.begin(), part.end());
-  }
-#endif
-  return first_in(0, n);
+  const std::int64_t shares = threads > 1 && n >= 8192 ? threads : 1;
+  std::vector<std::size_t> part(static_cast<std::size_t>(shares));
+  for_each_share(shares, static_cast<std::int64_t>(n), threads,
+                 [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
+                   part[static_cast<std::size_t>(k)] =
+                       first_in(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+                 });
+  return *std::min_element(part.begin(), part.end());
 }
 
 void World::check_divergence() {

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/numerics/shares.hpp"
 #include "blockdem/rockmass/rock_mass_model.hpp"
 #include "blockdem/rockmass/rock_mass_output.hpp"
 #include "blockdem/rockmass/rock_slicer.hpp"
-#include "blockdem/rockmass/shares.hpp"
 #include "support/joint_sets.hpp"
 #include "support/temp_path.hpp"
 
