@@ -19,16 +19,28 @@ inline std::int64_t share_count(std::int64_t count, int threads, std::int64_t le
 /// thrown in a share (an allocation that fails) is caught there, and after every share has run
 /// the first share's is thrown again: none may leave an OpenMP parallel region (the program
 /// would end), and the first share's is the one a single thread meets first.
+/// One share is a plain call, and one thread a plain loop: no parallel region (a world's passes
+/// call this every step, where a small model's whole step takes microseconds).
 template <class Work>
 void for_each_share(std::int64_t shares, std::int64_t count, int threads, Work work) {
-  std::vector<std::exception_ptr> error(static_cast<std::size_t>(shares));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && shares > 1)
-  for (std::int64_t k = 0; k < shares; ++k) {
+  if (shares == 1) {
+    work(0, 0, count);
+    return;
+  }
+  std::vector<std::exception_ptr> error(
+      static_cast<std::size_t>(std::max<std::int64_t>(shares, 0)));
+  const auto run = [&](std::int64_t k) {
     try {
       work(k, count * k / shares, count * (k + 1) / shares);
     } catch (...) {
       error[static_cast<std::size_t>(k)] = std::current_exception();
     }
+  };
+  if (threads <= 1) {
+    for (std::int64_t k = 0; k < shares; ++k) run(k);
+  } else {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::int64_t k = 0; k < shares; ++k) run(k);
   }
   for (const auto& e : error) {
     if (e) std::rethrow_exception(e);

@@ -287,7 +287,9 @@ double World::a_priori_time_step() const {
     return dt;
   };
   const int threads = thread_count();
-  const std::int64_t shares = threads > 1 && n >= 8192 ? threads : 1;
+  // A small world (most of them) on the calling thread, with nothing allocated.
+  if (threads <= 1 || n < 8192) return settings_.safety_factor * least_in(0, n);
+  const std::int64_t shares = threads;
   std::vector<double> part(static_cast<std::size_t>(shares));
   for_each_share(shares, n, threads, [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
     part[static_cast<std::size_t>(k)] = least_in(begin, end);
@@ -404,7 +406,8 @@ std::size_t World::first_diverged_block() const {
   // Read every step: over the threads for a large world, each share's first, then the first of
   // those (the same block for any thread count).
   const int threads = thread_count();
-  const std::int64_t shares = threads > 1 && n >= 8192 ? threads : 1;
+  if (threads <= 1 || n < 8192) return first_in(0, n);
+  const std::int64_t shares = threads;
   std::vector<std::size_t> part(static_cast<std::size_t>(shares));
   for_each_share(shares, static_cast<std::int64_t>(n), threads,
                  [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
