@@ -100,18 +100,21 @@ TEST(BoltedWedge, ThreeBoltsHoldTheKeyBlockThatFallsWithout) {
   std::ifstream csv(out / "bolts.csv");
   std::string line;
   int rows = 0;
-  double largest = 0.0;
+  double largest = 0.0, largest_b2 = 0.0;
   std::getline(csv, line);
   EXPECT_EQ(line, "stage,bolt,segment,block,from_m,to_m,axial_force_N,shear_force_N,state");
   while (std::getline(csv, line)) {
     ++rows;
     std::size_t at = 0;
     for (int k = 0; k < 6; ++k) at = line.find(',', at) + 1;
-    largest = std::max(largest, std::stod(line.substr(at)));
+    const double axial = std::stod(line.substr(at));
+    largest = std::max(largest, axial);
+    if (line.find(",B2,") != std::string::npos) largest_b2 = std::max(largest_b2, axial);
   }
   EXPECT_EQ(rows, 6);
   EXPECT_GT(largest, 0.0);
-  // time_history.csv's last row (the stage end) has B2's largest tendon force, as bolts.csv.
+  // time_history.csv's last row (the stage end) has B2's largest tendon force, as bolts.csv (B2
+  // and B3 are placed alike: which of the two carries the very largest is round-off's choice).
   std::ifstream history(out / "time_history.csv");
   std::string header, last;
   std::getline(history, header);
@@ -125,7 +128,8 @@ TEST(BoltedWedge, ThreeBoltsHoldTheKeyBlockThatFallsWithout) {
   while (column(header, k) != "B2_axial_force_N" && k < 100) ++k;
   ASSERT_LT(k, 100u) << header;
   EXPECT_EQ(column(header, k + 1), "B2_shear_force_N");
-  EXPECT_NEAR(std::stod(column(last, k)), largest, 1e-9 * largest);
+  EXPECT_NEAR(std::stod(column(last, k)), largest_b2, 1e-9 * largest_b2);
+  EXPECT_NEAR(largest_b2, largest, 1e-4 * largest);
   std::printf("bolted roof wedge: largest tendon force %.4g N\n", largest);
 }
 

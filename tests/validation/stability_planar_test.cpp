@@ -64,7 +64,9 @@ INSTANTIATE_TEST_SUITE_P(HoekBray, PlanarSliding,
 // Where the trials start: from the state before the stage, or from the last stable trial's
 // equilibrium (trial_start = "last_stable"). A block on one plane does not slip below the limit,
 // so both brackets contain Hoek & Bray's tan 40 / tan 30 = 1.4532 (to the bracket's 0.01 and the
-// 0.5% of PlanarSliding), the later ones' trials start settled, and the search takes fewer steps.
+// 0.5% of PlanarSliding), the later ones' trials start settled, and the search takes no more
+// steps (on one block the stage's start is settled too: a stable trial may meet the criterion at
+// its first check from either start, and the failed trials take as long from either).
 TEST(StrengthReductionTrialStart, BothStartsBracketHoekAndBray) {
   if (test::sanitized_run()) GTEST_SKIP() << "two strength reductions: physics, not memory";
   const double expected = std::tan(deg_to_rad(40.0)) / std::tan(deg_to_rad(30.0));
@@ -83,7 +85,7 @@ TEST(StrengthReductionTrialStart, BothStartsBracketHoekAndBray) {
     EXPECT_LE(fos["first_failed"].get<double>() - fos["last_stable"].get<double>(), 0.01 + 1e-12);
     steps[k++] = r.steps_per_stage.back();
   }
-  EXPECT_LT(steps[1], steps[0]);
+  EXPECT_LE(steps[1], steps[0]);
   std::printf("search steps: stage_start %lld, last_stable %lld\n",
               static_cast<long long>(steps[0]), static_cast<long long>(steps[1]));
 }

@@ -136,12 +136,27 @@ constexpr std::size_t kFaceStackPlanes = 32;
 
 }  // namespace
 
+std::uint64_t planes_holding(std::span<const Halfspace> planes, const Eigen::Vector3d& box_min,
+                             const Eigen::Vector3d& box_max, double clearance) {
+  std::uint64_t held = 0;
+  const std::size_t count = std::min<std::size_t>(planes.size(), 64);
+  for (std::size_t j = 0; j < count; ++j) {
+    // The box's farthest corner along n: each coordinate at the end where n_i x_i is larger.
+    const Eigen::Vector3d& n = planes[j].normal;
+    const double reach = std::max(n.x() * box_min.x(), n.x() * box_max.x()) +
+                         std::max(n.y() * box_min.y(), n.y() * box_max.y()) +
+                         std::max(n.z() * box_min.z(), n.z() * box_max.z());
+    if (reach <= planes[j].offset - clearance) held |= std::uint64_t{1} << j;
+  }
+  return held;
+}
+
 FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
                                           std::span<const Halfspace> planes_b,
                                           const Eigen::Vector3d& origin,
                                           const Eigen::Vector3d& normal, double extent,
                                           const FaceContactSettings& settings,
-                                          const ClosureOffset* offset) {
+                                          const ClosureOffset* offset, RedundantPlanes redundant) {
   FaceContactGeometry out;
   // The angle is the same for every contact of a run: its cosine is kept per thread.
   thread_local double cached_angle = std::numeric_limits<double>::quiet_NaN(), cached_cos = 1.0;
@@ -173,9 +188,10 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   // The same pass finds whether a block presents a face: A where one of its normals is within
   // the face angle of n, B where one is within it of -n.
   bool face = false;
-  auto add = [&](const Halfspace& p, bool of_a, bool bounds_laterally) {
+  auto add = [&](const Halfspace& p, bool of_a, bool bounds_laterally, bool left_out) {
     const double c = p.normal.dot(normal);
     face |= of_a ? c > cos_face : c < -cos_face;
+    if (left_out) return;
     const Linear slack{p.offset - p.normal.dot(origin),
                        Eigen::Vector2d(-p.normal.dot(u), -p.normal.dot(v))};
     if (bounds_laterally || std::abs(c) <= settings.lateral_tolerance) {
@@ -191,9 +207,15 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   const auto lateral_for = [&](std::size_t j, int face_plane) {
     return offset != nullptr && static_cast<int>(j) != face_plane;
   };
+  // Planes that do not bound A∩B (RedundantPlanes), never with a prestressed face.
+  if (offset != nullptr) redundant = {};
+  const auto left_out = [](std::uint64_t bits, std::size_t j) {
+    return j < 64 && ((bits >> j) & 1U) != 0;
+  };
   for (std::size_t j = 0; j < planes_a.size(); ++j) {
     const int before = nt;
-    add(planes_a[j], true, lateral_for(j, offset != nullptr ? offset->plane_a : -1));
+    add(planes_a[j], true, lateral_for(j, offset != nullptr ? offset->plane_a : -1),
+        left_out(redundant.a, j));
     // The closure added over A's face moves its end of the chord up by e(y), which is linear in
     // the plane coordinates: e(origin + a u + b v) = e(origin) + (e'·u) a + (e'·v) b.
     if (offset != nullptr && static_cast<int>(j) == offset->plane_a && nt > before) {
@@ -203,7 +225,8 @@ FaceContactGeometry face_contact_geometry(std::span<const Halfspace> planes_a,
   }
   const int top_a = nt, bottom_a = nb;
   for (std::size_t j = 0; j < planes_b.size(); ++j)
-    add(planes_b[j], false, lateral_for(j, offset != nullptr ? offset->plane_b : -1));
+    add(planes_b[j], false, lateral_for(j, offset != nullptr ? offset->plane_b : -1),
+        left_out(redundant.b, j));
   if (!face) return out;
   out.face_type = true;
   if (nt == 0 || nb == 0) return out;

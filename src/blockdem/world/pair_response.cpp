@@ -24,6 +24,11 @@ namespace blockdem {
 
 namespace {
 
+// A face contact leaves out the planes of either block that hold the other's box with this
+// fraction of the other's bounding radius to spare (planes_holding): the far faces, not the
+// faces flush with the other block.
+constexpr double kHoldingClearance = 1e-6;
+
 // A contact's terms of this step, before its pair is evaluated: none until a force acts.
 void clear_step_terms(Contact& ct) {
   ct.slip_work = 0.0;
@@ -246,7 +251,11 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
       : preload != nullptr
           ? std::move(shared)
           : face_contact_geometry(a.world_planes, b.world_planes, g.point, ct.geometry.normal,
-                                  extent, settings_.face_contact);
+                                  extent, settings_.face_contact, nullptr,
+                                  {planes_holding(a.world_planes, box_min_[ct.b], box_max_[ct.b],
+                                                  kHoldingClearance * b.bounding_radius),
+                                   planes_holding(b.world_planes, box_min_[ct.a], box_max_[ct.a],
+                                                  kHoldingClearance * a.bounding_radius)});
   const std::optional<NormalResponse> normal = normal_response(law.normal, g, fc);
   if (!normal) return open_bond(&start);
   take_normal_response(ct, *normal);

@@ -1,11 +1,14 @@
 // The fast face-contact cells and law integrals against their first implementation (kept as the
 // oracle in tests/oracle/face_integration_reference): same resultants to 1e-12 on random hulls,
-// tilted and turned cubes, closed and partly open joints, linear and exponential laws.
+// tilted and turned cubes, closed and partly open joints, linear and exponential laws; with every
+// plane, and with the planes that hold the other block's box left out (planes_holding).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <vector>
@@ -59,6 +62,9 @@ struct Tally {
   int wide_exponent = 0;    // of which with b (max g - min g) > 1 (recursive divided differences)
   int ill_conditioned = 0;  // contact-law comparisons where area, force or centre needed it
   double worst = 0.0;       // largest difference seen, relative to the 1e-12 tolerance's scale
+  long planes = 0;          // planes of both blocks over the face contacts
+  long left_out = 0;        // of which left out as holding the other block
+  int ill_conditioned_left_out = 0;  // as ill_conditioned, with those planes left out
 };
 
 Resultant reference(const Planes& a, const Planes& b, const ContactGeometry& g, double extent,
@@ -79,20 +85,16 @@ Planes nudged(const Planes& b, double ulps) {
   return out;
 }
 
-// Compares both implementations on one pair; `extent` as the world passes it. Each resultant must
+// The resultants of `fast` against the reference's (`slow`) on one pair; `extent` as the world
+// passes it; `count` adds the contact to the tally's kinds. Each resultant must
 // agree to 1e-12 of its scale, or, where the contact is ill-conditioned, to within four times the
 // change of the reference itself when B's offsets move by two units in the last place (a partly
 // open joint tilted by θ moves its opening line by δ/θ: at θ ~ 1e-9 rad, round-off in the planes
 // alone changes the compressed area by ~1e-11 and the closure at sliver vertices by ~1e-4 of its
 // value, in either implementation).
-void compare(const Planes& a, const Planes& b, double extent, Tally& tally) {
-  const ContactGeometry g = boon2012_contact(a, b, extent, Boon2012Settings{});
-  if (!g.touching) return;
-  const FaceContactGeometry fast = face_contact_geometry(a, b, g.point, g.normal, extent);
-  const oracle::ReferenceFaceGeometry slow =
-      oracle::reference_face_contact_geometry(a, b, g.point, g.normal, extent);
-  ASSERT_EQ(fast.face_type, slow.face_type);
-  if (!fast.face_type) return;
+void compare_resultants(const Planes& a, const Planes& b, double extent, const ContactGeometry& g,
+                        const FaceContactGeometry& fast, const oracle::ReferenceFaceGeometry& slow,
+                        bool count, Tally& tally) {
   // The peak closure is the largest vertex closure of any cell, and a cell's closure is linear
   // with in-plane gradient up to |n_j - (n_j·n) n| / |n_j·n| per plane: a vertex computed with
   // round-off ~8 eps |y| (|y| <= extent) moves it by that much times the steepest gradient.
@@ -144,7 +146,8 @@ void compare(const Planes& a, const Planes& b, double extent, Tally& tally) {
       check("centre of pressure", (centre(f) - centre(s)).norm(), 0.0, size,
             (centre(up) - centre(s)).norm(), (centre(down) - centre(s)).norm());
     }
-    if (beyond) ++tally.ill_conditioned;
+    if (beyond) ++(count ? tally.ill_conditioned : tally.ill_conditioned_left_out);
+    if (!count) continue;
     if (&law == &kLaws[0]) {
       ++tally.contacts;
       if (s.cells > 1) ++tally.multi_cell;
@@ -161,6 +164,50 @@ void compare(const Planes& a, const Planes& b, double extent, Tally& tally) {
       }
       if (std::get<ExponentialNormal>(law).b * (s.peak_closure - lo) > 1.0) ++tally.wide_exponent;
     }
+  }
+}
+
+// The box of a hull's vertices (world frame), as the world keeps it per block.
+struct Box {
+  Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d max = -min;
+};
+Box box_of(const Planes& hull) {
+  Box box;
+  for (const Eigen::Vector3d& v : test_shapes::vertices(hull)) {
+    box.min = box.min.cwiseMin(v);
+    box.max = box.max.cwiseMax(v);
+  }
+  return box;
+}
+
+// The planes of `a` and of `b` that hold the other block's box, with no clearance.
+RedundantPlanes redundant_planes(const Planes& a, const Planes& b) {
+  const Box ba = box_of(a), bb = box_of(b);
+  return {planes_holding(a, bb.min, bb.max, 0.0), planes_holding(b, ba.min, ba.max, 0.0)};
+}
+
+// Compares both implementations on one pair, the fast one with every plane and with the planes
+// that hold the other block left out.
+void compare(const Planes& a, const Planes& b, double extent, Tally& tally) {
+  const ContactGeometry g = boon2012_contact(a, b, extent, Boon2012Settings{});
+  if (!g.touching) return;
+  const oracle::ReferenceFaceGeometry slow =
+      oracle::reference_face_contact_geometry(a, b, g.point, g.normal, extent);
+  // Every plane, then the planes that do not bound A∩B left out: both against the reference.
+  const RedundantPlanes redundant = redundant_planes(a, b);
+  for (const bool leave_out : {false, true}) {
+    SCOPED_TRACE(leave_out ? "planes holding the other block left out" : "every plane");
+    const FaceContactGeometry fast =
+        face_contact_geometry(a, b, g.point, g.normal, extent, FaceContactSettings{}, nullptr,
+                              leave_out ? redundant : RedundantPlanes{});
+    ASSERT_EQ(fast.face_type, slow.face_type);
+    if (!fast.face_type) return;
+    if (leave_out) {
+      tally.planes += static_cast<long>(a.size() + b.size());
+      tally.left_out += std::popcount(redundant.a) + std::popcount(redundant.b);
+    }
+    compare_resultants(a, b, extent, g, fast, slow, !leave_out, tally);
   }
 }
 
@@ -199,11 +246,15 @@ TEST(FaceContactCells, TiltedCubesMatchReference) {
   EXPECT_GT(tally.wide_exponent, 20);
   // Most comparisons of area, force and centre agree to 1e-12 outright (3 laws per contact).
   EXPECT_LT(tally.ill_conditioned, 3 * tally.contacts / 5);
+  EXPECT_LT(tally.ill_conditioned_left_out, 3 * tally.contacts / 5);
+  // The planes that hold the other block's box are a fair share of them (the far faces).
+  EXPECT_GT(tally.left_out, tally.planes / 10);
   std::printf(
-      "contacts %d, multi-cell %d, partly open %d, wide exponent %d, beyond 1e-12: %d, "
-      "worst %.2e\n",
+      "contacts %d, multi-cell %d, partly open %d, wide exponent %d, beyond 1e-12: %d (%d with "
+      "%ld of %ld planes left out), worst %.2e\n",
       tally.contacts, tally.multi_cell, tally.partly_open, tally.wide_exponent,
-      tally.ill_conditioned, tally.worst);
+      tally.ill_conditioned, tally.ill_conditioned_left_out, tally.left_out, tally.planes,
+      tally.worst);
 }
 
 // Random sphere-tangent hulls: face on face with a small tilt and spin, and vertex into face.
@@ -237,11 +288,15 @@ TEST(FaceContactCells, RandomHullsMatchReference) {
   EXPECT_GT(tally.partly_open, 20);
   // Most comparisons of area, force and centre agree to 1e-12 outright (3 laws per contact).
   EXPECT_LT(tally.ill_conditioned, 3 * tally.contacts / 5);
+  EXPECT_LT(tally.ill_conditioned_left_out, 3 * tally.contacts / 5);
+  // The planes that hold the other block's box are a fair share of them (the far faces).
+  EXPECT_GT(tally.left_out, tally.planes / 10);
   std::printf(
-      "contacts %d, multi-cell %d, partly open %d, wide exponent %d, beyond 1e-12: %d, "
-      "worst %.2e\n",
+      "contacts %d, multi-cell %d, partly open %d, wide exponent %d, beyond 1e-12: %d (%d with "
+      "%ld of %ld planes left out), worst %.2e\n",
       tally.contacts, tally.multi_cell, tally.partly_open, tally.wide_exponent,
-      tally.ill_conditioned, tally.worst);
+      tally.ill_conditioned, tally.ill_conditioned_left_out, tally.left_out, tally.planes,
+      tally.worst);
 }
 
 // The triangle integral alone, on closures from all positive to partly negative and from equal to
@@ -271,6 +326,44 @@ TEST(FaceContactCells, TriangleIntegralMatchesReference) {
     }
   }
   RecordProperty("worst_relative_difference", std::to_string(worst));
+}
+
+// Which planes hold the other block's box: A a unit cube at the origin, B one above it pressed in
+// by 1e-4 and turned by 30 degrees about z: only A's bottom face holds B's box (B's corners reach
+// past A's sides), and only B's top face holds A's box (A's corners reach past B's turned sides).
+TEST(FaceContactCells, PlanesHoldingTheOtherBlocksBoxAreItsFarFacesOnly) {
+  const Planes cube = test_shapes::box(Eigen::Vector3d::Constant(0.5));
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(M_PI / 6.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d at(0.0, 0.0, 1.0 - 1e-4);
+  const Planes b = test_shapes::transformed(cube, turn, at);
+  const auto bit_of = [](const Planes& planes, const Eigen::Vector3d& normal) {
+    for (std::size_t j = 0; j < planes.size(); ++j) {
+      if (planes[j].normal.dot(normal) > 1.0 - 1e-12) return std::uint64_t{1} << j;
+    }
+    return std::uint64_t{0};
+  };
+  const std::uint64_t a_bottom = bit_of(cube, -Eigen::Vector3d::UnitZ());
+  const std::uint64_t a_east = bit_of(cube, Eigen::Vector3d::UnitX());
+  const std::uint64_t b_top = bit_of(b, Eigen::Vector3d::UnitZ());
+  ASSERT_NE(a_bottom, 0U);
+  ASSERT_NE(a_east, 0U);
+  ASSERT_NE(b_top, 0U);
+  // B turned: its box reaches 0.5 (cos 30 + sin 30) = 0.683 from the axis, past A's sides.
+  const Box ba = box_of(cube), bb = box_of(b);
+  EXPECT_NEAR(bb.max.x(), 0.5 * (std::cos(M_PI / 6.0) + std::sin(M_PI / 6.0)), 1e-12);
+  EXPECT_EQ(planes_holding(cube, bb.min, bb.max, 0.0), a_bottom);
+  EXPECT_EQ(planes_holding(b, ba.min, ba.max, 0.0), b_top);
+  // Unturned, each box lies within the other's four sides too, flush: held with no clearance,
+  // not with any; moved west by a micrometre, B's box is held by A's east side with a clearance
+  // below that.
+  const Box straight = box_of(test_shapes::transformed(cube, Eigen::Matrix3d::Identity(), at));
+  EXPECT_EQ(std::popcount(planes_holding(cube, straight.min, straight.max, 0.0)), 5);
+  EXPECT_EQ(planes_holding(cube, straight.min, straight.max, 1e-9), a_bottom);
+  const Eigen::Vector3d west(-1e-6, 0.0, 0.0);
+  EXPECT_EQ(planes_holding(cube, straight.min + west, straight.max + west, 0.9e-6),
+            a_bottom | a_east);
+  EXPECT_EQ(planes_holding(cube, straight.min + west, straight.max + west, 1.1e-6), a_bottom);
 }
 
 // A triangle compressed at every vertex (some exactly at zero closure) skips the clip at g = 0 and

@@ -148,7 +148,7 @@ TEST(SearchBounds, EachTrialOfAStrengthReductionHasItsOwnStatusLines) {
   EXPECT_NE(names[0], names[1]);  // the two bounds first
 }
 
-// A stop inside trial `trial` (counted from 0) after its 50th step ends the search there: the
+// A stop inside trial `trial` (counted from 0) after its 5th step ends the search there: the
 // trial is dropped, the trials before it stay, and the drive ends interrupted without a factor of
 // safety.
 void expect_stop_inside_trial(int trial) {
@@ -160,7 +160,7 @@ void expect_stop_inside_trial(int trial) {
   control.in_trial = [&](int level, bool before_stage) {
     EXPECT_EQ(level, 2);
     EXPECT_TRUE(before_stage);
-    return trials == trial && ++steps_in_it == 50;
+    return trials == trial && ++steps_in_it == 5;
   };
   Heard heard;
   const DriveResult d =
@@ -168,7 +168,7 @@ void expect_stop_inside_trial(int trial) {
   EXPECT_EQ(d.status, RunStatus::interrupted);
   EXPECT_EQ(d.level, 2);
   EXPECT_EQ(trials, trial);
-  EXPECT_EQ(steps_in_it, 50);
+  EXPECT_EQ(steps_in_it, 5);
   const std::string after = "after " + std::to_string(trial) + " trials";
   EXPECT_NE(heard.message.find(after), std::string::npos) << heard.message;
   EXPECT_EQ(heard.events, std::vector<std::string>{"stopped 2 srm"});
