@@ -27,6 +27,10 @@
 namespace blockdem {
 namespace {
 
+// The passes read every step over every block (the a-priori time step, the divergence search)
+// run on the threads from this many blocks; below, on the calling thread with nothing allocated.
+constexpr std::int64_t kBlocksForThreads = 8192;
+
 double largest_face_area(const Polyhedron& shape) {
   double area = 0.0;
   for (int f = 0; f < static_cast<int>(shape.faces().size()); ++f)
@@ -287,8 +291,7 @@ double World::a_priori_time_step() const {
     return dt;
   };
   const int threads = thread_count();
-  // A small world (most of them) on the calling thread, with nothing allocated.
-  if (threads <= 1 || n < 8192) return settings_.safety_factor * least_in(0, n);
+  if (threads <= 1 || n < kBlocksForThreads) return settings_.safety_factor * least_in(0, n);
   const std::int64_t shares = threads;
   std::vector<double> part(static_cast<std::size_t>(shares));
   for_each_share(shares, n, threads, [&](std::int64_t k, std::int64_t begin, std::int64_t end) {
@@ -406,7 +409,7 @@ std::size_t World::first_diverged_block() const {
   // Read every step: over the threads for a large world, each share's first, then the first of
   // those (the same block for any thread count).
   const int threads = thread_count();
-  if (threads <= 1 || n < 8192) return first_in(0, n);
+  if (threads <= 1 || static_cast<std::int64_t>(n) < kBlocksForThreads) return first_in(0, n);
   const std::int64_t shares = threads;
   std::vector<std::size_t> part(static_cast<std::size_t>(shares));
   for_each_share(shares, static_cast<std::int64_t>(n), threads,
