@@ -26,10 +26,10 @@ struct Joint {
 Joint beam_joint(double tilt) {
   const double s = 0.046;
   Joint j;
-  j.a = Polyhedron::box({s, s, s}).planes();
+  j.a = copy_planes(Polyhedron::box({s, s, s}));
   const Eigen::Matrix3d r = Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const double reach = 0.5 * s * (std::cos(tilt) + std::sin(std::abs(tilt)));
-  j.b = Polyhedron::box({s, s, s}).transformed(r, {0.5 * s + reach - 1e-5, 0, 0}).planes();
+  j.b = copy_planes(Polyhedron::box({s, s, s}).transformed(r, {0.5 * s + reach - 1e-5, 0, 0}));
   return j;
 }
 

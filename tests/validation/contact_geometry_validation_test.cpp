@@ -14,7 +14,7 @@ namespace {
 
 // Planes of a unit cube rotated by r and centred at c.
 std::vector<Halfspace> cube(const Eigen::Matrix3d& r, const Eigen::Vector3d& c) {
-  return Polyhedron::box({1, 1, 1}).transformed(r, c).planes();
+  return copy_planes(Polyhedron::box({1, 1, 1}).transformed(r, c));
 }
 
 // Gradient of the barrier -Σ ln(d - n·x): zero at the analytic centre.

@@ -56,9 +56,8 @@ struct Tilted {
 
 Tilted tilted_block(double La, double Wa, double theta, double d0) {
   Tilted t;
-  t.base = Polyhedron::box({La, Wa, 0.05})
-               .transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.025})
-               .planes();
+  t.base = copy_planes(
+      Polyhedron::box({La, Wa, 0.05}).transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.025}));
   const Eigen::Matrix3d r = Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const Polyhedron p =
       Polyhedron::box({3 * La, 3 * Wa, 0.05}).transformed(r, Eigen::Vector3d::Zero());
@@ -68,7 +67,7 @@ Tilted tilted_block(double La, double Wa, double theta, double d0) {
     if (bottom == nullptr || h.normal.z() < bottom->normal.z()) bottom = &h;
   }
   const double z_axis = bottom->offset / bottom->normal.z();
-  t.block = p.transformed(Eigen::Matrix3d::Identity(), {0, 0, -d0 - z_axis}).planes();
+  t.block = copy_planes(p.transformed(Eigen::Matrix3d::Identity(), {0, 0, -d0 - z_axis}));
   t.x0 = -La / 2;
   t.length = La;
   t.width = Wa;
@@ -150,10 +149,9 @@ TEST(FaceIntegrated, ExponentialLawMatchesHighOrderQuadrature) {
 // Uniform closure: face integration gives exactly σ_n(δ) A, the point contact's force.
 TEST(FaceIntegrated, UniformClosureGivesThePointContactForce) {
   const double h = 3e-5;
-  const auto a = Polyhedron::box({1, 1, 1}).planes();
-  const auto b = Polyhedron::box({1, 1, 1})
-                     .transformed(Eigen::Matrix3d::Identity(), {0.2, 0.1, 1 - h})
-                     .planes();
+  const auto a = copy_planes(Polyhedron::box({1, 1, 1}));
+  const auto b = copy_planes(
+      Polyhedron::box({1, 1, 1}).transformed(Eigen::Matrix3d::Identity(), {0.2, 0.1, 1 - h}));
   const ContactGeometry g = boon2012_contact(a, b, 4.0, Boon2012Settings{});
   ASSERT_TRUE(g.touching);
   for (const NormalLaw& law :

@@ -128,7 +128,7 @@ std::optional<SharedFace> shared_face(const Polyhedron& shape_a,
                                       std::span<const Halfspace> planes_a,
                                       std::span<const Halfspace> planes_b, double tolerance,
                                       double min_area) {
-  const std::vector<Eigen::Vector3d>& body = shape_a.vertices();
+  const std::span<const Eigen::Vector3d> body = shape_a.vertices();
   return shared_face_of_faces(
       shape_a,
       [&](std::size_t v) -> Eigen::Vector3d { return position_a + orientation_a * body[v]; },

@@ -5,9 +5,14 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <memory>
+#include <new>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include "blockdem/geometry/geometry_error.hpp"
 #include "blockdem/numerics/number_text.hpp"
@@ -69,15 +74,11 @@ double polygon_area(std::span<const Eigen::Vector3d> points, const Eigen::Vector
 }
 
 Polyhedron Polyhedron::from_planes(std::span<const Halfspace> planes) {
-  Polyhedron p;
-  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()), false);
-  return p;
+  return Polyhedron(build(std::vector<Halfspace>(planes.begin(), planes.end()), false));
 }
 
 Polyhedron Polyhedron::from_closed_planes(std::span<const Halfspace> planes) {
-  Polyhedron p;
-  p.data_ = build(std::vector<Halfspace>(planes.begin(), planes.end()), true);
-  return p;
+  return Polyhedron(build(std::vector<Halfspace>(planes.begin(), planes.end()), true));
 }
 
 Polyhedron Polyhedron::box(const Eigen::Vector3d& size) {
@@ -159,17 +160,35 @@ Polyhedron Polyhedron::from_vertices(std::span<const Eigen::Vector3d> points) {
 }
 
 Polyhedron::Polyhedron() {
-  // One empty shape for every default-constructed polyhedron.
-  static const std::shared_ptr<const Data> empty = std::make_shared<const Data>();
-  data_ = empty;
+  // One empty shape for every default-constructed polyhedron; its own reference is never
+  // released, so it is never freed.
+  static const Data empty;
+  data_ = &empty;
+  data_->share();
 }
 
-std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace> planes,
-                                                          bool known_closed) {
-  auto data = std::make_shared<Data>();
-  auto& vertices = data->vertices;
-  auto& kept_planes = data->planes;
-  auto& faces = data->faces;
+void Polyhedron::Data::release() const {
+  if (references.fetch_sub(1, std::memory_order_acq_rel) != 1) return;
+  this->~Data();  // the arrays after it hold nothing to destroy (static_assert below)
+  ::operator delete(const_cast<Data*>(this));
+}
+
+namespace {
+
+// The arrays are never destroyed element by element: nothing in them owns a resource.
+static_assert(std::is_trivially_destructible_v<Halfspace> &&
+              std::is_trivially_destructible_v<Eigen::Vector3d> &&
+              std::is_trivially_destructible_v<Face>);
+static_assert(alignof(Halfspace) <= 8 && alignof(Face) <= 8 && alignof(Eigen::Vector3d) <= 8 &&
+              sizeof(Halfspace) % 8 == 0 && sizeof(Face) % 8 == 0);
+
+}  // namespace
+
+const Polyhedron::Data* Polyhedron::build(std::vector<Halfspace> planes, bool known_closed) {
+  Data header;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Halfspace> kept_planes;
+  std::vector<std::vector<int>> faces;  // each face's plane is its place in kept_planes
   if (planes.size() < 4) {
     throw GeometryError("a bounded polyhedron needs at least 4 planes, got " +
                         std::to_string(planes.size()));
@@ -235,14 +254,10 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
       angle[v] = std::atan2(r.dot(w), r.dot(u));
     }
     std::sort(on.begin(), on.end(), [&](int a, int b) { return angle[a] < angle[b]; });
-    faces.push_back(Face{static_cast<int>(kept_planes.size()), on});
+    faces.push_back(std::move(on));
     kept_planes.push_back(h);
   }
   if (faces.size() < 4) throw GeometryError("the planes enclose no solid: zero volume");
-  // A shape lives as long as its blocks: no spare capacity.
-  vertices.shrink_to_fit();
-  kept_planes.shrink_to_fit();
-  faces.shrink_to_fit();
 
   // Mass properties: fan each face into triangles and form tetrahedra with an interior point c.
   // For a tetrahedron p0..p3: V = (p1-p0)·((p2-p0)×(p3-p0))/6 and
@@ -254,10 +269,10 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
   for (const auto& f : faces) {
-    const Eigen::Vector3d a = vertices[f.vertices[0]] - c;
-    for (std::size_t i = 1; i + 1 < f.vertices.size(); ++i) {
-      const Eigen::Vector3d b = vertices[f.vertices[i]] - c;
-      const Eigen::Vector3d d = vertices[f.vertices[i + 1]] - c;
+    const Eigen::Vector3d a = vertices[f[0]] - c;
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      const Eigen::Vector3d b = vertices[f[i]] - c;
+      const Eigen::Vector3d d = vertices[f[i + 1]] - c;
       const double v6 = a.dot(b.cross(d));
       const double v = v6 / 6.0;
       const Eigen::Vector3d s = a + b + d;
@@ -268,30 +283,66 @@ std::shared_ptr<const Polyhedron::Data> Polyhedron::build(std::vector<Halfspace>
     }
   }
   if (!(vol > std::pow(1e-6 * scale, 3))) throw GeometryError("the shape has zero volume");
-  data->volume = vol;
+  header.volume = vol;
   const Eigen::Vector3d g = first / vol;
-  data->centroid = c + g;
+  header.centroid = c + g;
   const Eigen::Matrix3d cov = second - vol * g * g.transpose();
-  data->unit_inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
-  data->bounding_radius = 0.0;
+  header.unit_inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
+  header.bounding_radius = 0.0;
   for (const auto& v : vertices)
-    data->bounding_radius = std::max(data->bounding_radius, (v - data->centroid).norm());
+    header.bounding_radius = std::max(header.bounding_radius, (v - header.centroid).norm());
+
+  // The record: the header, then the planes, vertices, faces and their indices (Data's
+  // accessors find each array after the one before).
+  std::size_t n_indices = 0;
+  for (const auto& f : faces) n_indices += f.size();
+  header.n_planes = static_cast<std::uint32_t>(kept_planes.size());
+  header.n_vertices = static_cast<std::uint32_t>(vertices.size());
+  header.n_faces = static_cast<std::uint32_t>(faces.size());
+  header.n_indices = static_cast<std::uint32_t>(n_indices);
+  static_assert(sizeof(Data) % 8 == 0 && alignof(Data) <= alignof(std::max_align_t));
+  const std::size_t bytes = sizeof(Data) + kept_planes.size() * sizeof(Halfspace) +
+                            vertices.size() * sizeof(Eigen::Vector3d) +
+                            faces.size() * sizeof(Face) + n_indices * sizeof(int);
+  void* memory = ::operator new(bytes);
+  Data* data = new (memory) Data;
+  data->n_planes = header.n_planes;
+  data->n_vertices = header.n_vertices;
+  data->n_faces = header.n_faces;
+  data->n_indices = header.n_indices;
+  data->volume = header.volume;
+  data->centroid = header.centroid;
+  data->unit_inertia = header.unit_inertia;
+  data->bounding_radius = header.bounding_radius;
+  std::uninitialized_copy(kept_planes.begin(), kept_planes.end(),
+                          const_cast<Halfspace*>(data->planes()));
+  std::uninitialized_copy(vertices.begin(), vertices.end(),
+                          const_cast<Eigen::Vector3d*>(data->vertices()));
+  int* index = const_cast<int*>(data->indices());
+  Face* face = const_cast<Face*>(data->faces());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    std::copy(faces[f].begin(), faces[f].end(), index);
+    new (face + f) Face{static_cast<int>(f), std::span<const int>(index, faces[f].size())};
+    index += faces[f].size();
+  }
   return data;
 }
 
 double Polyhedron::face_area(int f) const {
-  const auto& face = data_->faces.at(f);
+  if (f < 0 || static_cast<std::uint32_t>(f) >= data_->n_faces)
+    throw std::out_of_range("Polyhedron::face_area: no face " + std::to_string(f));
+  const Face& face = data_->faces()[f];
   std::vector<Eigen::Vector3d> pts;
   pts.reserve(face.vertices.size());
-  for (int v : face.vertices) pts.push_back(data_->vertices[v]);
-  return polygon_area(pts, data_->planes[face.plane].normal);
+  for (int v : face.vertices) pts.push_back(data_->vertices()[v]);
+  return polygon_area(pts, data_->planes()[face.plane].normal);
 }
 
 Polyhedron Polyhedron::transformed(const Eigen::Matrix3d& rotation,
                                    const Eigen::Vector3d& translation) const {
   std::vector<Halfspace> moved;
-  moved.reserve(data_->planes.size());
-  for (const auto& h : data_->planes) {
+  moved.reserve(data_->n_planes);
+  for (const auto& h : planes()) {
     Halfspace m;
     m.normal = (rotation * h.normal).normalized();
     m.offset = h.offset + m.normal.dot(translation);

@@ -49,12 +49,12 @@ void order_about(std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& no
 
 ConvexCell ConvexCell::from_polyhedron(const Polyhedron& shape, std::span<const FaceTag> tags) {
   ConvexCell c;
-  c.vertices_ = shape.vertices();
+  c.vertices_.assign(shape.vertices().begin(), shape.vertices().end());
   for (const auto& f : shape.faces()) {
     CellFace cf;
     cf.plane = shape.planes()[f.plane];
     cf.tag = tags[f.plane];
-    cf.vertices = f.vertices;
+    cf.vertices.assign(f.vertices.begin(), f.vertices.end());
     c.faces_.push_back(std::move(cf));
   }
   c.update_mass_properties();

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -81,11 +83,11 @@ void expect_same_bits(const Polyhedron& a, const Polyhedron& b) {
     EXPECT_EQ(a.planes()[i].normal, b.planes()[i].normal);
     EXPECT_EQ(a.planes()[i].offset, b.planes()[i].offset);
   }
-  EXPECT_EQ(a.vertices(), b.vertices());
+  EXPECT_TRUE(std::ranges::equal(a.vertices(), b.vertices()));
   ASSERT_EQ(a.faces().size(), b.faces().size());
   for (std::size_t f = 0; f < a.faces().size(); ++f) {
     EXPECT_EQ(a.faces()[f].plane, b.faces()[f].plane);
-    EXPECT_EQ(a.faces()[f].vertices, b.faces()[f].vertices);
+    EXPECT_TRUE(std::ranges::equal(a.faces()[f].vertices, b.faces()[f].vertices));
   }
   EXPECT_EQ(a.volume(), b.volume());
   EXPECT_EQ(a.centroid(), b.centroid());
@@ -131,7 +133,7 @@ TEST(Polyhedron, ClosedPlanesGiveTheSameShapeAsTheCheckedPath) {
 }
 
 TEST(Polyhedron, RedundantPlanesAreDropped) {
-  std::vector<Halfspace> planes = Polyhedron::box({1, 1, 1}).planes();
+  std::vector<Halfspace> planes = copy_planes(Polyhedron::box({1, 1, 1}));
   planes.push_back(Halfspace{Eigen::Vector3d(1, 1, 0).normalized(), 5.0});  // far away
   planes.push_back(planes[0]);                                              // duplicate
   const Polyhedron p = Polyhedron::from_planes(planes);
@@ -142,7 +144,7 @@ TEST(Polyhedron, RedundantPlanesAreDropped) {
 TEST(Polyhedron, CutCornerPrismHasExactVolume) {
   // Unit cube with the corner x + y > 1.5 cut off: removes a prism of volume 0.5·0.5·0.5/2·... =
   // 0.125.
-  std::vector<Halfspace> planes = Polyhedron::box({1, 1, 1}).planes();
+  std::vector<Halfspace> planes = copy_planes(Polyhedron::box({1, 1, 1}));
   for (auto& h : planes) h.offset += h.normal.dot(Eigen::Vector3d(0.5, 0.5, 0.5));  // cube [0,1]^3
   planes.push_back(Halfspace{Eigen::Vector3d(1, 1, 0).normalized(), 1.5 / std::sqrt(2.0)});
   const Polyhedron p = Polyhedron::from_planes(planes);
@@ -162,7 +164,7 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
   // Unbounded: a box without its top.
   expect_error(
       [] {
-        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        auto planes = copy_planes(Polyhedron::box({1, 1, 1}));
         planes.erase(planes.begin() + 4);
         return Polyhedron::from_planes(planes);
       },
@@ -170,7 +172,7 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
   // Empty: x <= -1 and x >= 1.
   expect_error(
       [] {
-        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        auto planes = copy_planes(Polyhedron::box({1, 1, 1}));
         planes.push_back(Halfspace{Eigen::Vector3d::UnitX(), -1.0});
         return Polyhedron::from_planes(planes);
       },
@@ -179,7 +181,7 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
   expect_error([] { return Polyhedron::box({1, 1, 0}); }, "positive");
   expect_error(
       [] {
-        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        auto planes = copy_planes(Polyhedron::box({1, 1, 1}));
         planes[4].offset = -0.5;  // top plane at z = -0.5 meets the bottom
         return Polyhedron::from_planes(planes);
       },
@@ -187,14 +189,14 @@ TEST(Polyhedron, BadShapesAreRejectedWithAClearMessage) {
   // Non-unit and NaN normals.
   expect_error(
       [] {
-        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        auto planes = copy_planes(Polyhedron::box({1, 1, 1}));
         planes[0].normal *= 2.0;
         return Polyhedron::from_planes(planes);
       },
       "unit");
   expect_error(
       [] {
-        auto planes = Polyhedron::box({1, 1, 1}).planes();
+        auto planes = copy_planes(Polyhedron::box({1, 1, 1}));
         planes[0].offset = std::nan("");
         return Polyhedron::from_planes(planes);
       },
@@ -222,18 +224,34 @@ TEST(Polyhedron, CopiesShareTheShapeAndAMovedFromPolyhedronKeepsIt) {
   Polyhedron p = Polyhedron::box(s);
   const Polyhedron copy = p;
   EXPECT_TRUE(copy.shares_data_with(p));
-  EXPECT_EQ(&copy.vertices(), &p.vertices());
+  EXPECT_EQ(copy.vertices().data(), p.vertices().data());
   const Polyhedron moved = std::move(p);
   EXPECT_TRUE(moved.shares_data_with(copy));
   EXPECT_NEAR(p.volume(), s.prod(), 1e-15);  // NOLINT(bugprone-use-after-move): still usable
   // Built separately from the same planes: equal, not shared.
   const Polyhedron other = Polyhedron::box(s);
   EXPECT_FALSE(other.shares_data_with(copy));
-  EXPECT_EQ(other.vertices(), copy.vertices());
+  EXPECT_TRUE(std::ranges::equal(other.vertices(), copy.vertices()));
   // The default polyhedron is empty.
   const Polyhedron empty;
   EXPECT_TRUE(empty.planes().empty());
   EXPECT_EQ(empty.volume(), 0.0);
+  // A copy outlives the shape it came from (its record is freed with the last copy, which the
+  // sanitizer builds check), and an assignment lets go of what it held.
+  auto first = std::make_unique<Polyhedron>(Polyhedron::box(s));
+  Polyhedron kept = *first;
+  const std::vector<Eigen::Vector3d> corners(first->vertices().begin(), first->vertices().end());
+  first.reset();
+  EXPECT_TRUE(std::ranges::equal(kept.vertices(), corners));
+  EXPECT_EQ(kept.faces().size(), 6u);
+  EXPECT_EQ(kept.faces()[0].vertices.size(), 4u);
+  EXPECT_NEAR(kept.volume(), s.prod(), 1e-15);
+  const Polyhedron& self = kept;
+  kept = self;  // assigning a shape to itself keeps it
+  EXPECT_NEAR(kept.volume(), s.prod(), 1e-15);
+  kept = empty;
+  EXPECT_TRUE(kept.vertices().empty());
+  EXPECT_TRUE(kept.shares_data_with(empty));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -79,10 +80,10 @@ void expect_same_block(const Block& got, const Block& want) {
     EXPECT_EQ(got.shape.planes()[i].normal, want.shape.planes()[i].normal);
     EXPECT_EQ(got.shape.planes()[i].offset, want.shape.planes()[i].offset);
   }
-  EXPECT_EQ(got.shape.vertices(), want.shape.vertices());
+  EXPECT_TRUE(std::ranges::equal(got.shape.vertices(), want.shape.vertices()));
   ASSERT_EQ(got.shape.faces().size(), want.shape.faces().size());
   for (std::size_t f = 0; f < got.shape.faces().size(); ++f)
-    EXPECT_EQ(got.shape.faces()[f].vertices, want.shape.faces()[f].vertices);
+    EXPECT_TRUE(std::ranges::equal(got.shape.faces()[f].vertices, want.shape.faces()[f].vertices));
 }
 
 TEST(SharedShapes, IdenticalBoxesShareOneShapeAndEqualBoxesBuiltAlone) {
