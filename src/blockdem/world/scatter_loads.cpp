@@ -18,6 +18,100 @@ namespace blockdem {
 
 using namespace pass_support;
 
+namespace {
+
+// A contact's loads on its block b: its force at the force point and, about the normal, its
+// twisting couple (M n on b, -M n on a); with them the block's stiffness sums, k A for
+// translation and for rotation k A (|r|² + A/12), the second term the rocking stiffness of a
+// spread face, plus the twist spring's.
+void add_load_on_b(const Contact& ct, Block& b, double& stiffness, double& rotational) {
+  const Eigen::Vector3d& xf = ct.force_point();
+  const Eigen::Vector3d f = ct.force_on_b();
+  b.force += f;
+  b.contact_force += f;
+  b.torque += (xf - b.position).cross(f);
+  if (ct.couple_about_normal() != 0.0) {
+    const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
+    b.torque += moment;
+  }
+  const double k = ct.stiffness;
+  const double spread = ct.compressed_area() / 12.0;
+  stiffness += k;
+  rotational += k * ((xf - b.position).squaredNorm() + spread);
+  rotational += ct.twist_stiffness;
+}
+
+// The same on its block a, with the opposite force and couple.
+void add_load_on_a(const Contact& ct, Block& a, double& stiffness, double& rotational) {
+  const Eigen::Vector3d& xf = ct.force_point();
+  const Eigen::Vector3d f = ct.force_on_b();
+  a.force -= f;
+  a.contact_force -= f;
+  a.torque -= (xf - a.position).cross(f);
+  if (ct.couple_about_normal() != 0.0) {
+    const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
+    a.torque -= moment;
+  }
+  const double k = ct.stiffness;
+  const double spread = ct.compressed_area() / 12.0;
+  stiffness += k;
+  rotational += k * ((xf - a.position).squaredNorm() + spread);
+  rotational += ct.twist_stiffness;
+}
+
+// The slots (sorted by a) cut into `runs` runs of about equal slot counts, each cut at a
+// block's first slot: run t holds the blocks [first[t], first[t+1]) and the slots
+// [begin[t], begin[t+1]).
+void split_into_runs(const std::vector<PairSlot>& slots, std::size_t n_blocks, std::size_t runs,
+                     std::vector<std::size_t>& first, std::vector<std::size_t>& begin) {
+  const std::size_t m = slots.size();
+  first.assign(runs + 1, n_blocks);
+  begin.assign(runs + 1, m);
+  first[0] = 0;
+  begin[0] = 0;
+  for (std::size_t t = 1; t < runs; ++t) {
+    const std::size_t at = t * m / runs;
+    first[t] = at < m ? std::max(first[t - 1], static_cast<std::size_t>(slots[at].a)) : n_blocks;
+    begin[t] = static_cast<std::size_t>(
+        std::lower_bound(
+            slots.begin() + static_cast<std::ptrdiff_t>(begin[t - 1]), slots.end(), first[t],
+            [](const PairSlot& s, std::size_t a) { return static_cast<std::size_t>(s.a) < a; }) -
+        slots.begin());
+  }
+}
+
+// The automatic time step's bound over the blocks [first, last): sqrt(m / k) and sqrt(I / k_r)
+// of each dynamic block with a contact (a minimum: exact in any order).
+double blocks_step_bound(const std::vector<Block>& blocks, const std::vector<double>& stiffness,
+                         const std::vector<double>& rotational, std::size_t first,
+                         std::size_t last) {
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = first; i < last; ++i) {
+    // The stiffness first: a block with no contact here (one that another process holds)
+    // needs no visit to its record.
+    if (stiffness[i] <= 0.0) continue;
+    const Block& bl = blocks[i];
+    if (!bl.is_dynamic()) continue;
+    dt_min = std::min(dt_min, std::sqrt(bl.inertial_mass() / stiffness[i]));
+    dt_min = std::min(dt_min, std::sqrt(bl.inertial_moments().minCoeff() / rotational[i]));
+  }
+  return dt_min;
+}
+
+// The stiffness sums cleared for a step: every block's, or (`kept` set: a distributed step)
+// those of the blocks whose loads this process sums, the others left as they are.
+void clear_stiffness_sums(std::vector<double>& sums, std::size_t n_blocks,
+                          const std::vector<int>* kept) {
+  if (kept == nullptr) {
+    sums.assign(n_blocks, 0.0);
+    return;
+  }
+  sums.resize(n_blocks, 0.0);
+  for (const int i : *kept) sums[static_cast<std::size_t>(i)] = 0.0;
+}
+
+}  // namespace
+
 void World::scatter_loads(const std::vector<char>* counted) {
   // Every block's sums are formed in (a, b) order, as a serial pass over the slots would form
   // them, for any number of threads. The slots are split into T runs of whole blocks (run t:
@@ -36,58 +130,19 @@ void World::scatter_loads(const std::vector<char>* counted) {
   const std::size_t n_blocks = blocks_.size();
   const std::size_t m = slots_.size();
   const char* keeps = counted != nullptr ? decomposition_.keeps_loads().data() : nullptr;
-  if (keeps == nullptr) {
-    stiffness_.assign(n_blocks, 0.0);
-    rotational_stiffness_.assign(n_blocks, 0.0);
-  } else {
-    stiffness_.resize(n_blocks, 0.0);
-    rotational_stiffness_.resize(n_blocks, 0.0);
-    for (const int i : decomposition_.kept_list()) {
-      stiffness_[static_cast<std::size_t>(i)] = 0.0;
-      rotational_stiffness_[static_cast<std::size_t>(i)] = 0.0;
-    }
-  }
+  clear_stiffness_sums(stiffness_, n_blocks,
+                       keeps != nullptr ? &decomposition_.kept_list() : nullptr);
+  clear_stiffness_sums(rotational_stiffness_, n_blocks,
+                       keeps != nullptr ? &decomposition_.kept_list() : nullptr);
   const int threads = thread_count();
 
-  // The loads of one slot on its block b, and on its block a.
   const auto load_b = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
-    Block& b = blocks_[ct.b];
-    const Eigen::Vector3d& xf = ct.force_point();
-    const Eigen::Vector3d f = ct.force_on_b();
-    b.force += f;
-    b.contact_force += f;
-    b.torque += (xf - b.position).cross(f);
-    // The twisting moment about the normal, a couple: M n on b, -M n on a.
-    if (ct.couple_about_normal() != 0.0) {
-      const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
-      b.torque += moment;
-    }
-    // Stiffness sums: k A for translation, and for rotation k A (|r|² + A/12), the second term
-    // the rocking stiffness of a spread face.
-    const double k = ct.stiffness;
-    const double spread = ct.compressed_area() / 12.0;
-    stiffness_[ct.b] += k;
-    rotational_stiffness_[ct.b] += k * ((xf - b.position).squaredNorm() + spread);
-    rotational_stiffness_[ct.b] += ct.twist_stiffness;
+    add_load_on_b(ct, blocks_[ct.b], stiffness_[ct.b], rotational_stiffness_[ct.b]);
   };
   const auto load_a = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
-    Block& a = blocks_[ct.a];
-    const Eigen::Vector3d& xf = ct.force_point();
-    const Eigen::Vector3d f = ct.force_on_b();
-    a.force -= f;
-    a.contact_force -= f;
-    a.torque -= (xf - a.position).cross(f);
-    if (ct.couple_about_normal() != 0.0) {
-      const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
-      a.torque -= moment;
-    }
-    const double k = ct.stiffness;
-    const double spread = ct.compressed_area() / 12.0;
-    stiffness_[ct.a] += k;
-    rotational_stiffness_[ct.a] += k * ((xf - a.position).squaredNorm() + spread);
-    rotational_stiffness_[ct.a] += ct.twist_stiffness;
+    add_load_on_a(ct, blocks_[ct.a], stiffness_[ct.a], rotational_stiffness_[ct.a]);
   };
 
   struct RunTotals {
@@ -108,24 +163,7 @@ void World::scatter_loads(const std::vector<char>* counted) {
     {
       const std::size_t runs = static_cast<std::size_t>(team_size());
       totals.resize(runs);
-      scatter_first_.assign(runs + 1, n_blocks);
-      scatter_begin_.assign(runs + 1, m);
-      scatter_first_[0] = 0;
-      scatter_begin_[0] = 0;
-      for (std::size_t t = 1; t < runs; ++t) {
-        // Runs of about equal slot counts, cut at a block's first slot.
-        const std::size_t at = t * m / runs;
-        scatter_first_[t] =
-            at < m ? std::max(scatter_first_[t - 1], static_cast<std::size_t>(slots_[at].a))
-                   : n_blocks;
-        scatter_begin_[t] = static_cast<std::size_t>(
-            std::lower_bound(slots_.begin() + static_cast<std::ptrdiff_t>(scatter_begin_[t - 1]),
-                             slots_.end(), scatter_first_[t],
-                             [](const PairSlot& s, std::size_t a) {
-                               return static_cast<std::size_t>(s.a) < a;
-                             }) -
-            slots_.begin());
-      }
+      split_into_runs(slots_, n_blocks, runs, scatter_first_, scatter_begin_);
       scatter_cross_.resize(runs);
     }
     const auto t = static_cast<std::size_t>(team_rank());
@@ -179,16 +217,8 @@ void World::scatter_loads(const std::vector<char>* counted) {
       }
     }
     // 3. This run's blocks are complete: their time-step bound.
-    for (std::size_t i = first; i < last && keeps == nullptr; ++i) {
-      // The stiffness first: a block with no contact here (one that another process holds)
-      // needs no visit to its record.
-      if (stiffness_[i] <= 0.0) continue;
-      const Block& bl = blocks_[i];
-      if (!bl.is_dynamic()) continue;
-      mine.dt_min = std::min(mine.dt_min, std::sqrt(bl.inertial_mass() / stiffness_[i]));
-      mine.dt_min = std::min(
-          mine.dt_min, std::sqrt(bl.inertial_moments().minCoeff() / rotational_stiffness_[i]));
-    }
+    if (keeps == nullptr)
+      mine.dt_min = blocks_step_bound(blocks_, stiffness_, rotational_stiffness_, first, last);
     totals[t] = std::move(mine);
   };
   if (threads > 1 && static_cast<std::int64_t>(m) > big_enough) {
