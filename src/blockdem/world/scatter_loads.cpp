@@ -20,42 +20,26 @@ using namespace pass_support;
 
 namespace {
 
-// A contact's loads on its block b: its force at the force point and, about the normal, its
-// twisting couple (M n on b, -M n on a); with them the block's stiffness sums, k A for
-// translation and for rotation k A (|r|² + A/12), the second term the rocking stiffness of a
-// spread face, plus the twist spring's.
-void add_load_on_b(const Contact& ct, Block& b, double& stiffness, double& rotational) {
+// A contact's loads on one of its blocks: on b its force at the force point and its twisting
+// couple about the normal (M n), on a the opposite of both (the same bits as subtracting them);
+// with them the block's stiffness sums, k A for translation and for rotation k A (|r|² + A/12),
+// the second term the rocking stiffness of a spread face, plus the twist spring's.
+template <bool kOnB>
+void add_contact_load(const Contact& ct, Block& block, double& stiffness, double& rotational) {
   const Eigen::Vector3d& xf = ct.force_point();
-  const Eigen::Vector3d f = ct.force_on_b();
-  b.force += f;
-  b.contact_force += f;
-  b.torque += (xf - b.position).cross(f);
+  const Eigen::Vector3d f = kOnB ? ct.force_on_b() : Eigen::Vector3d(-ct.force_on_b());
+  block.force += f;
+  block.contact_force += f;
+  block.torque += (xf - block.position).cross(f);
   if (ct.couple_about_normal() != 0.0) {
-    const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
-    b.torque += moment;
+    const double couple = kOnB ? ct.couple_about_normal() : -ct.couple_about_normal();
+    const Eigen::Vector3d moment = couple * ct.geometry.normal;
+    block.torque += moment;
   }
   const double k = ct.stiffness;
   const double spread = ct.compressed_area() / 12.0;
   stiffness += k;
-  rotational += k * ((xf - b.position).squaredNorm() + spread);
-  rotational += ct.twist_stiffness;
-}
-
-// The same on its block a, with the opposite force and couple.
-void add_load_on_a(const Contact& ct, Block& a, double& stiffness, double& rotational) {
-  const Eigen::Vector3d& xf = ct.force_point();
-  const Eigen::Vector3d f = ct.force_on_b();
-  a.force -= f;
-  a.contact_force -= f;
-  a.torque -= (xf - a.position).cross(f);
-  if (ct.couple_about_normal() != 0.0) {
-    const Eigen::Vector3d moment = ct.couple_about_normal() * ct.geometry.normal;
-    a.torque -= moment;
-  }
-  const double k = ct.stiffness;
-  const double spread = ct.compressed_area() / 12.0;
-  stiffness += k;
-  rotational += k * ((xf - a.position).squaredNorm() + spread);
+  rotational += k * ((xf - block.position).squaredNorm() + spread);
   rotational += ct.twist_stiffness;
 }
 
@@ -138,11 +122,11 @@ void World::scatter_loads(const std::vector<char>* counted) {
 
   const auto load_b = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
-    add_load_on_b(ct, blocks_[ct.b], stiffness_[ct.b], rotational_stiffness_[ct.b]);
+    add_contact_load<true>(ct, blocks_[ct.b], stiffness_[ct.b], rotational_stiffness_[ct.b]);
   };
   const auto load_a = [&](const PairSlot& s) {
     const Contact& ct = contact_of(s);
-    add_load_on_a(ct, blocks_[ct.a], stiffness_[ct.a], rotational_stiffness_[ct.a]);
+    add_contact_load<false>(ct, blocks_[ct.a], stiffness_[ct.a], rotational_stiffness_[ct.a]);
   };
 
   struct RunTotals {
