@@ -24,8 +24,8 @@ std::pair<int, double> contact_face(const Block& block, const Eigen::Vector3d& o
   return best >= 0 ? std::make_pair(best, best_dot) : std::make_pair(any, any_dot);
 }
 
-int face_law_for_contact(const Block& a, const std::vector<int>& laws_a, const Block& b,
-                         const std::vector<int>& laws_b, const ContactGeometry& g, int group_law) {
+int face_law_for_contact(const Block& a, std::span<const int> laws_a, const Block& b,
+                         std::span<const int> laws_b, const ContactGeometry& g, int group_law) {
   if (laws_a.empty() && laws_b.empty()) return group_law;
   // The contact point lies inside the overlap, within its depth of both contact faces.
   // The blocks' copies of their shapes' radii (refreshed with the world planes read below).

@@ -2,6 +2,7 @@
 // made the face); a contact takes its law from the faces in contact, else from the group rules.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "blockdem/collision/contact_geometry.hpp"
@@ -19,7 +20,7 @@ std::pair<int, double> contact_face(const Block& block, const Eigen::Vector3d& o
 /// its own; an empty list: no face laws). When both faces name a law, the better-aligned face
 /// wins (a on a tie): a face-to-face contact between two cut blocks has the same law on both
 /// sides. Without a face law: `group_law` (the group rules' answer, -1 for none).
-int face_law_for_contact(const Block& a, const std::vector<int>& laws_a, const Block& b,
-                         const std::vector<int>& laws_b, const ContactGeometry& g, int group_law);
+int face_law_for_contact(const Block& a, std::span<const int> laws_a, const Block& b,
+                         std::span<const int> laws_b, const ContactGeometry& g, int group_law);
 
 }  // namespace blockdem

@@ -30,13 +30,38 @@ void check_time_step(const Scenario& sc, const World& world) {
 
 namespace {
 
-// build_world with the blocks given apart: copied from the scenario's (const), or moved.
-template <class Blocks>
-World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
+// The values of every list of `lists`.
+std::size_t value_count(const std::vector<std::vector<int>>& lists) {
+  std::size_t n = 0;
+  for (const auto& l : lists) n += l.size();
+  return n;
+}
+
+// The faces' laws and joint sets into the world, which holds them in one array each: taken
+// lists (one per block, ~110 bytes a block for both in a rock mass) are freed then.
+template <class Lists>
+void set_face_lists(World& w, Lists& face_laws, Lists& face_sets) {
+  for (std::size_t i = 0; i < face_laws.size(); ++i) {
+    if (!face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), face_laws[i]);
+  }
+  for (std::size_t i = 0; i < face_sets.size(); ++i) {
+    if (!face_sets[i].empty()) w.set_face_sets(static_cast<int>(i), face_sets[i]);
+  }
+  if constexpr (!std::is_const_v<Lists>) {
+    Lists().swap(face_laws);
+    Lists().swap(face_sets);
+  }
+}
+
+// build_world with the blocks and their faces' laws and joint sets given apart: copied from the
+// scenario's (const), or taken (the scenario's are then freed).
+template <class Blocks, class Lists>
+World build_world_from(const Scenario& sc, Blocks& scenario_blocks, Lists& face_laws,
+                       Lists& face_sets) {
   World w(sc.settings);
   for (const auto& law : sc.joint_laws) w.add_joint_law(law);
   for (const auto& r : sc.joint_rules) w.add_joint_rule(r);
-  w.reserve_blocks(scenario_blocks.size());
+  w.reserve_blocks(scenario_blocks.size(), value_count(face_laws), value_count(face_sets));
   for (auto& b : scenario_blocks) {
     if constexpr (std::is_const_v<Blocks>) {
       w.add_block(b);
@@ -47,12 +72,7 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
   // The world holds the blocks now: their moved-from array (~0.6 KB per block) is freed before
   // the initial-overlap check, whose narrow phase keeps the first step's contact states.
   if constexpr (!std::is_const_v<Blocks>) Blocks().swap(scenario_blocks);
-  for (std::size_t i = 0; i < sc.face_laws.size(); ++i) {
-    if (!sc.face_laws[i].empty()) w.set_face_laws(static_cast<int>(i), sc.face_laws[i]);
-  }
-  for (std::size_t i = 0; i < sc.face_sets.size(); ++i) {
-    if (!sc.face_sets[i].empty()) w.set_face_sets(static_cast<int>(i), sc.face_sets[i]);
-  }
+  set_face_lists(w, face_laws, face_sets);
   // Deep initial overlaps are input errors, not something to blow apart. Candidate pairs come
   // from the broad phase (O(N log N)), sorted by (i, j); the narrow phase runs on every thread
   // and the error names the first offending pair in that order, whatever the thread count.
@@ -184,13 +204,13 @@ World build_world_from(const Scenario& sc, Blocks& scenario_blocks) {
 }  // namespace
 
 World build_world(const Scenario& sc) {
-  return build_world_from(sc, sc.blocks);
+  return build_world_from(sc, sc.blocks, sc.face_laws, sc.face_sets);
 }
 
 World build_world_taking_blocks(Scenario& sc) {
   std::vector<Block> blocks = std::move(sc.blocks);
   sc.blocks.clear();
-  return build_world_from(sc, blocks);
+  return build_world_from(sc, blocks, sc.face_laws, sc.face_sets);
 }
 
 }  // namespace blockdem

@@ -85,9 +85,9 @@ void check_time_step(const Scenario& scenario, const World& world);
 /// Builds the world. Throws ScenarioError when blocks overlap deeply at the start (more than
 /// the settings' max_overlap_fraction of the smaller block's radius).
 World build_world(const Scenario& scenario);
-/// The same, moving the blocks out of the scenario into the world (they are not copied; the
-/// scenario is left without blocks): for a caller that needs them no more, so that a large scene
-/// holds its blocks once.
+/// The same, moving the blocks and their faces' laws and joint sets out of the scenario into the
+/// world (they are not copied; the scenario is left without them): for a caller that needs them
+/// no more, so that a large scene holds its blocks once.
 World build_world_taking_blocks(Scenario& scenario);
 
 }  // namespace blockdem

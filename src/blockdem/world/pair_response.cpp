@@ -193,8 +193,8 @@ void World::evaluate_pair(PairSlot& slot, Contact& ct, double dt, bool advance_s
   slot.active = false;
   slot.broke = false;
   clear_step_terms(ct);
-  const std::vector<int>& face_laws_a = face_laws(ct.a);
-  const std::vector<int>& face_laws_b = face_laws(ct.b);
+  const std::span<const int> face_laws_a = face_laws(ct.a);
+  const std::span<const int> face_laws_b = face_laws(ct.b);
   if (slot.group_law < 0 && face_laws_a.empty() && face_laws_b.empty()) return forget_history(ct);
   // Faces that do not press on each other: a bond may hold them, else the contact is gone.
   const auto open_bond = [&](const OpenBondStart* start) {

@@ -124,8 +124,10 @@ int World::add_block(Block block) {
   return blocks_.back().index;
 }
 
-void World::reserve_blocks(std::size_t count) {
+void World::reserve_blocks(std::size_t count, std::size_t face_laws, std::size_t face_sets) {
   blocks_.reserve(count);
+  if (face_laws > 0) face_laws_.reserve(count, face_laws);
+  if (face_sets > 0) face_sets_.reserve(count, face_sets);
   a_priori_shape_.reserve(count);
   box_min_.reserve(count);
   box_max_.reserve(count);

@@ -33,6 +33,7 @@
 #include "blockdem/world/distribution.hpp"
 #include "blockdem/world/energy_budget.hpp"
 #include "blockdem/world/pair_slot.hpp"
+#include "blockdem/world/plane_values.hpp"
 #include "blockdem/world/spill_file.hpp"
 #include "blockdem/world/state_stream.hpp"
 #include "blockdem/world/step_scratch.hpp"
@@ -188,8 +189,9 @@ class World {
   /// Adds a block (its index is set) and returns the index.
   int add_block(Block block);
   /// Room for `count` blocks in all, so that adding them does not reallocate (the block array of
-  /// a large scene would otherwise grow to twice its size).
-  void reserve_blocks(std::size_t count);
+  /// a large scene would otherwise grow to twice its size), and for as many planes' own laws
+  /// and joint sets (set_face_laws, set_face_sets) as given.
+  void reserve_blocks(std::size_t count, std::size_t face_laws = 0, std::size_t face_sets = 0);
   int add_joint_law(JointLaw law);
   /// Replaces joint law `index` (validated), e.g. with reduced strengths; contacts keep their
   /// history.
@@ -207,12 +209,14 @@ class World {
   int law_for(int a, int b) const;
   /// Gives a block's planes their own joint laws (one index per plane of its shape, -1 for a
   /// plane without one): a contact on such a face takes that law before the group rules.
-  void set_face_laws(int block, std::vector<int> law_per_plane);
+  void set_face_laws(int block, std::span<const int> law_per_plane);
   /// The block's per-plane laws (empty: none).
-  const std::vector<int>& face_laws(int block) const;
+  std::span<const int> face_laws(int block) const {
+    return face_laws_.of(static_cast<std::size_t>(block));
+  }
   /// Tells which joint set made each plane of a block (one index per plane of its shape, -1 for
   /// a plane of none), for law changes by joint set.
-  void set_face_sets(int block, std::vector<int> set_per_plane);
+  void set_face_sets(int block, std::span<const int> set_per_plane);
   /// Gives faces their laws anew (world_laws.cpp). Throws std::invalid_argument for an unknown
   /// law or a missing elastic twin.
   void change_laws(const std::vector<LawChange>& changes);
@@ -607,10 +611,10 @@ class World {
   /// Rows of broken_bonds_by_set: one per joint set any block's face has, plus one.
   std::size_t break_table_rows() const;
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
-  UniformGrid broad_phase_;  ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
-  std::vector<std::vector<int>> face_laws_;  ///< per block, one law per plane; empty: none
-  std::vector<std::vector<int>> face_sets_;  ///< per block, one joint set per plane; empty: none
-  ContactPreloads preloads_;                 ///< joints prestressed at set-up
+  UniformGrid broad_phase_;   ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
+  PlaneValues face_laws_;     ///< per block, one law per plane; none: none
+  PlaneValues face_sets_;     ///< per block, one joint set per plane; none: none
+  ContactPreloads preloads_;  ///< joints prestressed at set-up
   /// A gradual excavation's loads on a block: its applied loads before, and the removed blocks'.
   struct Relaxation {
     int block = -1;

@@ -21,7 +21,7 @@ Eigen::Vector3d World::total_water_force() const {
   return {sums[0].value(), sums[1].value(), sums[2].value()};
 }
 
-void World::set_face_laws(int block, std::vector<int> law_per_plane) {
+void World::set_face_laws(int block, std::span<const int> law_per_plane) {
   if (block < 0 || block >= static_cast<int>(blocks_.size()))
     throw std::invalid_argument("set_face_laws: no block " + std::to_string(block));
   if (law_per_plane.size() != blocks_[block].shape.planes().size())
@@ -32,13 +32,7 @@ void World::set_face_laws(int block, std::vector<int> law_per_plane) {
     if (law < -1 || law >= static_cast<int>(laws_.size()))
       throw std::invalid_argument("set_face_laws: unknown joint law " + std::to_string(law));
   }
-  if (face_laws_.size() < blocks_.size()) face_laws_.resize(blocks_.size());
-  face_laws_[block] = std::move(law_per_plane);
-}
-
-const std::vector<int>& World::face_laws(int block) const {
-  static const std::vector<int> none;
-  return block < static_cast<int>(face_laws_.size()) ? face_laws_[block] : none;
+  face_laws_.set(static_cast<std::size_t>(block), law_per_plane);
 }
 
 void World::remove_blocks(const std::vector<int>& indices) {
@@ -51,17 +45,13 @@ void World::remove_blocks(const std::vector<int>& indices) {
     new_index[i] = -1;
   }
   std::vector<Block> kept;
-  std::vector<std::vector<int>> kept_laws;
   std::vector<APrioriShape> kept_a_priori;
-  std::vector<std::vector<int>> kept_sets;
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     if (new_index[i] < 0) continue;
     new_index[i] = static_cast<int>(kept.size());
     kept.push_back(std::move(blocks_[i]));
     kept.back().index = new_index[i];
-    kept_laws.push_back(i < face_laws_.size() ? std::move(face_laws_[i]) : std::vector<int>{});
     kept_a_priori.push_back(a_priori_shape_[i]);
-    kept_sets.push_back(i < face_sets_.size() ? std::move(face_sets_[i]) : std::vector<int>{});
   }
   blocks_ = std::move(kept);
   preloads_.renumber(new_index);
@@ -73,8 +63,8 @@ void World::remove_blocks(const std::vector<int>& indices) {
   }
   relaxation_.resize(kept_relaxing);
   energy_.restart();  // the removed blocks' energy leaves the budget
-  face_laws_ = std::move(kept_laws);
-  face_sets_ = std::move(kept_sets);
+  face_laws_.keep(new_index);
+  face_sets_.keep(new_index);
   a_priori_shape_ = std::move(kept_a_priori);
   // Pairs with a removed block go; the others keep their history under the new indices. The
   // renumbering keeps the order of the blocks, so the slots stay sorted by (a, b).

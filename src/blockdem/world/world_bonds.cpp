@@ -40,8 +40,8 @@ bool World::any_breakable_law() const {
 }
 
 int World::shared_face_law(int a, int b, const SharedFace& face, int group_law) const {
-  const std::vector<int>& laws_a = face_laws(a);
-  const std::vector<int>& laws_b = face_laws(b);
+  const std::span<const int> laws_a = face_laws(a);
+  const std::span<const int> laws_b = face_laws(b);
   int law = laws_a.empty() ? -1 : laws_a[static_cast<std::size_t>(face.plane_a)];
   if (law < 0 && !laws_b.empty()) law = laws_b[static_cast<std::size_t>(face.plane_b)];
   return law < 0 ? group_law : law;
@@ -173,18 +173,15 @@ int World::bonded_face_set(int a, int b) const {
   }
   if (!std::isfinite(best)) return -1;
   const auto set_of = [&](int block, std::size_t plane) {
-    const auto k = static_cast<std::size_t>(block);
-    return k < face_sets_.size() && plane < face_sets_[k].size() ? face_sets_[k][plane] : -1;
+    const std::span<const int> sets = face_sets_.of(static_cast<std::size_t>(block));
+    return plane < sets.size() ? sets[plane] : -1;
   };
   const int set = set_of(a, ia);
   return set >= 0 ? set : set_of(b, ib);
 }
 
 std::size_t World::break_table_rows() const {
-  int most = -1;
-  for (const auto& sets : face_sets_)
-    for (const int s : sets) most = std::max(most, s);
-  return static_cast<std::size_t>(most + 2);
+  return static_cast<std::size_t>(face_sets_.max_value(-1) + 2);
 }
 
 void World::add_step_breaks(const std::vector<std::array<std::int64_t, 2>>& breaks) {

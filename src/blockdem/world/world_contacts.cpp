@@ -409,16 +409,14 @@ std::exception_ptr World::evaluate_slots(double dt, bool advance_shear, int thre
         if (i + kPrefetchRecord < end) {
           const PairSlot& ahead = slots_[i + kPrefetchRecord];
           prefetch_record(blocks_[static_cast<std::size_t>(ahead.b)]);
-          if (face_laws_.size() > static_cast<std::size_t>(ahead.b))
-            __builtin_prefetch(&face_laws_[static_cast<std::size_t>(ahead.b)]);
+          face_laws_.prefetch_run(static_cast<std::size_t>(ahead.b));
           if (ahead.a != slots_[i + kPrefetchRecord - 1].a)
             prefetch_record(blocks_[static_cast<std::size_t>(ahead.a)]);
         }
         if (i + kPrefetchPlanes < end) {
           const PairSlot& ahead = slots_[i + kPrefetchPlanes];
           prefetch_planes(blocks_[static_cast<std::size_t>(ahead.b)]);
-          if (face_laws_.size() > static_cast<std::size_t>(ahead.b))
-            __builtin_prefetch(face_laws_[static_cast<std::size_t>(ahead.b)].data());
+          face_laws_.prefetch_values(static_cast<std::size_t>(ahead.b));
           if (ahead.a != slots_[i + kPrefetchPlanes - 1].a)
             prefetch_planes(blocks_[static_cast<std::size_t>(ahead.a)]);
         }

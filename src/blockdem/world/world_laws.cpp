@@ -8,14 +8,13 @@
 
 namespace blockdem {
 
-void World::set_face_sets(int block, std::vector<int> set_per_plane) {
+void World::set_face_sets(int block, std::span<const int> set_per_plane) {
   if (block < 0 || block >= static_cast<int>(blocks_.size()))
     throw std::invalid_argument("set_face_sets: no block " + std::to_string(block));
   if (set_per_plane.size() != blocks_[block].shape.planes().size())
     throw std::invalid_argument("set_face_sets: block '" + blocks_[block].name +
                                 "' has another number of planes");
-  if (face_sets_.size() < blocks_.size()) face_sets_.resize(blocks_.size());
-  face_sets_[block] = std::move(set_per_plane);
+  face_sets_.set(static_cast<std::size_t>(block), set_per_plane);
 }
 
 namespace {
@@ -52,20 +51,18 @@ void World::change_laws(const std::vector<LawChange>& changes) {
     if (!c.elastic && (c.law < 0 || c.law >= static_cast<int>(laws_.size())))
       throw std::invalid_argument("change_laws: unknown joint law " + std::to_string(c.law));
   }
-  if (face_laws_.size() < blocks_.size()) face_laws_.resize(blocks_.size());
   // Per block, the laws its faces left for others: a contact of the block with one of them
   // takes the other (the open bonds keep their law between steps).
   std::vector<std::map<int, int>> moved(blocks_.size());
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     const std::size_t planes = blocks_[i].shape.planes().size();
     for (const LawChange& c : changes) {
-      const std::vector<int>* sets = i < face_sets_.size() ? &face_sets_[i] : nullptr;
+      const std::span<const int> sets = face_sets_.of(i);
       const bool whole = c.joint_set < 0 && blocks_[i].group() == c.group;
-      if (!whole && (c.joint_set < 0 || sets == nullptr || sets->empty())) continue;
-      std::vector<int>& laws = face_laws_[i];
-      if (laws.empty()) laws.assign(planes, -1);
+      if (!whole && (c.joint_set < 0 || sets.empty())) continue;
+      const std::span<int> laws = face_laws_.edit(i, planes, -1);
       for (std::size_t j = 0; j < planes; ++j) {
-        if (!whole && (*sets)[j] != c.joint_set) continue;
+        if (!whole && sets[j] != c.joint_set) continue;
         const int old = laws[j];
         const int law = new_law(c, old, static_cast<int>(i));
         if (law == old) continue;

@@ -95,7 +95,8 @@ void World::save_state(StateWriter& w) const {
 
 void World::save_block(StateWriter& w, std::size_t i, const Eigen::Vector3d* loads) const {
   Saver ar(w);
-  block_record(ar, blocks_[i], box_min_[i], box_max_[i], face_laws(static_cast<int>(i)), loads,
+  const std::span<const int> laws = face_laws(static_cast<int>(i));
+  block_record(ar, blocks_[i], box_min_[i], box_max_[i], laws, loads,
                static_cast<int>(laws_.size()));
 }
 
@@ -240,10 +241,8 @@ void World::load_blocks(StateReader& r) {
     b.initial_orientation = s.initial_orientation;
     if (!saved_laws[i].empty() && saved_laws[i].size() != b.shape.planes().size())
       throw StateError("block '" + b.name + "' has another shape than in the saved state");
-    if (!saved_laws[i].empty() || i < face_laws_.size()) {
-      if (face_laws_.size() <= i) face_laws_.resize(blocks_.size());
-      face_laws_[i] = std::move(saved_laws[i]);
-    }
+    if (!saved_laws[i].empty() || face_laws_.has(i)) face_laws_.set(i, saved_laws[i]);
+    std::vector<int>().swap(saved_laws[i]);
   }
 }
 
