@@ -612,8 +612,8 @@ class World {
   std::size_t break_table_rows() const;
   std::int64_t overlap_violation_ = -1;  ///< first slot whose overlap is too deep, or -1
   UniformGrid broad_phase_;   ///< chosen over sweep and prune by bench/bench_broad_phase.cpp
-  PlaneValues face_laws_;     ///< per block, one law per plane; none: none
-  PlaneValues face_sets_;     ///< per block, one joint set per plane; none: none
+  PlaneValues face_laws_;     ///< per block, one law per plane (empty: none)
+  PlaneValues face_sets_;     ///< per block, one joint set per plane (empty: none)
   ContactPreloads preloads_;  ///< joints prestressed at set-up
   /// A gradual excavation's loads on a block: its applied loads before, and the removed blocks'.
   struct Relaxation {
