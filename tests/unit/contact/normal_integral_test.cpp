@@ -14,6 +14,7 @@
 #include "law_test_support.hpp"
 
 namespace blockdem {
+namespace normal_integral_test {
 namespace {
 
 using test::gauss_legendre;
@@ -259,4 +260,5 @@ TEST(NormalIntegral, RejectsMalformedPolygons) {
 }
 
 }  // namespace
+}  // namespace normal_integral_test
 }  // namespace blockdem

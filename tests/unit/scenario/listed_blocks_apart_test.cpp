@@ -11,6 +11,7 @@
 #include "blockdem/run/scene_builders.hpp"
 
 namespace blockdem {
+namespace listed_blocks_apart_test {
 namespace {
 
 // 2 500 blocks (three runs of 1 024 tables), a servo block with its table as a header, a table
@@ -177,4 +178,5 @@ gravity = [0, 0, -9.81]
 }
 
 }  // namespace
+}  // namespace listed_blocks_apart_test
 }  // namespace blockdem

@@ -12,7 +12,7 @@
 #include "blockdem/numerics/units.hpp"
 #include "blockdem/run/scene_builders.hpp"
 
-namespace blockdem::test {
+namespace blockdem::test::shared_shapes_test {
 namespace {
 
 // Three 0.1 m cubes turned 30° about z, a fourth of another size, a fifth of another density.
@@ -121,4 +121,4 @@ TEST(SharedShapes, IdenticalBoxesShareOneShapeAndEqualBoxesBuiltAlone) {
 }
 
 }  // namespace
-}  // namespace blockdem::test
+}  // namespace blockdem::test::shared_shapes_test
