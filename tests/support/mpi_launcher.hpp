@@ -27,11 +27,10 @@ inline constexpr const char* kMpiexec = nullptr;
 /// against 0.39 s; the 21 Mpi* tests, one after the other: 92 s against 82 s).
 /// Once a process has ended with a non-zero code (an input error, a stage cut short, a signal,
 /// a death), mpirun ends the others at once (odls_base_sigkill_timeout 0) unless `options` set
-/// the timeout: by default it waits a second before its SIGTERM and another before its SIGKILL,
-/// which made every such run last at least 2 s (a 2-process run ending with exit code 3 after
-/// 10 steps: 2.1 s against 0.1 s). A collective stop loses nothing by it: no process exits
-/// before process 0 has written its files, and a test then checks that no process depends on
-/// the grace.
+/// the timeout: by default it waits up to a second before its SIGTERM and as long before its
+/// SIGKILL, which every such run paid (a 2-process run ending with exit code 3 after 10 steps:
+/// 1.2-2.2 s against 0.16 s). A collective stop loses nothing by it: no process exits before
+/// process 0 has written its files, and the tests then also check that none needs the grace.
 inline std::string mpirun(int ranks, const std::string& options = "") {
   // Appended in place (GCC 12 warns wrongly, -Warray-bounds, on the chain of operator+).
   std::string line(kMpiexec);
