@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <ostream>
 #include <string>
 
 #include "blockdem/run/scene_builders.hpp"
@@ -87,6 +88,10 @@ struct BadCase {
   const char* key;
   const char* reason_word;
 };
+
+/// The case by its name: GoogleTest otherwise prints the parameter's bytes, pointers included, and
+/// the CTest names made from them would change with every build (tests/costs/ matches by name).
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
 
 class ScenarioErrorCases : public ::testing::TestWithParam<BadCase> {};
 
