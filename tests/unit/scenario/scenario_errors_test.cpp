@@ -91,7 +91,9 @@ struct BadCase {
 
 /// The case by its name: GoogleTest otherwise prints the parameter's bytes, pointers included, and
 /// the CTest names made from them would change with every build (tests/costs/ matches by name).
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class ScenarioErrorCases : public ::testing::TestWithParam<BadCase> {};
 
